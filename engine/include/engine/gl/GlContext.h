@@ -1,0 +1,70 @@
+// GlContext: one interface over the ways the engine gets an OpenGL 4.5 core context — headless EGL
+// (a hardware EGL device if there is one, else Mesa's surfaceless platform) or a GLFW window.
+//
+// STEP BY STEP
+//   1. auto ctx = pacifica::gl::createHeadlessContext();      // or createWindowContext({...})
+//   2. ctx->info().renderer                                    // logged at creation too
+//   3. render into your own framebuffers (headless contexts have no default framebuffer)
+// When no context can be made, ContextError is thrown with the reason; tools turn it into a non-zero exit.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace pacifica::gl {
+
+class ContextError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct ContextInfo {
+    std::string vendor;
+    std::string renderer;
+    std::string version;
+    std::string platform; ///< "egl-device", "egl-surfaceless" or "glfw"
+    bool software = false; ///< llvmpipe/softpipe: GL timer queries are wrong there (NOTES-platform.md)
+};
+
+struct ContextDesc {
+    int width = 1280; ///< window size (windowed contexts only)
+    int height = 720;
+    std::string title = "Pacifica";
+    bool debug = true; ///< request a debug context and route KHR_debug messages to the log
+    bool vsync = true;
+};
+
+class GlContext {
+public:
+    virtual ~GlContext() = default;
+    GlContext(const GlContext&) = delete;
+    GlContext& operator=(const GlContext&) = delete;
+
+    virtual void makeCurrent() = 0;
+    const ContextInfo& info() const { return mInfo; }
+
+    // Windowed contexts override these; headless ones have no default framebuffer and never close.
+    virtual bool windowed() const { return false; }
+    virtual void swapBuffers() {}
+    virtual void pollEvents() {}
+    virtual bool shouldClose() const { return false; }
+    virtual bool keyDown(int /*glfwKey*/) const { return false; }
+    virtual glm::ivec2 framebufferSize() const { return {0, 0}; }
+
+protected:
+    GlContext() = default;
+    /// Reads GL_VENDOR/RENDERER/VERSION into info(), logs them, installs the KHR_debug callback.
+    void initialiseInfo(const std::string& platform, bool debug);
+    ContextInfo mInfo;
+};
+
+/// Headless GL 4.5 core through EGL: EGL device platform first (hardware), then Mesa surfaceless.
+/// PACIFICA_EGL_PLATFORM=device|surfaceless forces one. Throws ContextError when neither works.
+std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc = {});
+
+/// A GLFW window with a GL 4.5 core context. Throws ContextError without a display or without GLFW.
+std::unique_ptr<GlContext> createWindowContext(const ContextDesc& desc = {});
+
+} // namespace pacifica::gl

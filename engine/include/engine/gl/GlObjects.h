@@ -1,0 +1,183 @@
+// GlObjects: move-only RAII wrappers for OpenGL objects (GL 4.5 DSA), after Magnum's GL::Buffer.
+//
+// Every wrapper has an explicit empty state (default-constructed: id 0, owns nothing), is created with
+// X::create(...), and can adopt a host's object without owning it (X::wrap(id)) so a host engine can lend
+// its framebuffer or textures; release() gives up ownership and returns the id. Only the engine's GL layer
+// includes GL headers; these types expose ids as plain unsigned ints.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+
+namespace pacifica::gl {
+
+using GLid = unsigned int;
+using GLenumT = unsigned int;
+
+/// Owning-or-borrowing handle. Deleter is a stateless functor taking the id.
+template <typename Deleter>
+class Handle {
+public:
+    Handle() = default;
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    Handle(Handle&& o) noexcept : mId(std::exchange(o.mId, 0)), mOwned(std::exchange(o.mOwned, false)) {}
+    Handle& operator=(Handle&& o) noexcept {
+        if (this != &o) {
+            reset();
+            mId = std::exchange(o.mId, 0);
+            mOwned = std::exchange(o.mOwned, false);
+        }
+        return *this;
+    }
+    ~Handle() { reset(); }
+
+    GLid id() const { return mId; }
+    bool owned() const { return mOwned; }
+    explicit operator bool() const { return mId != 0; }
+    /// Gives up ownership; the caller now owns the returned id.
+    GLid release() {
+        mOwned = false;
+        return std::exchange(mId, 0);
+    }
+    void reset() {
+        if (mId && mOwned)
+            Deleter{}(mId);
+        mId = 0;
+        mOwned = false;
+    }
+
+protected:
+    Handle(GLid id, bool owned) : mId(id), mOwned(owned) {}
+
+private:
+    GLid mId = 0;
+    bool mOwned = false;
+};
+
+struct BufferDeleter {
+    void operator()(GLid id) const;
+};
+struct TextureDeleter {
+    void operator()(GLid id) const;
+};
+struct FramebufferDeleter {
+    void operator()(GLid id) const;
+};
+struct VertexArrayDeleter {
+    void operator()(GLid id) const;
+};
+struct ProgramDeleter {
+    void operator()(GLid id) const;
+};
+struct QueryDeleter {
+    void operator()(GLid id) const;
+};
+
+class Buffer : public Handle<BufferDeleter> {
+public:
+    Buffer() = default;
+    /// glCreateBuffers + immutable glNamedBufferStorage (flags: GL_DYNAMIC_STORAGE_BIT etc.; 0 = static).
+    static Buffer create(std::size_t bytes, const void* data, unsigned flags = 0);
+    static Buffer wrap(GLid id) { return Buffer(id, false); }
+    /// glNamedBufferSubData; requires GL_DYNAMIC_STORAGE_BIT at creation.
+    void upload(std::size_t offset, std::size_t bytes, const void* data);
+    std::size_t size() const { return mSize; }
+
+private:
+    Buffer(GLid id, bool owned) : Handle(id, owned) {}
+    std::size_t mSize = 0;
+};
+
+class Texture : public Handle<TextureDeleter> {
+public:
+    Texture() = default;
+    /// glCreateTextures(target) + glTextureStorage2D/3D. depth = 0 for 2D targets.
+    static Texture create2D(GLenumT internalFormat, int width, int height, int levels = 1);
+    static Texture create3D(GLenumT internalFormat, int width, int height, int depth, int levels = 1);
+    /// glCreateTextures(GL_TEXTURE_2D_ARRAY) + glTextureStorage3D.
+    static Texture createArray2D(GLenumT internalFormat, int width, int height, int layers, int levels = 1);
+    static Texture wrap(GLid id, GLenumT target) { return Texture(id, false, target); }
+    /// Takes ownership of an existing texture object.
+    static Texture adopt(GLid id, GLenumT target) { return Texture(id, true, target); }
+    GLenumT target() const { return mTarget; }
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    int depth() const { return mDepth; }
+    /// Sets min/mag filter and wrap mode on all axes (e.g. GL_LINEAR, GL_REPEAT).
+    void setSampling(GLenumT minFilter, GLenumT magFilter, GLenumT wrap);
+
+private:
+    Texture(GLid id, bool owned, GLenumT target) : Handle(id, owned), mTarget(target) {}
+    GLenumT mTarget = 0;
+    int mWidth = 0, mHeight = 0, mDepth = 0;
+};
+
+class Framebuffer : public Handle<FramebufferDeleter> {
+public:
+    Framebuffer() = default;
+    static Framebuffer create();
+    /// Adopts a host's framebuffer (0 = the default framebuffer) without owning it.
+    static Framebuffer wrap(GLid id) { return Framebuffer(id, false); }
+    void attachColor(int index, const Texture& texture, int level = 0);
+    void attachDepth(const Texture& texture);
+    /// Throws std::runtime_error naming the incomplete status.
+    void checkComplete(const char* what) const;
+
+private:
+    Framebuffer(GLid id, bool owned) : Handle(id, owned) {}
+};
+
+class VertexArray : public Handle<VertexArrayDeleter> {
+public:
+    VertexArray() = default;
+    static VertexArray create();
+    static VertexArray wrap(GLid id) { return VertexArray(id, false); }
+
+private:
+    VertexArray(GLid id, bool owned) : Handle(id, owned) {}
+};
+
+class Program : public Handle<ProgramDeleter> {
+public:
+    Program() = default;
+    static Program adopt(GLid id) { return Program(id, true); }
+    static Program wrap(GLid id) { return Program(id, false); }
+    /// -1 when the uniform does not exist or was optimised away.
+    int uniformLocation(const char* name) const;
+
+private:
+    Program(GLid id, bool owned) : Handle(id, owned) {}
+};
+
+class Query : public Handle<QueryDeleter> {
+public:
+    Query() = default;
+    static Query create(GLenumT target);
+    static Query wrap(GLid id) { return Query(id, false); }
+
+private:
+    Query(GLid id, bool owned) : Handle(id, owned) {}
+};
+
+/// Saves the GL state the ocean component changes and restores it on destruction, so a host's state
+/// survives a frame of ours (viewport, draw framebuffer, program, VAO, depth/blend/cull enables,
+/// depth func and mask, clip control, polygon offset, active texture).
+class StateGuard {
+public:
+    StateGuard();
+    ~StateGuard();
+    StateGuard(const StateGuard&) = delete;
+    StateGuard& operator=(const StateGuard&) = delete;
+
+private:
+    int mViewport[4]{};
+    int mDrawFbo = 0, mReadFbo = 0, mProgram = 0, mVao = 0, mActiveTexture = 0;
+    int mDepthFunc = 0, mClipOrigin = 0, mClipDepth = 0, mBlendSrc = 0, mBlendDst = 0;
+    unsigned char mDepthMask = 1;
+    bool mDepthTest = false, mBlend = false, mCull = false, mScissor = false;
+    float mClearColor[4]{};
+    double mClearDepth = 1.0;
+};
+
+} // namespace pacifica::gl

@@ -1,0 +1,208 @@
+// Capture implementation: OpenImageIO for the file formats, Imath for float->half, xxHash for frame hashes.
+// Every OIIO call's failure is checked and its geterror() text is carried into the CaptureError (an
+// ImageOutput destroyed with an unread error would print it to stderr instead). Each write goes to
+// ".<name>.tmp-<pid>-<n>" next to the final file and is renamed into place only after close() succeeded;
+// rename within one directory is atomic on POSIX, so readers never see a partial image.
+#include <engine/capture/Capture.h>
+
+#include <Imath/half.h>
+#include <OpenImageIO/imageio.h>
+#include <xxhash.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <memory>
+#include <system_error>
+
+namespace pacifica::capture {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Removes the temp file unless the write was committed (renamed into place), whatever way we leave.
+class TempFile {
+public:
+    explicit TempFile(const fs::path& finalPath) {
+        static std::atomic<unsigned> counter{0};
+        // ".<name>.tmp-<pid>-<n>": hidden, unique per process and call. Built with append() because
+        // GCC 12 -O3 warns falsely (-Wrestrict, GCC bug 105329) on `"." + std::string`.
+        std::string name(".");
+        name.append(finalPath.filename().string())
+            .append(".tmp-")
+            .append(std::to_string(::getpid()))
+            .append("-")
+            .append(std::to_string(counter.fetch_add(1)));
+        mPath = finalPath.parent_path() / name;
+    }
+    TempFile(const TempFile&) = delete;
+    TempFile& operator=(const TempFile&) = delete;
+    ~TempFile() {
+        if (!mCommitted) {
+            std::error_code ignored;
+            fs::remove(mPath, ignored);
+        }
+    }
+
+    const fs::path& path() const { return mPath; }
+    void commit() { mCommitted = true; }
+
+private:
+    fs::path mPath;
+    bool mCommitted = false;
+};
+
+void checkArguments(const fs::path& path, const char* function, int width, int height, int channels,
+                    int minChannels, int maxChannels, const float* pixels) {
+    if (width <= 0 || height <= 0) {
+        throw CaptureError(path, std::string(function) + ": expected a positive size, got " +
+                                     std::to_string(width) + "x" + std::to_string(height));
+    }
+    if (channels < minChannels || channels > maxChannels) {
+        throw CaptureError(path, std::string(function) + ": expected " + std::to_string(minChannels) +
+                                     " to " + std::to_string(maxChannels) + " channels, got " +
+                                     std::to_string(channels));
+    }
+    if (pixels == nullptr) {
+        throw CaptureError(path, std::string(function) + ": pixel pointer is null");
+    }
+}
+
+// Writes `data` (already in the spec's pixel format) through the named OIIO plugin to a temp file, then
+// renames it onto `path`.
+void writeAtomically(const fs::path& path, const char* formatName, const OIIO::ImageSpec& spec,
+                     const void* data) {
+    TempFile temp(path); // declared before `out`, so the writer is closed before the temp file is removed
+    auto out = OIIO::ImageOutput::create(formatName);
+    if (!out) {
+        throw CaptureError(path,
+                           std::string("cannot create the ") + formatName + " writer: " + OIIO::geterror());
+    }
+    if (!out->open(temp.path().string(), spec)) {
+        throw CaptureError(path, "cannot open " + temp.path().string() + " for writing: " + out->geterror());
+    }
+    if (!out->write_image(spec.format, data)) {
+        const std::string reason = out->geterror();
+        out->close();
+        out->geterror(); // drop any follow-up error so the destructor stays quiet
+        throw CaptureError(path, "cannot write pixels: " + reason);
+    }
+    if (!out->close() || out->has_error()) {
+        throw CaptureError(path, "cannot finish writing " + temp.path().string() + ": " + out->geterror());
+    }
+    out.reset();
+
+    std::error_code ec;
+    fs::rename(temp.path(), path, ec);
+    if (ec) {
+        throw CaptureError(path, "cannot rename " + temp.path().string() + " into place: " + ec.message());
+    }
+    temp.commit();
+}
+
+template <class T>
+std::string shortestText(T value) {
+    std::array<char, 64> buf{};
+    const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), value);
+    return std::string(buf.data(), res.ptr);
+}
+
+} // namespace
+
+CaptureError::CaptureError(const std::filesystem::path& file, const std::string& message)
+    : std::runtime_error(file.string() + ": " + message), mFile(file) {}
+
+uint64_t hashHalfPixels(const uint16_t* halfBits, size_t count) {
+    return XXH64(halfBits, count * sizeof(uint16_t), 0);
+}
+
+std::vector<uint16_t> toHalf(const float* data, size_t count) {
+    std::vector<uint16_t> bits(count);
+    for (size_t i = 0; i < count; ++i) {
+        bits[i] = Imath::half(data[i]).bits(); // Imath: round to nearest, ties to even
+    }
+    return bits;
+}
+
+uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, int channels,
+                      const float* pixelsTopDown, const Metadata& metadata) {
+    checkArguments(path, "writeExrHalf()", width, height, channels, 3, 4, pixelsTopDown);
+
+    // The default channel names for 3 and 4 channels are R,G,B(,A), with A as the alpha channel.
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::HALF);
+    spec.attribute("compression", "zip");
+    for (const auto& [name, value] : metadata.strings) {
+        spec.attribute("pacifica:" + name, value);
+    }
+    for (const auto& [name, value] : metadata.numbers) {
+        spec.attribute("pacifica:" + name, OIIO::TypeDesc::DOUBLE, &value);
+    }
+
+    // Convert once and hand OIIO the half bits themselves, so the hash is of exactly what lands in the file.
+    const size_t count =
+        static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
+    const std::vector<uint16_t> halves = toHalf(pixelsTopDown, count);
+    writeAtomically(path, "openexr", spec, halves.data());
+    return hashHalfPixels(halves.data(), halves.size());
+}
+
+void writePng8(const std::filesystem::path& path, int width, int height, int channels,
+               const float* displayTopDown) {
+    checkArguments(path, "writePng8()", width, height, channels, 1, 4, displayTopDown);
+
+    const size_t count =
+        static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
+    std::vector<uint8_t> bytes(count);
+    for (size_t i = 0; i < count; ++i) {
+        const float v = displayTopDown[i];
+        const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+        bytes[i] = static_cast<uint8_t>(std::lround(clamped * 255.0f));
+    }
+
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    writeAtomically(path, "png", spec, bytes.data());
+}
+
+Image readImage(const std::filesystem::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+        throw CaptureError(path, "cannot open image: " + OIIO::geterror());
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+
+    Image image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.channels = spec.nchannels;
+    image.pixels.resize(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
+                        static_cast<size_t>(spec.nchannels));
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+        const std::string reason = in->geterror();
+        in->close();
+        in->geterror();
+        throw CaptureError(path, "cannot read pixels: " + reason);
+    }
+
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+        std::string text;
+        if (p.nvalues() == 1 && p.type() == OIIO::TypeDesc::DOUBLE) {
+            text = shortestText(*static_cast<const double*>(p.data()));
+        } else if (p.nvalues() == 1 && p.type() == OIIO::TypeDesc::FLOAT) {
+            text = shortestText(*static_cast<const float*>(p.data()));
+        } else {
+            text = p.get_string(0); // 0: all elements of arrays and aggregates
+        }
+        image.attributes[p.name().string()] = std::move(text);
+    }
+    in->close();
+    in->geterror();
+    return image;
+}
+
+} // namespace pacifica::capture

@@ -1,0 +1,183 @@
+// Headless OpenGL 4.5 core contexts through EGL. Order: a hardware EGL device (EGL_EXT_platform_device,
+// skipping Mesa's software device), then Mesa's surfaceless platform (llvmpipe). No default framebuffer:
+// everything renders into FBOs. See NOTES-platform.md for the verified behaviour on llvmpipe and NVIDIA.
+#include "engine/gl/GlContext.h"
+
+#include "engine/Log.h"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace pacifica::gl {
+namespace {
+
+std::string eglErrorName(EGLint e) {
+    switch (e) {
+    case EGL_SUCCESS:
+        return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+        return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+        return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+        return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+        return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+        return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+        return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+        return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+        return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+        return "EGL_BAD_PARAMETER";
+    default:
+        return "EGL error 0x" + std::to_string(e);
+    }
+}
+
+bool hasExtension(const char* list, const char* name) {
+    if (!list)
+        return false;
+    const size_t n = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += n) {
+        if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0'))
+            return true;
+    }
+    return false;
+}
+
+class EglContext final : public GlContext {
+public:
+    EglContext(EGLDisplay display, EGLContext context, const std::string& platform, bool debug)
+        : mDisplay(display), mContext(context) {
+        makeCurrent();
+        initialiseInfo(platform, debug);
+    }
+    ~EglContext() override {
+        eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        eglDestroyContext(mDisplay, mContext);
+        eglTerminate(mDisplay);
+    }
+    void makeCurrent() override {
+        if (!eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, mContext))
+            throw ContextError("eglMakeCurrent failed: " + eglErrorName(eglGetError()));
+    }
+
+private:
+    EGLDisplay mDisplay;
+    EGLContext mContext;
+};
+
+/// Initialises `display` and makes a GL 4.5 core context on it without a config or surface
+/// (EGL_KHR_no_config_context + EGL_KHR_surfaceless_context). Returns EGL_NO_CONTEXT and a reason on failure.
+EGLContext makeCoreContext(EGLDisplay display, bool debug, std::string& why) {
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display, &major, &minor)) {
+        why = "eglInitialize failed: " + eglErrorName(eglGetError());
+        return EGL_NO_CONTEXT;
+    }
+    const char* exts = eglQueryString(display, EGL_EXTENSIONS);
+    if (!hasExtension(exts, "EGL_KHR_surfaceless_context")) {
+        why = "EGL display lacks EGL_KHR_surfaceless_context";
+        eglTerminate(display);
+        return EGL_NO_CONTEXT;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+        why = "eglBindAPI(EGL_OPENGL_API) failed: " + eglErrorName(eglGetError());
+        eglTerminate(display);
+        return EGL_NO_CONTEXT;
+    }
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    if (!hasExtension(exts, "EGL_KHR_no_config_context")) {
+        const EGLint cfgAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        EGLint count = 0;
+        if (!eglChooseConfig(display, cfgAttribs, &config, 1, &count) || count == 0) {
+            why = "no EGL config with EGL_OPENGL_BIT";
+            eglTerminate(display);
+            return EGL_NO_CONTEXT;
+        }
+    }
+    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                 4,
+                                 EGL_CONTEXT_MINOR_VERSION,
+                                 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                 EGL_CONTEXT_OPENGL_DEBUG,
+                                 debug ? EGL_TRUE : EGL_FALSE,
+                                 EGL_NONE};
+    EGLContext ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, ctxAttribs);
+    if (ctx == EGL_NO_CONTEXT) {
+        why = "eglCreateContext(GL 4.5 core) failed: " + eglErrorName(eglGetError());
+        eglTerminate(display);
+    }
+    return ctx;
+}
+
+} // namespace
+
+std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
+    const char* force = std::getenv("PACIFICA_EGL_PLATFORM");
+    const std::string forced = force ? force : "";
+    if (!forced.empty() && forced != "device" && forced != "surfaceless")
+        throw ContextError("PACIFICA_EGL_PLATFORM must be 'device' or 'surfaceless', got '" + forced + "'");
+    std::vector<std::string> reasons;
+
+    const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!clientExts)
+        throw ContextError("no EGL implementation found (eglQueryString(EGL_NO_DISPLAY) failed: " +
+                           eglErrorName(eglGetError()) + "); install libegl1 and a driver (libegl-mesa0)");
+
+    // 1. A hardware EGL device.
+    if (forced != "surfaceless" && hasExtension(clientExts, "EGL_EXT_device_enumeration") &&
+        hasExtension(clientExts, "EGL_EXT_platform_device")) {
+        EGLDeviceEXT devices[16];
+        EGLint count = 0;
+        if (eglQueryDevicesEXT(16, devices, &count)) {
+            for (EGLint i = 0; i < count; ++i) {
+                const char* devExts = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
+                if (hasExtension(devExts, "EGL_MESA_device_software") && forced != "device")
+                    continue; // llvmpipe: prefer the surfaceless path, same renderer
+                EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+                if (display == EGL_NO_DISPLAY)
+                    continue;
+                std::string why;
+                EGLContext ctx = makeCoreContext(display, desc.debug, why);
+                if (ctx != EGL_NO_CONTEXT)
+                    return std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
+                reasons.push_back("device " + std::to_string(i) + ": " + why);
+            }
+        }
+        if (count == 0)
+            reasons.push_back("no EGL devices");
+    }
+    // 2. Mesa surfaceless.
+    if (forced != "device" && hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
+        EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (display != EGL_NO_DISPLAY) {
+            std::string why;
+            EGLContext ctx = makeCoreContext(display, desc.debug, why);
+            if (ctx != EGL_NO_CONTEXT)
+                return std::make_unique<EglContext>(display, ctx, "egl-surfaceless", desc.debug);
+            reasons.push_back("surfaceless: " + why);
+        } else {
+            reasons.push_back("surfaceless: no display (" + eglErrorName(eglGetError()) + ")");
+        }
+    } else if (forced != "device") {
+        reasons.push_back("EGL_MESA_platform_surfaceless not supported");
+    }
+    std::string message = "no headless OpenGL 4.5 context could be created through EGL";
+    for (const std::string& r : reasons)
+        message += "; " + r;
+    throw ContextError(message);
+}
+
+} // namespace pacifica::gl

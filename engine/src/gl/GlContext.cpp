@@ -1,0 +1,54 @@
+// GlContext common part: context info and the KHR_debug message route into the log.
+#include "engine/gl/GlContext.h"
+
+#include "engine/Log.h"
+
+#include <epoxy/gl.h>
+
+#include <string>
+
+namespace pacifica::gl {
+namespace {
+
+const char* str(GLenum name) {
+    const GLubyte* s = glGetString(name);
+    return s ? reinterpret_cast<const char*>(s) : "(null)";
+}
+
+void GLAPIENTRY debugCallback(GLenum /*source*/, GLenum type, GLuint id, GLenum severity, GLsizei length,
+                              const GLchar* message, const void* /*user*/) {
+    if (severity == GL_DEBUG_SEVERITY_NOTIFICATION)
+        return;
+    std::string text = "GL debug (id " + std::to_string(id) + "): " + std::string(message, length);
+    if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH)
+        logError(text);
+    else
+        logWarning(text);
+}
+
+} // namespace
+
+void GlContext::initialiseInfo(const std::string& platform, bool debug) {
+    mInfo.vendor = str(GL_VENDOR);
+    mInfo.renderer = str(GL_RENDERER);
+    mInfo.version = str(GL_VERSION);
+    mInfo.platform = platform;
+    mInfo.software = mInfo.renderer.find("llvmpipe") != std::string::npos ||
+                     mInfo.renderer.find("softpipe") != std::string::npos;
+    logInfo("GL context (" + platform + "): GL_VENDOR=" + mInfo.vendor + ", GL_RENDERER=" + mInfo.renderer +
+            ", GL_VERSION=" + mInfo.version);
+    if (debug && epoxy_has_gl_extension("GL_KHR_debug")) {
+        glEnable(GL_DEBUG_OUTPUT);
+        glDebugMessageCallback(debugCallback, nullptr);
+    }
+}
+
+} // namespace pacifica::gl
+
+#ifndef PACIFICA_HAS_GLFW
+namespace pacifica::gl {
+std::unique_ptr<GlContext> createWindowContext(const ContextDesc&) {
+    throw ContextError("this build has no window support (configured with PACIFICA_WITH_GLFW=OFF)");
+}
+} // namespace pacifica::gl
+#endif

@@ -1,0 +1,154 @@
+// GlObjects implementation: GL 4.5 direct-state-access creation and deletion, and the state guard.
+#include "engine/gl/GlObjects.h"
+
+#include <epoxy/gl.h>
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace pacifica::gl {
+
+void BufferDeleter::operator()(GLid id) const { glDeleteBuffers(1, &id); }
+void TextureDeleter::operator()(GLid id) const { glDeleteTextures(1, &id); }
+void FramebufferDeleter::operator()(GLid id) const { glDeleteFramebuffers(1, &id); }
+void VertexArrayDeleter::operator()(GLid id) const { glDeleteVertexArrays(1, &id); }
+void ProgramDeleter::operator()(GLid id) const { glDeleteProgram(id); }
+void QueryDeleter::operator()(GLid id) const { glDeleteQueries(1, &id); }
+
+Buffer Buffer::create(std::size_t bytes, const void* data, unsigned flags) {
+    GLuint id = 0;
+    glCreateBuffers(1, &id);
+    glNamedBufferStorage(id, static_cast<GLsizeiptr>(bytes), data, flags);
+    Buffer b(id, true);
+    b.mSize = bytes;
+    return b;
+}
+
+void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
+    if (offset + bytes > mSize)
+        throw std::logic_error("Buffer::upload(): range " + std::to_string(offset) + "+" + std::to_string(bytes) +
+                               " exceeds size " + std::to_string(mSize));
+    glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+}
+
+Texture Texture::create2D(GLenumT internalFormat, int width, int height, int levels) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    glTextureStorage2D(id, levels, internalFormat, width, height);
+    Texture t(id, true, GL_TEXTURE_2D);
+    t.mWidth = width;
+    t.mHeight = height;
+    return t;
+}
+
+Texture Texture::create3D(GLenumT internalFormat, int width, int height, int depth, int levels) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_3D, 1, &id);
+    glTextureStorage3D(id, levels, internalFormat, width, height, depth);
+    Texture t(id, true, GL_TEXTURE_3D);
+    t.mWidth = width;
+    t.mHeight = height;
+    t.mDepth = depth;
+    return t;
+}
+
+void Texture::setSampling(GLenumT minFilter, GLenumT magFilter, GLenumT wrap) {
+    glTextureParameteri(id(), GL_TEXTURE_MIN_FILTER, static_cast<GLint>(minFilter));
+    glTextureParameteri(id(), GL_TEXTURE_MAG_FILTER, static_cast<GLint>(magFilter));
+    glTextureParameteri(id(), GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+    glTextureParameteri(id(), GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+    glTextureParameteri(id(), GL_TEXTURE_WRAP_R, static_cast<GLint>(wrap));
+}
+
+Texture Texture::createArray2D(GLenumT internalFormat, int width, int height, int layers, int levels) {
+    GLuint id = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &id);
+    glTextureStorage3D(id, levels, internalFormat, width, height, layers);
+    Texture t(id, true, GL_TEXTURE_2D_ARRAY);
+    t.mWidth = width;
+    t.mHeight = height;
+    t.mDepth = layers;
+    return t;
+}
+
+Framebuffer Framebuffer::create() {
+    GLuint id = 0;
+    glCreateFramebuffers(1, &id);
+    return Framebuffer(id, true);
+}
+
+void Framebuffer::attachColor(int index, const Texture& texture, int level) {
+    glNamedFramebufferTexture(id(), GL_COLOR_ATTACHMENT0 + index, texture.id(), level);
+}
+
+void Framebuffer::attachDepth(const Texture& texture) {
+    glNamedFramebufferTexture(id(), GL_DEPTH_ATTACHMENT, texture.id(), 0);
+}
+
+void Framebuffer::checkComplete(const char* what) const {
+    const GLenum status = glCheckNamedFramebufferStatus(id(), GL_DRAW_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        char hex[16];
+        std::snprintf(hex, sizeof hex, "0x%04X", status);
+        throw std::runtime_error(std::string("Framebuffer::checkComplete(): ") + what + " is incomplete, status " +
+                                 hex);
+    }
+}
+
+VertexArray VertexArray::create() {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);
+    return VertexArray(id, true);
+}
+
+int Program::uniformLocation(const char* name) const { return glGetUniformLocation(id(), name); }
+
+Query Query::create(GLenumT target) {
+    GLuint id = 0;
+    glCreateQueries(target, 1, &id);
+    return Query(id, true);
+}
+
+StateGuard::StateGuard() {
+    glGetIntegerv(GL_VIEWPORT, mViewport);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &mDrawFbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &mReadFbo);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &mProgram);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &mVao);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &mActiveTexture);
+    glGetIntegerv(GL_DEPTH_FUNC, &mDepthFunc);
+    glGetIntegerv(GL_CLIP_ORIGIN, &mClipOrigin);
+    glGetIntegerv(GL_CLIP_DEPTH_MODE, &mClipDepth);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &mBlendSrc);
+    glGetIntegerv(GL_BLEND_DST_RGB, &mBlendDst);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &mDepthMask);
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, mClearColor);
+    glGetDoublev(GL_DEPTH_CLEAR_VALUE, &mClearDepth);
+    mDepthTest = glIsEnabled(GL_DEPTH_TEST);
+    mBlend = glIsEnabled(GL_BLEND);
+    mCull = glIsEnabled(GL_CULL_FACE);
+    mScissor = glIsEnabled(GL_SCISSOR_TEST);
+}
+
+StateGuard::~StateGuard() {
+    auto set = [](GLenum cap, bool on) { on ? glEnable(cap) : glDisable(cap); };
+    glViewport(mViewport[0], mViewport[1], mViewport[2], mViewport[3]);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(mDrawFbo));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(mReadFbo));
+    glUseProgram(static_cast<GLuint>(mProgram));
+    glBindVertexArray(static_cast<GLuint>(mVao));
+    glActiveTexture(static_cast<GLenum>(mActiveTexture));
+    glDepthFunc(static_cast<GLenum>(mDepthFunc));
+    glClipControl(static_cast<GLenum>(mClipOrigin), static_cast<GLenum>(mClipDepth));
+    glBlendFunc(static_cast<GLenum>(mBlendSrc), static_cast<GLenum>(mBlendDst));
+    glDepthMask(mDepthMask);
+    glClearColor(mClearColor[0], mClearColor[1], mClearColor[2], mClearColor[3]);
+    glClearDepth(mClearDepth);
+    set(GL_DEPTH_TEST, mDepthTest);
+    set(GL_BLEND, mBlend);
+    set(GL_CULL_FACE, mCull);
+    set(GL_SCISSOR_TEST, mScissor);
+}
+
+} // namespace pacifica::gl

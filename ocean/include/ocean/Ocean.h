@@ -1,0 +1,87 @@
+// Ocean: the public entry point of the Pacifica ocean component.
+//
+// STEP BY STEP (a host engine embedding the ocean)
+//   1. Own a GL 4.5 core context and an ecs::Registry (engine/Ecs.h).
+//   2. auto e = registry.create();
+//      registry.emplace<pacifica::ocean::OceanComponent>(e, pacifica::ocean::makeOcean({}));
+//   3. pacifica::ocean::OceanRenderer renderer;                  // after the context is current
+//   4. each frame: build a CameraFrame (engine/Space.h) from the camera's double-precision pose, then
+//        renderer.render(registry, {camera, simTime, hostFbo, width, height});
+//      It draws sky + sea into the host's framebuffer (scene-linear HDR, e.g. RGBA16F with a depth
+//      attachment; reverse-Z: it clears depth to 0 and tests GL_GREATER) and restores the host's GL state.
+//   5. CPU queries (physics, buoyancy, cameras): component.surface->heightAt({x, y}, simTime) matches what
+//      the GPU drew to float precision.
+// Entities without an OceanComponent cost nothing; removing the component frees its GPU resources on the
+// next render().
+#pragma once
+
+#include "engine/Ecs.h"
+#include "engine/Space.h"
+#include "ocean/HeightOctaves.h"
+#include "ocean/RadialGrid.h"
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <unordered_map>
+
+namespace pacifica::ocean {
+
+struct LightingDesc {
+    glm::dvec3 sunDirection{0.35, -0.55, 0.30}; ///< towards the sun, world ENU (normalised on use)
+    float sunIntensity = 40.0f;     ///< scene-linear radiance scale of the sun's specular highlight
+    float skyIntensity = 1.0f;      ///< scale of the procedural sky radiance
+    float fogDensity = 1.0f / 60000.0f; ///< 1/m
+    float normalTilt = 0.15f;       ///< §18.2.6: tilt of the lighting normal toward the viewer
+};
+
+struct OceanDesc {
+    HeightOctavesDesc surface;
+    RadialGridDesc grid;
+    LightingDesc lighting;
+    bool drawSky = true; ///< false when the host draws its own sky
+};
+
+/// The component: a description plus the CPU surface built from it (shared, immutable).
+struct OceanComponent {
+    OceanDesc desc;
+    std::shared_ptr<const HeightOctaves> surface;
+};
+
+/// Validates the description (std::invalid_argument naming the field) and builds the CPU surface.
+OceanComponent makeOcean(const OceanDesc& desc);
+
+struct OceanFrame {
+    CameraFrame camera;
+    double time = 0.0;           ///< simulation time, seconds (double)
+    unsigned targetFramebuffer = 0; ///< host framebuffer (lent; 0 = default)
+    int width = 0, height = 0;
+};
+
+struct OceanStats {
+    int passes = 0;
+    int draws = 0;
+    long long vertices = 0;
+};
+
+/// The ocean render system: draws every OceanComponent in a registry.
+class OceanRenderer {
+public:
+    OceanRenderer();
+    ~OceanRenderer();
+    OceanRenderer(const OceanRenderer&) = delete;
+    OceanRenderer& operator=(const OceanRenderer&) = delete;
+
+    void render(ecs::Registry& registry, const OceanFrame& frame);
+    const OceanStats& lastStats() const { return mStats; }
+
+    struct Gpu;      ///< implementation detail: per-ocean GPU resources
+    struct Programs; ///< implementation detail: compiled shader programs
+
+private:
+    std::unique_ptr<Programs> mPrograms;
+    std::unordered_map<ecs::Entity, std::unique_ptr<Gpu>> mGpu;
+    OceanStats mStats;
+};
+
+} // namespace pacifica::ocean

@@ -1,0 +1,50 @@
+// RadialGrid: the camera-centred radial grid of GPU Gems 2 ch.18 §18.2.3 (Kryachko 2005), plain C++.
+//
+//   r_i = a0 + a1 * i^4,  x_ij = r_i cos(2*pi*j/M),  y_ij = r_i sin(2*pi*j/M),   i = 0..N-1, j = 0..M-1
+//   with a0 = r_min (10 cm) and a0 + a1 (N-1)^4 = r_max (40 km).
+//
+// The grid gives distance-based tessellation for free. Two additions to the seed: a centre vertex at r = 0
+// (so looking straight down from 0.5 m shows no 10 cm hole) and an undisplaced skirt ring far beyond r_max
+// so the sea reaches the horizon at any altitude. Radii are computed in double and stored as float; the
+// grid is drawn camera-relative, so float precision at 40 km is ~4 mm.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace pacifica::ocean {
+
+struct RadialGridDesc {
+    int rings = 256;         ///< N: rings from r_min to r_max
+    int segments = 512;      ///< M: vertices around each ring
+    double rMin = 0.1;       ///< r_0, metres (seed: 10 cm)
+    double rMax = 40000.0;   ///< r_{N-1}, metres (seed: 40 km)
+    double skirtRadius = 1e6; ///< undisplaced outer ring for the horizon; 0 disables it
+};
+
+class RadialGrid {
+public:
+    /// Throws std::invalid_argument naming the bad field (e.g. "RadialGridDesc.rings must be >= 2, got 1").
+    explicit RadialGrid(const RadialGridDesc& desc);
+
+    const RadialGridDesc& desc() const { return mDesc; }
+    double a0() const { return mA0; }
+    double a1() const { return mA1; }
+    /// r_i = a0 + a1 * i^4 in double (§18.2.3).
+    double radius(int ring) const;
+
+    /// Interleaved vertex data, 3 floats per vertex: cos(theta), sin(theta), r. Vertex 0 is the centre.
+    const std::vector<float>& vertices() const { return mVertices; }
+    /// Triangle list indices (counter-clockwise seen from above, +z up).
+    const std::vector<uint32_t>& indices() const { return mIndices; }
+    size_t vertexCount() const { return mVertices.size() / 3; }
+
+private:
+    RadialGridDesc mDesc;
+    double mA0 = 0.0, mA1 = 0.0;
+    std::vector<float> mVertices;
+    std::vector<uint32_t> mIndices;
+};
+
+} // namespace pacifica::ocean

@@ -1,0 +1,18 @@
+// ocean.vert: the radial grid (GPU Gems 2 §18.2.3, listing 18-1) displaced by the height-map octaves.
+// Everything is camera-relative: the grid is centred under the camera and the GPU never sees world
+// coordinates (octave offsets and time phases were wrapped in double on the CPU).
+
+layout(location = 0) in vec3 aGrid; // cos(theta), sin(theta), r (metres)
+
+uniform mat4 uViewProj;        // camera-relative: rotation and projection only
+uniform float uCameraHeight;   // camera z above mean sea level, metres
+uniform float uDisplaceRadius; // beyond this radius (the skirt) vertices stay flat
+
+out vec3 vRel; // camera-relative position of the displaced vertex
+
+void main() {
+    vec2 rel = aGrid.xy * aGrid.z;
+    float h = aGrid.z <= uDisplaceRadius ? displacedHeight(rel) : 0.0;
+    vRel = vec3(rel, h - uCameraHeight);
+    gl_Position = uViewProj * vec4(vRel, 1.0);
+}

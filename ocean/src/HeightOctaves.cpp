@@ -1,0 +1,236 @@
+// HeightOctaves: procedural generation of tileable, looping height-map octaves and their CPU sampling
+// (GPU Gems 2 §18.2.1; dispersion and looping from Tessendorf 2001 §3.2). See the header for the model.
+#include "ocean/HeightOctaves.h"
+
+#include "engine/Time.h"
+#include "ocean/OceanConstants.h"
+
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace pacifica::ocean {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+void require(bool ok, const std::string& message) {
+    if (!ok)
+        throw std::invalid_argument(message);
+}
+
+int wrapIndex(long long i, int n) {
+    const long long r = i % n;
+    return static_cast<int>(r < 0 ? r + n : r);
+}
+
+struct Wave {
+    int n = 0, m = 0;      // cycles per tile along u and v (lattice vector: tiles exactly)
+    double amplitude = 0;  // before normalisation
+    double omega = 0;      // rad/s, quantised to multiples of 2*pi/T
+    double phase = 0;
+};
+
+/// Chooses `count` distinct lattice waves around the wind direction. Directional spreading ~ cos^2 of the
+/// angle to the wind and amplitude ~ k^-1.25, a softened Phillips-like falloff (Tessendorf 2001 eq. 40).
+std::vector<Wave> makeWaves(const OctaveDesc& o, const HeightOctavesDesc& d, std::mt19937_64& rng) {
+    const int maxCycles = std::max(2, d.mapSize / 16); // >= 16 texels per wavelength
+    const double wind = d.windDirectionDeg * std::numbers::pi / 180.0;
+    std::uniform_real_distribution<double> uni(0.0, 1.0);
+    std::set<std::pair<int, int>> used;
+    std::vector<Wave> waves;
+    int guard = 0;
+    while (static_cast<int>(waves.size()) < d.wavesPerOctave && guard++ < 100000) {
+        // Direction: wind +- spread; compass angle (clockwise from north) to (east, north) components.
+        const double spread = (uni(rng) - 0.5) * std::numbers::pi * 0.9;
+        const double dir = wind + spread;
+        const double cycles = 1.0 + uni(rng) * (maxCycles - 1);
+        const int n = static_cast<int>(std::lround(cycles * std::sin(dir)));
+        const int m = static_cast<int>(std::lround(cycles * std::cos(dir)));
+        if ((n == 0 && m == 0) || used.count({n, m}) || used.count({-n, -m}))
+            continue;
+        used.insert({n, m});
+        Wave w;
+        w.n = n;
+        w.m = m;
+        const double c = std::sqrt(double(n * n + m * m));
+        const double spreadWeight = std::cos(spread) * std::cos(spread);
+        w.amplitude = spreadWeight / std::pow(c, 1.25);
+        // Deep-water dispersion w = sqrt(g k), k = 2 pi c / L, quantised to the loop (Tessendorf §3.2).
+        const double k = kTwoPi * c / o.tileSize;
+        const double omega0 = kTwoPi / o.loopPeriod;
+        w.omega = omega0 * std::max(1.0, std::round(std::sqrt(GRAVITY * k) / omega0));
+        w.phase = uni(rng) * kTwoPi;
+        waves.push_back(w);
+    }
+    return waves;
+}
+
+OctaveMap generate(const OctaveDesc& o, const HeightOctavesDesc& d, std::mt19937_64& rng) {
+    const int size = d.mapSize, frames = d.frames;
+    const std::vector<Wave> waves = makeWaves(o, d, rng);
+    double sumSq = 0.0;
+    for (const Wave& w : waves)
+        sumSq += 0.5 * w.amplitude * w.amplitude; // distinct lattice cosines are orthogonal over a tile
+    const double norm = 1.0 / std::sqrt(sumSq);   // unit RMS height
+
+    // Spatial phasors e^{i 2 pi (n x + m y) / size} factor into per-axis tables.
+    const size_t texels = static_cast<size_t>(size) * size;
+    std::vector<double> re(static_cast<size_t>(frames) * texels * 3, 0.0);
+    std::vector<std::complex<double>> ex(static_cast<size_t>(size)), ey(static_cast<size_t>(size));
+    for (const Wave& w : waves) {
+        for (int x = 0; x < size; ++x)
+            ex[static_cast<size_t>(x)] = std::polar(1.0, kTwoPi * w.n * x / size);
+        for (int y = 0; y < size; ++y)
+            ey[static_cast<size_t>(y)] = std::polar(1.0, kTwoPi * w.m * y / size);
+        for (int f = 0; f < frames; ++f) {
+            const double t = o.loopPeriod * f / frames;
+            // h = a cos(theta - w t + phi); dh/du = -a 2 pi n sin(...); dh/dv = -a 2 pi m sin(...)
+            const std::complex<double> c0 = w.amplitude * norm * std::polar(1.0, w.phase - w.omega * t);
+            double* out = &re[static_cast<size_t>(f) * texels * 3];
+            for (int y = 0; y < size; ++y) {
+                const std::complex<double> cy = c0 * ey[static_cast<size_t>(y)];
+                for (int x = 0; x < size; ++x) {
+                    const std::complex<double> v = cy * ex[static_cast<size_t>(x)];
+                    double* t3 = out + (static_cast<size_t>(y) * size + x) * 3;
+                    t3[0] += v.real();
+                    t3[1] -= kTwoPi * w.n * v.imag();
+                    t3[2] -= kTwoPi * w.m * v.imag();
+                }
+            }
+        }
+    }
+    OctaveMap map;
+    map.size = size;
+    map.frames = frames;
+    map.texels.resize(static_cast<size_t>(frames) * texels * 4);
+    for (size_t i = 0; i < static_cast<size_t>(frames) * texels; ++i) {
+        // Stored as half floats on the GPU (RGBA16F): round here so the CPU samples the identical values.
+        for (int c = 0; c < 3; ++c)
+            map.texels[i * 4 + c] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(re[i * 3 + c])));
+        map.texels[i * 4 + 3] = 0.0f;
+    }
+    return map;
+}
+
+} // namespace
+
+HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
+    const auto& oct = desc.octaves;
+    require(!oct.empty() && oct.size() <= 8,
+            "HeightOctavesDesc.octaves must hold 1..8 octaves, got " + std::to_string(oct.size()));
+    require(desc.displacedOctaves >= 0 && desc.displacedOctaves <= static_cast<int>(oct.size()),
+            "HeightOctavesDesc.displacedOctaves must be in [0, " + std::to_string(oct.size()) + "], got " +
+                std::to_string(desc.displacedOctaves));
+    require(desc.mapSize >= 16 && desc.mapSize <= 1024 && (desc.mapSize & (desc.mapSize - 1)) == 0,
+            "HeightOctavesDesc.mapSize must be a power of two in [16, 1024], got " + std::to_string(desc.mapSize));
+    require(desc.frames >= 2 && desc.frames <= 256,
+            "HeightOctavesDesc.frames must be in [2, 256], got " + std::to_string(desc.frames));
+    require(desc.wavesPerOctave >= 1 && desc.wavesPerOctave <= 512,
+            "HeightOctavesDesc.wavesPerOctave must be in [1, 512], got " + std::to_string(desc.wavesPerOctave));
+    require(std::isfinite(desc.windDirectionDeg), "HeightOctavesDesc.windDirectionDeg must be finite");
+    for (size_t i = 0; i < oct.size(); ++i) {
+        const std::string f = "HeightOctavesDesc.octaves[" + std::to_string(i) + "].";
+        require(std::isfinite(oct[i].tileSize) && oct[i].tileSize > 0.0, f + "tileSize must be finite and > 0");
+        require(std::isfinite(oct[i].amplitude) && oct[i].amplitude >= 0.0,
+                f + "amplitude must be finite and >= 0");
+        require(std::isfinite(oct[i].loopPeriod) && oct[i].loopPeriod > 0.0,
+                f + "loopPeriod must be finite and > 0");
+    }
+    std::mt19937_64 rng(desc.seed);
+    for (const OctaveDesc& o : oct)
+        mMaps.push_back(generate(o, desc, rng));
+    for (int i = 0; i < desc.displacedOctaves; ++i) {
+        float peak = 0.0f;
+        for (size_t t = 0; t < mMaps[i].texels.size(); t += 4)
+            peak = std::max(peak, std::abs(mMaps[i].texels[t]));
+        mMaxDisplacement += oct[i].amplitude * peak;
+    }
+}
+
+std::vector<OctaveFrameParams> HeightOctaves::frameParams(const glm::dvec2& cameraXY, double time) const {
+    std::vector<OctaveFrameParams> out;
+    for (const OctaveDesc& o : mDesc.octaves) {
+        OctaveFrameParams p{};
+        const double b = 1.0 / o.tileSize;
+        // Wrap in double: the GPU only ever sees [0,1) offsets and [0, frames) positions.
+        p.uvOffset = glm::vec2(static_cast<float>(wrapPhase(cameraXY.x * b, 1.0)),
+                               static_cast<float>(wrapPhase(cameraXY.y * b, 1.0)));
+        p.invTileSize = static_cast<float>(b);
+        p.amplitude = static_cast<float>(o.amplitude);
+        p.framePosition = static_cast<float>(wrapPhase(time, o.loopPeriod) / o.loopPeriod * mDesc.frames);
+        if (p.framePosition >= static_cast<float>(mDesc.frames)) // float rounding up to `frames`
+            p.framePosition = 0.0f;
+        out.push_back(p);
+    }
+    return out;
+}
+
+glm::dvec3 HeightOctaves::sampleMap(int octave, const glm::dvec2& u, double framePosition) const {
+    const OctaveMap& map = mMaps[static_cast<size_t>(octave)];
+    const int s = map.size;
+    // Same formula as ocean_common.glsl sampleOctave(): texel centres at (i + 0.5) / size.
+    const double px = wrapPhase(u.x, 1.0) * s - 0.5, py = wrapPhase(u.y, 1.0) * s - 0.5;
+    const double fx0 = std::floor(px), fy0 = std::floor(py);
+    const double ax = px - fx0, ay = py - fy0;
+    const int x0 = wrapIndex(static_cast<long long>(fx0), s), x1 = wrapIndex(static_cast<long long>(fx0) + 1, s);
+    const int y0 = wrapIndex(static_cast<long long>(fy0), s), y1 = wrapIndex(static_cast<long long>(fy0) + 1, s);
+    const double ff = std::floor(framePosition);
+    const double at = framePosition - ff;
+    const int f0 = wrapIndex(static_cast<long long>(ff), map.frames);
+    const int f1 = wrapIndex(static_cast<long long>(ff) + 1, map.frames);
+    auto bilinear = [&](int f) {
+        glm::dvec3 r(0.0);
+        const float* t00 = map.texel(f, x0, y0);
+        const float* t10 = map.texel(f, x1, y0);
+        const float* t01 = map.texel(f, x0, y1);
+        const float* t11 = map.texel(f, x1, y1);
+        for (int c = 0; c < 3; ++c) {
+            const double bottom = t00[c] + (t10[c] - t00[c]) * ax;
+            const double top = t01[c] + (t11[c] - t01[c]) * ax;
+            r[c] = bottom + (top - bottom) * ay;
+        }
+        return r;
+    };
+    const glm::dvec3 a = bilinear(f0), b = bilinear(f1);
+    return a + (b - a) * at;
+}
+
+glm::dvec3 HeightOctaves::heightAndGradient(const glm::dvec2& worldXY, double time, int octaveCount) const {
+    glm::dvec3 sum(0.0);
+    const int n = std::min(octaveCount, static_cast<int>(mMaps.size()));
+    for (int i = 0; i < n; ++i) {
+        const OctaveDesc& o = mDesc.octaves[static_cast<size_t>(i)];
+        const double b = 1.0 / o.tileSize;
+        const double fpos = wrapPhase(time, o.loopPeriod) / o.loopPeriod * mDesc.frames;
+        const glm::dvec3 h = sampleMap(i, worldXY * b, fpos);
+        // H = sum A_i h_i(B_i x): dH/dx = A_i B_i dh/du.
+        sum += glm::dvec3(o.amplitude * h.x, o.amplitude * b * h.y, o.amplitude * b * h.z);
+    }
+    return sum;
+}
+
+double HeightOctaves::heightAt(const glm::dvec2& worldXY, double time) const {
+    return heightAndGradient(worldXY, time, mDesc.displacedOctaves).x;
+}
+
+glm::dvec3 HeightOctaves::normalAt(const glm::dvec2& worldXY, double time) const {
+    const glm::dvec3 hg = heightAndGradient(worldXY, time, static_cast<int>(mMaps.size()));
+    return glm::normalize(glm::dvec3(-hg.y, -hg.z, 1.0));
+}
+
+void HeightOctaves::heightsAt(const std::vector<glm::dvec2>& points, double time, std::vector<double>& out) const {
+    out.resize(points.size());
+    for (size_t i = 0; i < points.size(); ++i)
+        out[i] = heightAt(points[i], time);
+}
+
+} // namespace pacifica::ocean

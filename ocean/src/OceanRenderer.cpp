@@ -1,0 +1,242 @@
+// OceanRenderer: the ocean render system — per OceanComponent GPU resources (radial grid buffers, octave
+// map textures), and the frame's passes: sky (optional) then the sea, into a framebuffer the host lends.
+#include "ocean/Ocean.h"
+
+#include "engine/Log.h"
+#include "engine/gl/GlObjects.h"
+#include "engine/gl/Shader.h"
+#include "ocean/OceanConstants.h"
+#include "ocean/OceanShaders.h"
+
+#include <epoxy/gl.h>
+
+#include <glm/gtc/packing.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pacifica::ocean {
+
+OceanComponent makeOcean(const OceanDesc& desc) {
+    const LightingDesc& l = desc.lighting;
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (!finite(l.sunDirection.x) || !finite(l.sunDirection.y) || !finite(l.sunDirection.z) ||
+        glm::length(l.sunDirection) < 1e-9)
+        throw std::invalid_argument("OceanDesc.lighting.sunDirection must be finite and non-zero");
+    if (!finite(l.sunIntensity) || l.sunIntensity < 0.0f)
+        throw std::invalid_argument("OceanDesc.lighting.sunIntensity must be finite and >= 0");
+    if (!finite(l.skyIntensity) || l.skyIntensity < 0.0f)
+        throw std::invalid_argument("OceanDesc.lighting.skyIntensity must be finite and >= 0");
+    if (!finite(l.fogDensity) || l.fogDensity < 0.0f)
+        throw std::invalid_argument("OceanDesc.lighting.fogDensity must be finite and >= 0");
+    if (!finite(l.normalTilt) || l.normalTilt < 0.0f || l.normalTilt > 1.0f)
+        throw std::invalid_argument("OceanDesc.lighting.normalTilt must be in [0, 1]");
+    (void)RadialGrid(desc.grid); // validates the grid description, naming the field
+    OceanComponent c;
+    c.desc = desc;
+    c.surface = std::make_shared<HeightOctaves>(desc.surface);
+    return c;
+}
+
+struct OceanRenderer::Programs {
+    gl::Program sea;
+    gl::Program sky;
+    gl::VertexArray emptyVao; // the sky's fullscreen triangle needs a bound VAO in core profile
+};
+
+struct OceanRenderer::Gpu {
+    std::shared_ptr<const HeightOctaves> surface; // the surface these resources were built from
+    RadialGridDesc gridDesc;
+    gl::Buffer vertices, indices;
+    gl::VertexArray vao;
+    GLsizei indexCount = 0;
+    long long vertexCount = 0;
+    std::vector<gl::Texture> maps;
+};
+
+namespace {
+
+std::vector<gl::ShaderSource> sources(std::initializer_list<const char*> names) {
+    std::vector<gl::ShaderSource> out;
+    out.push_back({"<ocean constants>", shaderConstantDefines()});
+    for (const char* n : names)
+        out.push_back({n, std::string(shaderText(n))});
+    return out;
+}
+
+bool sameGrid(const RadialGridDesc& a, const RadialGridDesc& b) {
+    return a.rings == b.rings && a.segments == b.segments && a.rMin == b.rMin && a.rMax == b.rMax &&
+           a.skirtRadius == b.skirtRadius;
+}
+
+void buildGrid(OceanRenderer::Gpu& gpu, const RadialGridDesc& desc) {
+    const RadialGrid grid(desc);
+    gpu.gridDesc = desc;
+    gpu.vertices = gl::Buffer::create(grid.vertices().size() * sizeof(float), grid.vertices().data());
+    gpu.indices = gl::Buffer::create(grid.indices().size() * sizeof(uint32_t), grid.indices().data());
+    gpu.vao = gl::VertexArray::create();
+    const GLuint vao = gpu.vao.id();
+    glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, 3 * sizeof(float));
+    glVertexArrayElementBuffer(vao, gpu.indices.id());
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    gpu.indexCount = static_cast<GLsizei>(grid.indices().size());
+    gpu.vertexCount = static_cast<long long>(grid.vertexCount());
+}
+
+void uploadSurface(OceanRenderer::Gpu& gpu, const HeightOctaves& surface) {
+    gpu.maps.clear();
+    for (const OctaveMap& map : surface.maps()) {
+        const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(map.size)));
+        gl::Texture t = gl::Texture::createArray2D(GL_RGBA16F, map.size, map.size, map.frames, levels);
+        // The CPU copy already holds half-rounded values, so this conversion is exact.
+        std::vector<uint16_t> half(map.texels.size());
+        for (size_t i = 0; i < half.size(); ++i)
+            half[i] = glm::packHalf1x16(map.texels[i]);
+        glTextureSubImage3D(t.id(), 0, 0, 0, 0, map.size, map.size, map.frames, GL_RGBA, GL_HALF_FLOAT,
+                            half.data());
+        glGenerateTextureMipmap(t.id());
+        t.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
+        gpu.maps.push_back(std::move(t));
+    }
+}
+
+/// Location of `base[i]` (snprintf: GCC 12 warns falsely about string concatenation here).
+GLint arrayLocation(GLuint prog, const char* base, int i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s[%d]", base, i);
+    return glGetUniformLocation(prog, name);
+}
+
+void setOctaveUniforms(GLuint prog, const HeightOctaves& surface, const std::vector<OctaveFrameParams>& params,
+                       const std::vector<gl::Texture>& maps) {
+    const int n = static_cast<int>(params.size());
+    for (int i = 0; i < n; ++i) {
+        const OctaveFrameParams& p = params[static_cast<size_t>(i)];
+        glBindTextureUnit(static_cast<GLuint>(i), maps[static_cast<size_t>(i)].id());
+        glProgramUniform1i(prog, arrayLocation(prog, "uMaps", i), i);
+        glProgramUniform2f(prog, arrayLocation(prog, "uUvOffset", i), p.uvOffset.x, p.uvOffset.y);
+        glProgramUniform1f(prog, arrayLocation(prog, "uInvTile", i), p.invTileSize);
+        glProgramUniform1f(prog, arrayLocation(prog, "uAmplitude", i), p.amplitude);
+        glProgramUniform1f(prog, arrayLocation(prog, "uFramePos", i), p.framePosition);
+    }
+    // Unused sampler slots must still point at a unit holding a 2D array texture: reuse unit 0.
+    for (int i = n; i < MAX_OCTAVES; ++i)
+        glProgramUniform1i(prog, arrayLocation(prog, "uMaps", i), 0);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uOctaveCount"), n);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDisplacedCount"), surface.desc().displacedOctaves);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uMapSize"), surface.desc().mapSize);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uFrames"), surface.desc().frames);
+}
+
+void setLightingUniforms(GLuint prog, const LightingDesc& l) {
+    const glm::vec3 sun = glm::vec3(glm::normalize(l.sunDirection));
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "uSunDir"), sun.x, sun.y, sun.z);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSkyIntensity"), l.skyIntensity);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSunIntensity"), l.sunIntensity);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uFogDensity"), l.fogDensity);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uNormalTilt"), l.normalTilt);
+}
+
+} // namespace
+
+OceanRenderer::OceanRenderer() : mPrograms(std::make_unique<Programs>()) {
+    using gl::ShaderStage;
+    mPrograms->sea = gl::buildProgram({{ShaderStage::Vertex, sources({"ocean_common.glsl", "ocean.vert"})},
+                                       {ShaderStage::Fragment, sources({"ocean_common.glsl", "sky.glsl", "ocean.frag"})}},
+                                      "ocean sea");
+    mPrograms->sky = gl::buildProgram(
+        {{ShaderStage::Vertex, sources({"sky.vert"})}, {ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
+        "ocean sky");
+    mPrograms->emptyVao = gl::VertexArray::create();
+}
+
+OceanRenderer::~OceanRenderer() = default;
+
+void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
+    mStats = {};
+    // Drop GPU resources of oceans that no longer exist.
+    for (auto it = mGpu.begin(); it != mGpu.end();) {
+        if (!registry.valid(it->first) || !registry.has<OceanComponent>(it->first))
+            it = mGpu.erase(it);
+        else
+            ++it;
+    }
+    auto view = registry.view<OceanComponent>();
+    bool any = false;
+    for (ecs::Entity e : view) {
+        (void)e;
+        any = true;
+        break;
+    }
+    if (!any)
+        return; // nothing to draw: no pass, no draw, no upload
+
+    gl::StateGuard guard;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frame.targetFramebuffer);
+    glViewport(0, 0, frame.width, frame.height);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_SCISSOR_TEST);
+    // Reverse-Z (Space.h perspectiveReverseZInfinite): depth 1 at the near plane, 0 at infinity.
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glClearDepth(0.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+
+    const glm::mat4 invViewProj = glm::inverse(frame.camera.viewProj);
+    view.each([&](ecs::Entity e, OceanComponent& ocean) {
+        if (!ocean.surface)
+            return;
+        std::unique_ptr<Gpu>& gpu = mGpu[e];
+        if (!gpu)
+            gpu = std::make_unique<Gpu>();
+        if (gpu->surface != ocean.surface) {
+            uploadSurface(*gpu, *ocean.surface);
+            gpu->surface = ocean.surface;
+        }
+        if (!gpu->vao || !sameGrid(gpu->gridDesc, ocean.desc.grid))
+            buildGrid(*gpu, ocean.desc.grid);
+        const auto params = ocean.surface->frameParams(glm::dvec2(frame.camera.origin), frame.time);
+
+        if (ocean.desc.drawSky) {
+            const GLuint sky = mPrograms->sky.id();
+            glUseProgram(sky);
+            setLightingUniforms(sky, ocean.desc.lighting);
+            glProgramUniformMatrix4fv(sky, glGetUniformLocation(sky, "uInvViewProj"), 1, GL_FALSE,
+                                      glm::value_ptr(invViewProj));
+            glDisable(GL_DEPTH_TEST);
+            glDepthMask(GL_FALSE);
+            glBindVertexArray(mPrograms->emptyVao.id());
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            mStats.passes += 1;
+            mStats.draws += 1;
+            mStats.vertices += 3;
+        }
+
+        const GLuint sea = mPrograms->sea.id();
+        glUseProgram(sea);
+        setOctaveUniforms(sea, *ocean.surface, params, gpu->maps);
+        setLightingUniforms(sea, ocean.desc.lighting);
+        glProgramUniformMatrix4fv(sea, glGetUniformLocation(sea, "uViewProj"), 1, GL_FALSE,
+                                  glm::value_ptr(frame.camera.viewProj));
+        glProgramUniform1f(sea, glGetUniformLocation(sea, "uCameraHeight"),
+                           static_cast<float>(frame.camera.origin.z));
+        glProgramUniform1f(sea, glGetUniformLocation(sea, "uDisplaceRadius"),
+                           static_cast<float>(ocean.desc.grid.rMax * 1.0001));
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_GREATER);
+        glDepthMask(GL_TRUE);
+        glBindVertexArray(gpu->vao.id());
+        glDrawElements(GL_TRIANGLES, gpu->indexCount, GL_UNSIGNED_INT, nullptr);
+        mStats.passes += 1;
+        mStats.draws += 1;
+        mStats.vertices += gpu->vertexCount;
+    });
+}
+
+} // namespace pacifica::ocean

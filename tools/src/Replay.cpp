@@ -1,0 +1,255 @@
+// Replay implementation: validate everything first, then render frame by frame; on any failure remove
+// what this run wrote. summary.json is written last and atomically.
+#include "Replay.h"
+
+#include "FlightPath.h"
+#include "engine/Ecs.h"
+#include "engine/Log.h"
+#include "engine/Space.h"
+#include "engine/capture/Capture.h"
+#include "engine/color/ColorPipeline.h"
+#include "engine/color/Tonemapper.h"
+#include "engine/gl/FrameTargets.h"
+#include "engine/gl/GlContext.h"
+#include "engine/gl/GpuTimer.h"
+#include "ocean/Ocean.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <unistd.h>
+#include <vector>
+
+namespace pacifica::tools {
+namespace fs = std::filesystem;
+
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string hex64(uint64_t v) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+    return buf;
+}
+
+/// Tracks what a run wrote so a failure can take it all back.
+class OutputTransaction {
+public:
+    explicit OutputTransaction(fs::path dir) : mDir(std::move(dir)) {
+        std::error_code ec;
+        if (!fs::exists(mDir, ec)) {
+            fs::create_directories(mDir, ec);
+            if (ec)
+                throw UsageError("--out: cannot create directory '" + mDir.string() + "': " + ec.message());
+            mCreatedDir = true;
+        } else if (!fs::is_directory(mDir, ec)) {
+            throw UsageError("--out: '" + mDir.string() + "' exists and is not a directory");
+        }
+    }
+    ~OutputTransaction() {
+        if (mCommitted)
+            return;
+        std::error_code ec;
+        for (const fs::path& p : mWritten)
+            fs::remove(p, ec);
+        if (mCreatedDir)
+            fs::remove(mDir, ec); // only succeeds if empty: never deletes what others put there
+    }
+    void wrote(const fs::path& p) { mWritten.push_back(p); }
+    void commit() { mCommitted = true; }
+
+private:
+    fs::path mDir;
+    std::vector<fs::path> mWritten;
+    bool mCreatedDir = false;
+    bool mCommitted = false;
+};
+
+void writeJsonAtomic(const fs::path& path, const nlohmann::json& j) {
+    const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(getpid()));
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out << j.dump(2) << '\n';
+        out.flush();
+        if (!out) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error(path.string() + ": cannot write summary");
+        }
+    }
+    fs::rename(tmp, path);
+}
+
+} // namespace
+
+void parseSize(const std::string& text, int& width, int& height) {
+    const size_t x = text.find('x');
+    auto bad = [&] { return UsageError("--size: expected WxH with 16 <= W,H <= 8192 (e.g. 640x360), got '" + text + "'"); };
+    if (x == std::string::npos)
+        throw bad();
+    try {
+        size_t used = 0;
+        width = std::stoi(text.substr(0, x), &used);
+        if (used != x)
+            throw bad();
+        height = std::stoi(text.substr(x + 1), &used);
+        if (used != text.size() - x - 1)
+            throw bad();
+    } catch (const std::logic_error&) {
+        throw bad();
+    }
+    if (width < 16 || height < 16 || width > 8192 || height > 8192)
+        throw bad();
+}
+
+void runReplay(const ReplayOptions& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!std::isfinite(o.fps) || o.fps <= 0.0 || o.fps > 1000.0)
+        throw UsageError("--fps must be in (0, 1000], got " + std::to_string(o.fps));
+    if (o.outDir.empty())
+        throw UsageError("--out: an output directory is required");
+
+    // 1. Everything that can be checked without touching the output directory.
+    const FlightPath flight = FlightPath::load(o.flight);
+    const double start = o.start.value_or(flight.startTime());
+    const double end = o.end.value_or(flight.endTime());
+    if (!std::isfinite(start) || start < flight.startTime() || start > flight.endTime())
+        throw UsageError("--start " + std::to_string(start) + " is outside the flight [" +
+                         std::to_string(flight.startTime()) + ", " + std::to_string(flight.endTime()) + "]");
+    if (!std::isfinite(end) || end < start || end > flight.endTime())
+        throw UsageError("--end " + std::to_string(end) + " must be within [--start, " +
+                         std::to_string(flight.endTime()) + "]");
+    color::ColorPipeline colour = color::ColorPipeline::fromEnvironmentOr(o.ocioConfig);
+    colour.select(o.display, o.view);
+    std::unique_ptr<gl::GlContext> context = gl::createHeadlessContext();
+
+    // 2. Scene: one ocean entity; the GL resources.
+    ecs::Registry registry;
+    const ecs::Entity oceanEntity = registry.create();
+    registry.emplace<ocean::OceanComponent>(oceanEntity, ocean::makeOcean({}));
+    ocean::OceanRenderer renderer;
+    gl::FrameTargets targets(o.width, o.height);
+    color::Tonemapper tonemapper(colour);
+    gl::GpuTimer gpuTimer(context->info());
+
+    const long long frameCount = static_cast<long long>(std::floor((end - start) * o.fps + 1e-9)) + 1;
+    OutputTransaction out(o.outDir);
+    nlohmann::json frames = nlohmann::json::array();
+    std::vector<float> scene, display;
+    std::vector<double> frameWallMs;
+    double firstFrameSeconds = 0.0;
+    const bool tty = o.progress && isatty(STDERR_FILENO);
+
+    for (long long k = 0; k < frameCount; ++k) {
+        const auto f0 = std::chrono::steady_clock::now();
+        // Frame time from the index (not accumulated): frame k is exactly start + k / fps.
+        const double t = std::min(end, start + static_cast<double>(k) / o.fps);
+        const Pose pose = flight.poseAt(t);
+        ocean::OceanFrame frame;
+        frame.camera = makeCameraFrame(pose, o.fovYDeg * static_cast<float>(std::numbers::pi / 180.0),
+                                       static_cast<float>(o.width) / static_cast<float>(o.height), 0.05f);
+        frame.time = t;
+        frame.targetFramebuffer = targets.sceneFramebuffer().id();
+        frame.width = o.width;
+        frame.height = o.height;
+
+        gpuTimer.begin();
+        renderer.render(registry, frame);
+        tonemapper.run(targets.sceneColor(), targets.displayFramebuffer(), o.width, o.height);
+        gpuTimer.end();
+        targets.readScene(scene);
+        targets.readDisplay(display);
+
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%05lld", k);
+        const std::string exrName = std::string(name) + ".exr", pngName = std::string(name) + ".png";
+        uint64_t hash = 0;
+        if (o.writeImages) {
+            capture::Metadata meta;
+            meta.numbers = {{"frame", static_cast<double>(k)},
+                            {"time_s", t},
+                            {"camera_x_m", pose.position.x},
+                            {"camera_y_m", pose.position.y},
+                            {"camera_z_m", pose.position.z},
+                            {"camera_heading_deg", pose.headingDeg},
+                            {"camera_pitch_deg", pose.pitchDeg},
+                            {"camera_roll_deg", pose.rollDeg}};
+            meta.strings = {{"ocio_config", colour.configDescription()},
+                            {"ocio_display", colour.selectedDisplay()},
+                            {"ocio_view", colour.selectedView()},
+                            {"gl_renderer", context->info().renderer},
+                            {"flight", o.flight.filename().string()}};
+            hash = capture::writeExrHalf(o.outDir / exrName, o.width, o.height, 4, scene.data(), meta);
+            out.wrote(o.outDir / exrName);
+            capture::writePng8(o.outDir / pngName, o.width, o.height, 4, display.data());
+            out.wrote(o.outDir / pngName);
+        } else {
+            const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
+            hash = capture::hashHalfPixels(half.data(), half.size());
+        }
+        const auto f1 = std::chrono::steady_clock::now();
+        frameWallMs.push_back(std::chrono::duration<double, std::milli>(f1 - f0).count());
+        if (k == 0)
+            firstFrameSeconds = std::chrono::duration<double>(f1 - t0).count();
+
+        nlohmann::json fj;
+        fj["index"] = k;
+        fj["time_s"] = t;
+        fj["pose"] = {{"x_m", pose.position.x},     {"y_m", pose.position.y},       {"z_m", pose.position.z},
+                      {"heading_deg", pose.headingDeg}, {"pitch_deg", pose.pitchDeg}, {"roll_deg", pose.rollDeg}};
+        if (o.writeImages) {
+            fj["exr"] = exrName;
+            fj["png"] = pngName;
+        }
+        fj["exr_pixel_hash"] = hex64(hash);
+        frames.push_back(std::move(fj));
+        if (tty)
+            std::fprintf(stderr, "\rpacifica replay: frame %lld/%lld  t=%.2f s  alt=%.0f m   ", k + 1, frameCount, t,
+                         pose.position.z);
+    }
+    if (tty)
+        std::fprintf(stderr, "\n");
+
+    const double totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    nlohmann::json summary;
+    summary["flight"] = o.flight.string();
+    summary["gl"] = {{"vendor", context->info().vendor},
+                     {"renderer", context->info().renderer},
+                     {"version", context->info().version},
+                     {"platform", context->info().platform}};
+    summary["ocio"] = {{"config", colour.configDescription()},
+                       {"display", colour.selectedDisplay()},
+                       {"view", colour.selectedView()}};
+    summary["size"] = {o.width, o.height};
+    summary["fps"] = o.fps;
+    summary["start_s"] = start;
+    summary["end_s"] = end;
+    summary["images_written"] = o.writeImages;
+    summary["hash"] = "XXH64 of the scene-linear half-float RGBA pixels, rows top-down";
+    summary["frames"] = std::move(frames);
+    summary["timings"] = {{"gpu_clock", gpuTimer.clockName()},
+                          {"gpu_ms_median", median(gpuTimer.samples())},
+                          {"frame_wall_clock", "steady_clock, whole frame incl. readback and image writes"},
+                          {"frame_wall_ms_median", median(frameWallMs)},
+                          {"time_to_first_frame_s", firstFrameSeconds},
+                          {"total_s", totalSeconds},
+                          {"frames_per_second", static_cast<double>(frameCount) / totalSeconds}};
+    writeJsonAtomic(o.outDir / "summary.json", summary);
+    out.commit();
+    logInfo("replay: " + std::to_string(frameCount) + " frames in " + std::to_string(totalSeconds) + " s -> " +
+            o.outDir.string());
+}
+
+} // namespace pacifica::tools

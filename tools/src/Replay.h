@@ -1,0 +1,42 @@
+// Replay: renders a recorded flight path into deterministic headless frames — scene-linear half EXR +
+// tonemapped 8-bit PNG per frame, and DIR/summary.json listing every frame (time, pose, files, EXR pixel
+// hash) with GL_RENDERER and timings. Used by `pacifica replay` and `./pacifica demo`.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace pacifica::tools {
+
+/// Bad command-line input (not a file's content): message names the option.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct ReplayOptions {
+    std::filesystem::path flight;
+    std::filesystem::path outDir;
+    double fps = 10.0;
+    int width = 640;
+    int height = 360;
+    std::optional<double> start; ///< seconds; default: the flight's first sample
+    std::optional<double> end;   ///< seconds; default: the flight's last sample
+    std::string display;         ///< empty = the config's default display
+    std::string view;            ///< empty = the display's default view
+    std::optional<std::filesystem::path> ocioConfig;
+    bool writeImages = true;     ///< false: render, tonemap and read back, but write no images (benchmarks)
+    bool progress = true;        ///< progress line when stderr is a TTY
+    float fovYDeg = 60.0f;
+};
+
+/// Parses "WxH" (e.g. "640x360"); throws UsageError naming --size.
+void parseSize(const std::string& text, int& width, int& height);
+
+/// Runs the replay. Throws (FlightError, ColorError, ContextError, CaptureError, UsageError) on failure,
+/// after removing every file this run wrote, so DIR holds no partial output.
+void runReplay(const ReplayOptions& options);
+
+} // namespace pacifica::tools
