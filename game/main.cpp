@@ -40,20 +40,25 @@ struct Controls {
 };
 
 Controls readKeys(const pacifica::gl::GlContext& ctx) {
-    auto axis = [&](int plus, int minus) { return (ctx.keyDown(plus) ? 1.0 : 0.0) - (ctx.keyDown(minus) ? 1.0 : 0.0); };
+    auto axis = [&](int plus, int minus) {
+        return (ctx.keyDown(plus) ? 1.0 : 0.0) - (ctx.keyDown(minus) ? 1.0 : 0.0);
+    };
     return {axis(GLFW_KEY_S, GLFW_KEY_W), axis(GLFW_KEY_D, GLFW_KEY_A), axis(GLFW_KEY_E, GLFW_KEY_Q),
             axis(GLFW_KEY_R, GLFW_KEY_F)};
 }
 
 /// The scripted manoeuvre for unattended runs: a gentle climbing right turn.
-Controls scripted(double t) { return {0.25 * std::sin(t * 0.7), 0.5, 0.1, 0.0}; }
+Controls scripted(double t) {
+    return {0.25 * std::sin(t * 0.7), 0.5, 0.1, 0.0};
+}
 
 void step(Aircraft& a, const Controls& c, double dt) {
     a.pose.pitchDeg = std::clamp(a.pose.pitchDeg + c.pitch * 30.0 * dt, -80.0, 80.0);
     a.pose.rollDeg = std::clamp(a.pose.rollDeg + c.roll * 60.0 * dt, -85.0, 85.0);
     // Coordinated turn: heading rate from bank angle, g tan(roll) / v (plus rudder).
     const double turnRate = 9.81 * std::tan(a.pose.rollDeg * std::numbers::pi / 180.0) / a.speed;
-    a.pose.headingDeg = std::fmod(a.pose.headingDeg + (turnRate * 180.0 / std::numbers::pi + c.yaw * 10.0) * dt + 360.0, 360.0);
+    a.pose.headingDeg = std::fmod(
+        a.pose.headingDeg + (turnRate * 180.0 / std::numbers::pi + c.yaw * 10.0) * dt + 360.0, 360.0);
     a.speed = std::clamp(a.speed + c.throttle * 20.0 * dt, 30.0, 400.0);
     const glm::dmat3 att = pacifica::attitudeMatrix(a.pose.headingDeg, a.pose.pitchDeg, a.pose.rollDeg);
     a.pose.position += att[0] * a.speed * dt;
@@ -78,7 +83,8 @@ int main(int argc, char** argv) {
     }
     try {
         auto ctx = pacifica::gl::createWindowContext({.width = 1280, .height = 720, .title = "Pacifica"});
-        pacifica::color::ColorPipeline colour = pacifica::color::ColorPipeline::fromEnvironmentOr(std::nullopt);
+        pacifica::color::ColorPipeline colour =
+            pacifica::color::ColorPipeline::fromEnvironmentOr(std::nullopt);
         colour.select("", "");
         pacifica::color::Tonemapper tonemapper(colour);
 
@@ -101,7 +107,8 @@ int main(int argc, char** argv) {
                 break;
             const auto now = std::chrono::steady_clock::now();
             // Scripted runs advance exactly one 1/30 s per frame so they are reproducible.
-            const double realDt = scriptedFrames ? 1.0 / 30.0 : std::chrono::duration<double>(now - last).count();
+            const double realDt =
+                scriptedFrames ? 1.0 / 30.0 : std::chrono::duration<double>(now - last).count();
             last = now;
             const int steps = clock.advance(realDt);
             for (int s = 0; s < steps; ++s)
@@ -136,9 +143,10 @@ int main(int argc, char** argv) {
                 break;
         }
         if (scriptedFrames) {
-            std::printf("pacifica-game: %lld frames, t = %.3f s, position (%.1f, %.1f, %.1f), %d bad frames, %s\n",
-                        frame, clock.time(), plane.pose.position.x, plane.pose.position.y, plane.pose.position.z,
-                        badFrames, ctx->info().renderer.c_str());
+            std::printf(
+                "pacifica-game: %lld frames, t = %.3f s, position (%.1f, %.1f, %.1f), %d bad frames, %s\n",
+                frame, clock.time(), plane.pose.position.x, plane.pose.position.y, plane.pose.position.z,
+                badFrames, ctx->info().renderer.c_str());
             return badFrames == 0 && frame == scriptedFrames ? 0 : 1;
         }
     } catch (const std::exception& e) {

@@ -45,8 +45,12 @@ const char* tag(LogLevel level) {
 
 } // namespace
 
-void setLogSink(LogSink sink) { sinkRef() = std::move(sink); }
-void setLogLevel(LogLevel level) { levelRef() = level; }
+void setLogSink(LogSink sink) {
+    sinkRef() = std::move(sink);
+}
+void setLogLevel(LogLevel level) {
+    levelRef() = level;
+}
 
 void log(LogLevel level, std::string_view message) {
     if (level < levelRef())
@@ -55,7 +59,8 @@ void log(LogLevel level, std::string_view message) {
         sinkRef()(level, message);
         return;
     }
-    std::fprintf(stderr, "[pacifica %s] %.*s\n", tag(level), static_cast<int>(message.size()), message.data());
+    std::fprintf(stderr, "[pacifica %s] %.*s\n", tag(level), static_cast<int>(message.size()),
+                 message.data());
 }
 
 } // namespace pacifica

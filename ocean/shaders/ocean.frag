@@ -12,8 +12,8 @@ uniform float uFogDensity;
 void main() {
     float dist = length(vRel);
     vec3 v = -vRel / max(dist, 1e-6); // towards the eye
-    vec2 g = filteredGradient(vRel.xy);
-    vec3 n = normalize(vec3(-g, 1.0));
+    vec3 g = filteredGradient(vRel.xy);
+    vec3 n = normalize(vec3(-g.xy, 1.0));
     // §18.2.6: the surface is lit as if flat under the displacement; tilt toward the viewer so back faces
     // of waves seen at grazing angles do not flash.
     n = normalize(n + v * uNormalTilt * (1.0 - abs(v.z)));
@@ -27,7 +27,10 @@ void main() {
     vec3 deep = vec3(DEEP_WATER_R, DEEP_WATER_G, DEEP_WATER_B) * uSkyIntensity *
                 (0.6 + 0.4 * max(uSunDir.z, 0.0)) * 4.0;
     vec3 h = normalize(uSunDir + v);
-    const float shininess = 800.0;
+    // Beckmann mean-square slope m^2 = resolved micro-roughness + unresolved octave slope variance; the
+    // Blinn-Phong exponent that matches it is 2/m^2 - 2 (Walter et al. 2007, eq. 30).
+    float m2 = 0.0012 + g.z;
+    float shininess = max(2.0 / m2 - 2.0, 1.0);
     float spec = pow(max(dot(n, h), 0.0), shininess) * (shininess + 8.0) / (8.0 * 3.14159265);
     vec3 sun = vec3(1.0, 0.92, 0.80) * uSunIntensity * spec * fresnel * step(0.0, uSunDir.z);
     vec3 color = fresnel * reflected + (1.0 - fresnel) * deep + sun;

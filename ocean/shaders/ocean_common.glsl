@@ -51,18 +51,21 @@ float displacedHeight(vec2 rel) {
     return h;
 }
 
-// World-space gradient (dH/dx, dH/dy) from every lighting octave, with hardware trilinear filtering.
-vec2 filteredGradient(vec2 rel) {
-    vec2 g = vec2(0.0);
+// World-space gradient (dH/dx, dH/dy) from every lighting octave, with hardware trilinear filtering, and
+// in .z the slope variance the mip filtering averaged away: sum_i (A_i B_i)^2 (E[|s|^2] - |E[s]|^2)
+// (LEAN mapping, Olano & Baker 2010), which the lighting adds to the specular roughness.
+vec3 filteredGradient(vec2 rel) {
+    vec3 g = vec3(0.0);
     for (int i = 0; i < uOctaveCount; ++i) {
         vec2 uv = octaveUv(i, rel);
         float f0 = floor(uFramePos[i]);
         float at = uFramePos[i] - f0;
         float l0 = mod(f0, float(uFrames));
         float l1 = mod(f0 + 1.0, float(uFrames));
-        vec2 d0 = texture(uMaps[i], vec3(uv, l0)).yz;
-        vec2 d1 = texture(uMaps[i], vec3(uv, l1)).yz;
-        g += uAmplitude[i] * uInvTile[i] * mix(d0, d1, at);
+        vec3 d = mix(texture(uMaps[i], vec3(uv, l0)).yzw, texture(uMaps[i], vec3(uv, l1)).yzw, at);
+        float scale = uAmplitude[i] * uInvTile[i];
+        g.xy += scale * d.xy;
+        g.z += scale * scale * max(d.z - dot(d.xy, d.xy), 0.0);
     }
     return g;
 }

@@ -33,9 +33,9 @@ int wrapIndex(long long i, int n) {
 }
 
 struct Wave {
-    int n = 0, m = 0;      // cycles per tile along u and v (lattice vector: tiles exactly)
-    double amplitude = 0;  // before normalisation
-    double omega = 0;      // rad/s, quantised to multiples of 2*pi/T
+    int n = 0, m = 0;     // cycles per tile along u and v (lattice vector: tiles exactly)
+    double amplitude = 0; // before normalisation
+    double omega = 0;     // rad/s, quantised to multiples of 2*pi/T
     double phase = 0;
 };
 
@@ -116,7 +116,10 @@ OctaveMap generate(const OctaveDesc& o, const HeightOctavesDesc& d, std::mt19937
         // Stored as half floats on the GPU (RGBA16F): round here so the CPU samples the identical values.
         for (int c = 0; c < 3; ++c)
             map.texels[i * 4 + c] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(re[i * 3 + c])));
-        map.texels[i * 4 + 3] = 0.0f;
+        // Squared slope: after mip filtering E[s^2] - |E[s]|^2 is the slope variance the pixel no longer
+        // resolves, which the shader turns into specular roughness (LEAN mapping, Olano & Baker 2010).
+        const double sx = re[i * 3 + 1], sy = re[i * 3 + 2];
+        map.texels[i * 4 + 3] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(sx * sx + sy * sy)));
     }
     return map;
 }
@@ -131,15 +134,18 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
             "HeightOctavesDesc.displacedOctaves must be in [0, " + std::to_string(oct.size()) + "], got " +
                 std::to_string(desc.displacedOctaves));
     require(desc.mapSize >= 16 && desc.mapSize <= 1024 && (desc.mapSize & (desc.mapSize - 1)) == 0,
-            "HeightOctavesDesc.mapSize must be a power of two in [16, 1024], got " + std::to_string(desc.mapSize));
+            "HeightOctavesDesc.mapSize must be a power of two in [16, 1024], got " +
+                std::to_string(desc.mapSize));
     require(desc.frames >= 2 && desc.frames <= 256,
             "HeightOctavesDesc.frames must be in [2, 256], got " + std::to_string(desc.frames));
     require(desc.wavesPerOctave >= 1 && desc.wavesPerOctave <= 512,
-            "HeightOctavesDesc.wavesPerOctave must be in [1, 512], got " + std::to_string(desc.wavesPerOctave));
+            "HeightOctavesDesc.wavesPerOctave must be in [1, 512], got " +
+                std::to_string(desc.wavesPerOctave));
     require(std::isfinite(desc.windDirectionDeg), "HeightOctavesDesc.windDirectionDeg must be finite");
     for (size_t i = 0; i < oct.size(); ++i) {
         const std::string f = "HeightOctavesDesc.octaves[" + std::to_string(i) + "].";
-        require(std::isfinite(oct[i].tileSize) && oct[i].tileSize > 0.0, f + "tileSize must be finite and > 0");
+        require(std::isfinite(oct[i].tileSize) && oct[i].tileSize > 0.0,
+                f + "tileSize must be finite and > 0");
         require(std::isfinite(oct[i].amplitude) && oct[i].amplitude >= 0.0,
                 f + "amplitude must be finite and >= 0");
         require(std::isfinite(oct[i].loopPeriod) && oct[i].loopPeriod > 0.0,
@@ -181,8 +187,10 @@ glm::dvec3 HeightOctaves::sampleMap(int octave, const glm::dvec2& u, double fram
     const double px = wrapPhase(u.x, 1.0) * s - 0.5, py = wrapPhase(u.y, 1.0) * s - 0.5;
     const double fx0 = std::floor(px), fy0 = std::floor(py);
     const double ax = px - fx0, ay = py - fy0;
-    const int x0 = wrapIndex(static_cast<long long>(fx0), s), x1 = wrapIndex(static_cast<long long>(fx0) + 1, s);
-    const int y0 = wrapIndex(static_cast<long long>(fy0), s), y1 = wrapIndex(static_cast<long long>(fy0) + 1, s);
+    const int x0 = wrapIndex(static_cast<long long>(fx0), s),
+              x1 = wrapIndex(static_cast<long long>(fx0) + 1, s);
+    const int y0 = wrapIndex(static_cast<long long>(fy0), s),
+              y1 = wrapIndex(static_cast<long long>(fy0) + 1, s);
     const double ff = std::floor(framePosition);
     const double at = framePosition - ff;
     const int f0 = wrapIndex(static_cast<long long>(ff), map.frames);
@@ -227,7 +235,8 @@ glm::dvec3 HeightOctaves::normalAt(const glm::dvec2& worldXY, double time) const
     return glm::normalize(glm::dvec3(-hg.y, -hg.z, 1.0));
 }
 
-void HeightOctaves::heightsAt(const std::vector<glm::dvec2>& points, double time, std::vector<double>& out) const {
+void HeightOctaves::heightsAt(const std::vector<glm::dvec2>& points, double time,
+                              std::vector<double>& out) const {
     out.resize(points.size());
     for (size_t i = 0; i < points.size(); ++i)
         out[i] = heightAt(points[i], time);

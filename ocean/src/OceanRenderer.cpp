@@ -113,8 +113,8 @@ GLint arrayLocation(GLuint prog, const char* base, int i) {
     return glGetUniformLocation(prog, name);
 }
 
-void setOctaveUniforms(GLuint prog, const HeightOctaves& surface, const std::vector<OctaveFrameParams>& params,
-                       const std::vector<gl::Texture>& maps) {
+void setOctaveUniforms(GLuint prog, const HeightOctaves& surface,
+                       const std::vector<OctaveFrameParams>& params, const std::vector<gl::Texture>& maps) {
     const int n = static_cast<int>(params.size());
     for (int i = 0; i < n; ++i) {
         const OctaveFrameParams& p = params[static_cast<size_t>(i)];
@@ -147,12 +147,13 @@ void setLightingUniforms(GLuint prog, const LightingDesc& l) {
 
 OceanRenderer::OceanRenderer() : mPrograms(std::make_unique<Programs>()) {
     using gl::ShaderStage;
-    mPrograms->sea = gl::buildProgram({{ShaderStage::Vertex, sources({"ocean_common.glsl", "ocean.vert"})},
-                                       {ShaderStage::Fragment, sources({"ocean_common.glsl", "sky.glsl", "ocean.frag"})}},
-                                      "ocean sea");
-    mPrograms->sky = gl::buildProgram(
-        {{ShaderStage::Vertex, sources({"sky.vert"})}, {ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
-        "ocean sky");
+    mPrograms->sea =
+        gl::buildProgram({{ShaderStage::Vertex, sources({"ocean_common.glsl", "ocean.vert"})},
+                          {ShaderStage::Fragment, sources({"ocean_common.glsl", "sky.glsl", "ocean.frag"})}},
+                         "ocean sea");
+    mPrograms->sky = gl::buildProgram({{ShaderStage::Vertex, sources({"sky.vert"})},
+                                       {ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
+                                      "ocean sky");
     mPrograms->emptyVao = gl::VertexArray::create();
 }
 

@@ -15,7 +15,8 @@
 int main() {
     const pacifica::ocean::RadialGrid grid({});
     if (std::abs(grid.radius(grid.desc().rings - 1) - 40000.0) > 0.04) {
-        std::fprintf(stderr, "consumer: radial grid r_max %.6f != 40000\n", grid.radius(grid.desc().rings - 1));
+        std::fprintf(stderr, "consumer: radial grid r_max %.6f != 40000\n",
+                     grid.radius(grid.desc().rings - 1));
         return 1;
     }
     auto context = pacifica::gl::createHeadlessContext();

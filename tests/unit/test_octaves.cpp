@@ -70,7 +70,8 @@ TEST(HeightOctaves, StoredSlopesMatchFiniteDifferencesOfHeight) {
     for (int k = 0; k < 50; ++k) {
         const double u = (k * 7 % size + 0.5) / size, v = (k * 13 % size + 0.5) / size;
         const double analytic = s.sampleMap(0, {u, v}, 0.0).y;
-        const double numeric = (s.sampleMap(0, {u + du, v}, 0.0).x - s.sampleMap(0, {u - du, v}, 0.0).x) / (2 * du);
+        const double numeric =
+            (s.sampleMap(0, {u + du, v}, 0.0).x - s.sampleMap(0, {u - du, v}, 0.0).x) / (2 * du);
         worst = std::max(worst, std::abs(analytic - numeric));
         scale = std::max(scale, std::abs(analytic));
     }

@@ -15,7 +15,8 @@ TEST(RadialGrid, EndRadiiMatchTheSeedWithin1e6Relative) {
     EXPECT_NEAR(grid.radius(0), 0.1, 0.1 * 1e-6);
     EXPECT_NEAR(grid.radius(grid.desc().rings - 1), 40000.0, 40000.0 * 1e-6);
     const auto& v = grid.vertices();
-    const size_t firstRing = 1, lastRing = 1 + static_cast<size_t>(grid.desc().rings - 1) * grid.desc().segments;
+    const size_t firstRing = 1,
+                 lastRing = 1 + static_cast<size_t>(grid.desc().rings - 1) * grid.desc().segments;
     EXPECT_NEAR(v[firstRing * 3 + 2], 0.1, 0.1 * 1e-6);
     EXPECT_NEAR(v[lastRing * 3 + 2], 40000.0, 40000.0 * 1e-6);
 }

@@ -78,7 +78,8 @@ private:
 };
 
 void writeJsonAtomic(const fs::path& path, const nlohmann::json& j) {
-    const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(getpid()));
+    const fs::path tmp =
+        path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(getpid()));
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         out << j.dump(2) << '\n';
@@ -96,7 +97,9 @@ void writeJsonAtomic(const fs::path& path, const nlohmann::json& j) {
 
 void parseSize(const std::string& text, int& width, int& height) {
     const size_t x = text.find('x');
-    auto bad = [&] { return UsageError("--size: expected WxH with 16 <= W,H <= 8192 (e.g. 640x360), got '" + text + "'"); };
+    auto bad = [&] {
+        return UsageError("--size: expected WxH with 16 <= W,H <= 8192 (e.g. 640x360), got '" + text + "'");
+    };
     if (x == std::string::npos)
         throw bad();
     try {
@@ -178,14 +181,10 @@ void runReplay(const ReplayOptions& o) {
         uint64_t hash = 0;
         if (o.writeImages) {
             capture::Metadata meta;
-            meta.numbers = {{"frame", static_cast<double>(k)},
-                            {"time_s", t},
-                            {"camera_x_m", pose.position.x},
-                            {"camera_y_m", pose.position.y},
-                            {"camera_z_m", pose.position.z},
-                            {"camera_heading_deg", pose.headingDeg},
-                            {"camera_pitch_deg", pose.pitchDeg},
-                            {"camera_roll_deg", pose.rollDeg}};
+            meta.numbers = {{"frame", static_cast<double>(k)},   {"time_s", t},
+                            {"camera_x_m", pose.position.x},     {"camera_y_m", pose.position.y},
+                            {"camera_z_m", pose.position.z},     {"camera_heading_deg", pose.headingDeg},
+                            {"camera_pitch_deg", pose.pitchDeg}, {"camera_roll_deg", pose.rollDeg}};
             meta.strings = {{"ocio_config", colour.configDescription()},
                             {"ocio_display", colour.selectedDisplay()},
                             {"ocio_view", colour.selectedView()},
@@ -207,8 +206,9 @@ void runReplay(const ReplayOptions& o) {
         nlohmann::json fj;
         fj["index"] = k;
         fj["time_s"] = t;
-        fj["pose"] = {{"x_m", pose.position.x},     {"y_m", pose.position.y},       {"z_m", pose.position.z},
-                      {"heading_deg", pose.headingDeg}, {"pitch_deg", pose.pitchDeg}, {"roll_deg", pose.rollDeg}};
+        fj["pose"] = {{"x_m", pose.position.x},     {"y_m", pose.position.y},
+                      {"z_m", pose.position.z},     {"heading_deg", pose.headingDeg},
+                      {"pitch_deg", pose.pitchDeg}, {"roll_deg", pose.rollDeg}};
         if (o.writeImages) {
             fj["exr"] = exrName;
             fj["png"] = pngName;
@@ -216,8 +216,8 @@ void runReplay(const ReplayOptions& o) {
         fj["exr_pixel_hash"] = hex64(hash);
         frames.push_back(std::move(fj));
         if (tty)
-            std::fprintf(stderr, "\rpacifica replay: frame %lld/%lld  t=%.2f s  alt=%.0f m   ", k + 1, frameCount, t,
-                         pose.position.z);
+            std::fprintf(stderr, "\rpacifica replay: frame %lld/%lld  t=%.2f s  alt=%.0f m   ", k + 1,
+                         frameCount, t, pose.position.z);
     }
     if (tty)
         std::fprintf(stderr, "\n");
@@ -248,8 +248,8 @@ void runReplay(const ReplayOptions& o) {
                           {"frames_per_second", static_cast<double>(frameCount) / totalSeconds}};
     writeJsonAtomic(o.outDir / "summary.json", summary);
     out.commit();
-    logInfo("replay: " + std::to_string(frameCount) + " frames in " + std::to_string(totalSeconds) + " s -> " +
-            o.outDir.string());
+    logInfo("replay: " + std::to_string(frameCount) + " frames in " + std::to_string(totalSeconds) +
+            " s -> " + o.outDir.string());
 }
 
 } // namespace pacifica::tools

@@ -27,8 +27,8 @@ struct ReplayOptions {
     std::string display;         ///< empty = the config's default display
     std::string view;            ///< empty = the display's default view
     std::optional<std::filesystem::path> ocioConfig;
-    bool writeImages = true;     ///< false: render, tonemap and read back, but write no images (benchmarks)
-    bool progress = true;        ///< progress line when stderr is a TTY
+    bool writeImages = true; ///< false: render, tonemap and read back, but write no images (benchmarks)
+    bool progress = true;    ///< progress line when stderr is a TTY
     float fovYDeg = 60.0f;
 };
 

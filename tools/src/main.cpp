@@ -19,12 +19,14 @@ int main(int argc, char** argv) {
     std::string flight, outDir, size = "640x360", ocioConfig;
     double start = 0.0, end = 0.0;
     bool noImages = false, noProgress = false;
-    CLI::App* rp = app.add_subcommand("replay", "render a flight path (CSV, docs/FLIGHT_FORMAT.md) to EXR + PNG frames");
+    CLI::App* rp =
+        app.add_subcommand("replay", "render a flight path (CSV, docs/FLIGHT_FORMAT.md) to EXR + PNG frames");
     rp->add_option("flight", flight, "flight-path CSV file")->required();
     rp->add_option("--out", outDir, "output directory (created if missing)")->required();
     rp->add_option("--fps", replay.fps, "frames per simulated second")->default_val(10.0);
     rp->add_option("--size", size, "frame size WxH")->default_val("640x360");
-    CLI::Option* startOpt = rp->add_option("--start", start, "first frame time, seconds (default: flight start)");
+    CLI::Option* startOpt =
+        rp->add_option("--start", start, "first frame time, seconds (default: flight start)");
     CLI::Option* endOpt = rp->add_option("--end", end, "last frame time, seconds (default: flight end)");
     rp->add_option("--display", replay.display, "OCIO display (default: the config's default)");
     rp->add_option("--view", replay.view, "OCIO view (default: the display's default)");

@@ -18,9 +18,17 @@ void setLogSink(LogSink sink);
 void setLogLevel(LogLevel level);
 void log(LogLevel level, std::string_view message);
 
-inline void logDebug(std::string_view m) { log(LogLevel::Debug, m); }
-inline void logInfo(std::string_view m) { log(LogLevel::Info, m); }
-inline void logWarning(std::string_view m) { log(LogLevel::Warning, m); }
-inline void logError(std::string_view m) { log(LogLevel::Error, m); }
+inline void logDebug(std::string_view m) {
+    log(LogLevel::Debug, m);
+}
+inline void logInfo(std::string_view m) {
+    log(LogLevel::Info, m);
+}
+inline void logWarning(std::string_view m) {
+    log(LogLevel::Warning, m);
+}
+inline void logError(std::string_view m) {
+    log(LogLevel::Error, m);
+}
 
 } // namespace pacifica

@@ -97,7 +97,8 @@ EGLContext makeCoreContext(EGLDisplay display, bool debug, std::string& why) {
     }
     EGLConfig config = EGL_NO_CONFIG_KHR;
     if (!hasExtension(exts, "EGL_KHR_no_config_context")) {
-        const EGLint cfgAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        const EGLint cfgAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                     EGL_NONE};
         EGLint count = 0;
         if (!eglChooseConfig(display, cfgAttribs, &config, 1, &count) || count == 0) {
             why = "no EGL config with EGL_OPENGL_BIT";
@@ -161,7 +162,8 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
     }
     // 2. Mesa surfaceless.
     if (forced != "device" && hasExtension(clientExts, "EGL_MESA_platform_surfaceless")) {
-        EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        EGLDisplay display =
+            eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (display != EGL_NO_DISPLAY) {
             std::string why;
             EGLContext ctx = makeCoreContext(display, desc.debug, why);

@@ -25,8 +25,8 @@ void readFlipped(const Framebuffer& fbo, int w, int h, std::vector<float>& out) 
 
 FrameTargets::FrameTargets(int width, int height) : mWidth(width), mHeight(height) {
     if (width < 1 || height < 1 || width > 16384 || height > 16384)
-        throw std::invalid_argument("FrameTargets: size must be within 1..16384, got " + std::to_string(width) +
-                                    "x" + std::to_string(height));
+        throw std::invalid_argument("FrameTargets: size must be within 1..16384, got " +
+                                    std::to_string(width) + "x" + std::to_string(height));
     mSceneColor = Texture::create2D(GL_RGBA16F, width, height);
     mDepth = Texture::create2D(GL_DEPTH_COMPONENT32F, width, height);
     mDisplayColor = Texture::create2D(GL_RGBA32F, width, height);
@@ -41,7 +41,9 @@ FrameTargets::FrameTargets(int width, int height) : mWidth(width), mHeight(heigh
     mDisplayFbo.checkComplete("display framebuffer (RGBA32F)");
 }
 
-void FrameTargets::readScene(std::vector<float>& rgba) const { readFlipped(mSceneFbo, mWidth, mHeight, rgba); }
+void FrameTargets::readScene(std::vector<float>& rgba) const {
+    readFlipped(mSceneFbo, mWidth, mHeight, rgba);
+}
 void FrameTargets::readDisplay(std::vector<float>& rgba) const {
     readFlipped(mDisplayFbo, mWidth, mHeight, rgba);
 }

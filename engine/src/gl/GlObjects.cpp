@@ -9,12 +9,24 @@
 
 namespace pacifica::gl {
 
-void BufferDeleter::operator()(GLid id) const { glDeleteBuffers(1, &id); }
-void TextureDeleter::operator()(GLid id) const { glDeleteTextures(1, &id); }
-void FramebufferDeleter::operator()(GLid id) const { glDeleteFramebuffers(1, &id); }
-void VertexArrayDeleter::operator()(GLid id) const { glDeleteVertexArrays(1, &id); }
-void ProgramDeleter::operator()(GLid id) const { glDeleteProgram(id); }
-void QueryDeleter::operator()(GLid id) const { glDeleteQueries(1, &id); }
+void BufferDeleter::operator()(GLid id) const {
+    glDeleteBuffers(1, &id);
+}
+void TextureDeleter::operator()(GLid id) const {
+    glDeleteTextures(1, &id);
+}
+void FramebufferDeleter::operator()(GLid id) const {
+    glDeleteFramebuffers(1, &id);
+}
+void VertexArrayDeleter::operator()(GLid id) const {
+    glDeleteVertexArrays(1, &id);
+}
+void ProgramDeleter::operator()(GLid id) const {
+    glDeleteProgram(id);
+}
+void QueryDeleter::operator()(GLid id) const {
+    glDeleteQueries(1, &id);
+}
 
 Buffer Buffer::create(std::size_t bytes, const void* data, unsigned flags) {
     GLuint id = 0;
@@ -27,8 +39,8 @@ Buffer Buffer::create(std::size_t bytes, const void* data, unsigned flags) {
 
 void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
     if (offset + bytes > mSize)
-        throw std::logic_error("Buffer::upload(): range " + std::to_string(offset) + "+" + std::to_string(bytes) +
-                               " exceeds size " + std::to_string(mSize));
+        throw std::logic_error("Buffer::upload(): range " + std::to_string(offset) + "+" +
+                               std::to_string(bytes) + " exceeds size " + std::to_string(mSize));
     glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
 }
 
@@ -91,8 +103,8 @@ void Framebuffer::checkComplete(const char* what) const {
     if (status != GL_FRAMEBUFFER_COMPLETE) {
         char hex[16];
         std::snprintf(hex, sizeof hex, "0x%04X", status);
-        throw std::runtime_error(std::string("Framebuffer::checkComplete(): ") + what + " is incomplete, status " +
-                                 hex);
+        throw std::runtime_error(std::string("Framebuffer::checkComplete(): ") + what +
+                                 " is incomplete, status " + hex);
     }
 }
 
@@ -102,7 +114,9 @@ VertexArray VertexArray::create() {
     return VertexArray(id, true);
 }
 
-int Program::uniformLocation(const char* name) const { return glGetUniformLocation(id(), name); }
+int Program::uniformLocation(const char* name) const {
+    return glGetUniformLocation(id(), name);
+}
 
 Query Query::create(GLenumT target) {
     GLuint id = 0;

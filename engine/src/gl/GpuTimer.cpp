@@ -12,7 +12,8 @@ GpuTimer::GpuTimer(const ContextInfo& info, int ringSize)
 
 GpuTimer::GpuTimer(Clock clock, int ringSize) : mClock(clock) {
     if (ringSize < 1)
-        throw std::logic_error("GpuTimer::GpuTimer(): ringSize must be >= 1, got " + std::to_string(ringSize));
+        throw std::logic_error("GpuTimer::GpuTimer(): ringSize must be >= 1, got " +
+                               std::to_string(ringSize));
     if (mClock == Clock::TimerQuery) {
         for (int i = 0; i < ringSize; ++i)
             mQueries.push_back(Query::create(GL_TIME_ELAPSED));
@@ -46,7 +47,8 @@ void GpuTimer::end() {
     mOpen = false;
     if (mClock == Clock::WallAroundFinish) {
         glFinish();
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mStart).count();
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - mStart).count();
         mSamples.push_back(ms);
         mLatest = ms;
         return;

@@ -7,7 +7,8 @@
 // sum of lattice-aligned cosine waves (so it tiles exactly), whose frequencies follow the deep-water
 // dispersion relation w = sqrt(g k) quantised to multiples of 2*pi/T_i so the animation loops (Tessendorf
 // 2001, "Simulating Ocean Water", §3.2 dispersion and the looping-in-time quantisation). Each texel holds
-// (h, dh/du, dh/dv, 0) with the derivatives taken analytically, in units of the tile coordinate u = B x.
+// (h, dh/du, dh/dv, |grad h|^2) with the derivatives taken analytically, in units of the tile coordinate
+// u = B x; the squared slope lets mipmapped lighting recover the unresolved slope variance.
 //
 // Sampling (CPU here, GPU in ocean.vert/ocean.frag) is bilinear in space between texels and linear in time
 // between slices, with the same texel data and the same formula on both sides, so CPU queries match what
@@ -29,21 +30,24 @@ struct OctaveDesc {
 };
 
 struct HeightOctavesDesc {
+    // Tile sizes are mutually incommensurate (ratios ~4.1-4.4) so no two octaves repeat together, which is
+    // what hides the tiling from 10 cm to 40 km (§18.2.1: "eliminate tiling artifacts").
     std::vector<OctaveDesc> octaves = {
-        {256.0, 0.45, 24.0}, // long swell-scale waves
-        {61.0, 0.14, 12.0},
+        {1109.0, 0.55, 48.0}, // swell: breaks up the repetition of the finer maps seen from altitude
+        {256.0, 0.40, 24.0},  {61.0, 0.13, 12.0},
         {13.7, 0.035, 6.0}, // finer octaves: lighting only by default
         {3.1, 0.008, 3.0},
     };
-    int displacedOctaves = 2; ///< how many leading octaves displace vertices (seed: 2 of 4)
-    int mapSize = 128;        ///< texels per side of each height map (power of two)
-    int frames = 32;          ///< time slices per loop
-    int wavesPerOctave = 48;  ///< cosine components generated per map
+    int displacedOctaves = 3;       ///< how many leading octaves displace vertices (seed: 2 of 4)
+    int mapSize = 128;              ///< texels per side of each height map (power of two)
+    int frames = 32;                ///< time slices per loop
+    int wavesPerOctave = 48;        ///< cosine components generated per map
     double windDirectionDeg = 60.0; ///< compass direction the wind blows toward
     uint32_t seed = 1;
 };
 
-/// One generated octave: frames * size * size texels of (h, dh/du, dh/dv, 0), slice-major, row-major.
+/// One generated octave: frames * size * size texels of (h, dh/du, dh/dv, |grad h|^2), slice-major,
+/// row-major.
 struct OctaveMap {
     int size = 0;
     int frames = 0;

@@ -8,7 +8,8 @@
 //   4. each frame: build a CameraFrame (engine/Space.h) from the camera's double-precision pose, then
 //        renderer.render(registry, {camera, simTime, hostFbo, width, height});
 //      It draws sky + sea into the host's framebuffer (scene-linear HDR, e.g. RGBA16F with a depth
-//      attachment; reverse-Z: it clears depth to 0 and tests GL_GREATER) and restores the host's GL state.
+//      attachment; reverse-Z: it clears depth to 0 and tests GL_GREATER) and restores the host's GL state
+//      (gl::StateGuard), except the texture bindings of units 0..(octave count - 1), which it leaves changed.
 //   5. CPU queries (physics, buoyancy, cameras): component.surface->heightAt({x, y}, simTime) matches what
 //      the GPU drew to float precision.
 // Entities without an OceanComponent cost nothing; removing the component frees its GPU resources on the
@@ -29,10 +30,10 @@ namespace pacifica::ocean {
 
 struct LightingDesc {
     glm::dvec3 sunDirection{0.35, -0.55, 0.30}; ///< towards the sun, world ENU (normalised on use)
-    float sunIntensity = 40.0f;     ///< scene-linear radiance scale of the sun's specular highlight
-    float skyIntensity = 1.0f;      ///< scale of the procedural sky radiance
+    float sunIntensity = 40.0f;         ///< scene-linear radiance scale of the sun's specular highlight
+    float skyIntensity = 1.0f;          ///< scale of the procedural sky radiance
     float fogDensity = 1.0f / 60000.0f; ///< 1/m
-    float normalTilt = 0.15f;       ///< §18.2.6: tilt of the lighting normal toward the viewer
+    float normalTilt = 0.15f;           ///< §18.2.6: tilt of the lighting normal toward the viewer
 };
 
 struct OceanDesc {
@@ -53,7 +54,7 @@ OceanComponent makeOcean(const OceanDesc& desc);
 
 struct OceanFrame {
     CameraFrame camera;
-    double time = 0.0;           ///< simulation time, seconds (double)
+    double time = 0.0;              ///< simulation time, seconds (double)
     unsigned targetFramebuffer = 0; ///< host framebuffer (lent; 0 = default)
     int width = 0, height = 0;
 };

@@ -7,8 +7,8 @@
 
 namespace pacifica::ocean {
 
-inline constexpr double GRAVITY = 9.81;           ///< m/s^2, deep-water dispersion w^2 = g k
-inline constexpr double WATER_F0 = 0.02;          ///< Schlick reflectance at normal incidence, n = 1.33
+inline constexpr double GRAVITY = 9.81;  ///< m/s^2, deep-water dispersion w^2 = g k
+inline constexpr double WATER_F0 = 0.02; ///< Schlick reflectance at normal incidence, n = 1.33
 inline constexpr float DEEP_WATER_COLOR[3] = {0.0045f, 0.019f, 0.032f}; ///< scene-linear upwelling radiance
 inline constexpr float FOG_DENSITY = 1.0f / 60000.0f; ///< 1/m, exponential distance fog (overridable)
 inline constexpr int MAX_OCTAVES = 8;

@@ -16,10 +16,10 @@
 namespace pacifica::ocean {
 
 struct RadialGridDesc {
-    int rings = 256;         ///< N: rings from r_min to r_max
-    int segments = 512;      ///< M: vertices around each ring
-    double rMin = 0.1;       ///< r_0, metres (seed: 10 cm)
-    double rMax = 40000.0;   ///< r_{N-1}, metres (seed: 40 km)
+    int rings = 256;          ///< N: rings from r_min to r_max
+    int segments = 512;       ///< M: vertices around each ring
+    double rMin = 0.1;        ///< r_0, metres (seed: 10 cm)
+    double rMax = 40000.0;    ///< r_{N-1}, metres (seed: 40 km)
     double skirtRadius = 1e6; ///< undisplaced outer ring for the horizon; 0 disables it
 };
 

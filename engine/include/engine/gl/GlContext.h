@@ -24,7 +24,7 @@ struct ContextInfo {
     std::string vendor;
     std::string renderer;
     std::string version;
-    std::string platform; ///< "egl-device", "egl-surfaceless" or "glfw"
+    std::string platform;  ///< "egl-device", "egl-surfaceless" or "glfw"
     bool software = false; ///< llvmpipe/softpipe: GL timer queries are wrong there (NOTES-platform.md)
 };
 
