@@ -44,6 +44,9 @@ OceanComponent makeOcean(const OceanDesc& desc) {
 
 struct OceanRenderer::Programs {
     gl::Program sea;
+    gl::Program seaFeedback;   // vertex stage only, captures vRel; built on first use
+    gl::Texture feedbackColor; // a 1x1 target: drawing needs a complete framebuffer even with discard
+    gl::Framebuffer feedbackFbo;
     gl::Program sky;
     gl::VertexArray emptyVao; // the sky's fullscreen triangle needs a bound VAO in core profile
 };
@@ -134,6 +137,20 @@ void setOctaveUniforms(GLuint prog, const HeightOctaves& surface,
     glProgramUniform1i(prog, glGetUniformLocation(prog, "uFrames"), surface.desc().frames);
 }
 
+/// Per-frame uniforms of the sea's vertex stage: octave parameters wrapped in double, camera-relative
+/// transform, camera height.
+void setSeaUniforms(GLuint prog, const OceanComponent& ocean, const OceanRenderer::Gpu& gpu,
+                    const OceanFrame& frame) {
+    const auto params = ocean.surface->frameParams(glm::dvec2(frame.camera.origin), frame.time);
+    setOctaveUniforms(prog, *ocean.surface, params, gpu.maps);
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE,
+                              glm::value_ptr(frame.camera.viewProj));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uCameraHeight"),
+                       static_cast<float>(frame.camera.origin.z));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uDisplaceRadius"),
+                       static_cast<float>(ocean.desc.grid.rMax * 1.0001));
+}
+
 void setLightingUniforms(GLuint prog, const LightingDesc& l) {
     const glm::vec3 sun = glm::vec3(glm::normalize(l.sunDirection));
     glProgramUniform3f(prog, glGetUniformLocation(prog, "uSunDir"), sun.x, sun.y, sun.z);
@@ -193,16 +210,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
     view.each([&](ecs::Entity e, OceanComponent& ocean) {
         if (!ocean.surface)
             return;
-        std::unique_ptr<Gpu>& gpu = mGpu[e];
-        if (!gpu)
-            gpu = std::make_unique<Gpu>();
-        if (gpu->surface != ocean.surface) {
-            uploadSurface(*gpu, *ocean.surface);
-            gpu->surface = ocean.surface;
-        }
-        if (!gpu->vao || !sameGrid(gpu->gridDesc, ocean.desc.grid))
-            buildGrid(*gpu, ocean.desc.grid);
-        const auto params = ocean.surface->frameParams(glm::dvec2(frame.camera.origin), frame.time);
+        Gpu& gpu = prepare(e, ocean);
 
         if (ocean.desc.drawSky) {
             const GLuint sky = mPrograms->sky.id();
@@ -221,23 +229,65 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
 
         const GLuint sea = mPrograms->sea.id();
         glUseProgram(sea);
-        setOctaveUniforms(sea, *ocean.surface, params, gpu->maps);
+        setSeaUniforms(sea, ocean, gpu, frame);
         setLightingUniforms(sea, ocean.desc.lighting);
-        glProgramUniformMatrix4fv(sea, glGetUniformLocation(sea, "uViewProj"), 1, GL_FALSE,
-                                  glm::value_ptr(frame.camera.viewProj));
-        glProgramUniform1f(sea, glGetUniformLocation(sea, "uCameraHeight"),
-                           static_cast<float>(frame.camera.origin.z));
-        glProgramUniform1f(sea, glGetUniformLocation(sea, "uDisplaceRadius"),
-                           static_cast<float>(ocean.desc.grid.rMax * 1.0001));
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
-        glBindVertexArray(gpu->vao.id());
-        glDrawElements(GL_TRIANGLES, gpu->indexCount, GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(gpu.vao.id());
+        glDrawElements(GL_TRIANGLES, gpu.indexCount, GL_UNSIGNED_INT, nullptr);
         mStats.passes += 1;
         mStats.draws += 1;
-        mStats.vertices += gpu->vertexCount;
+        mStats.vertices += gpu.vertexCount;
     });
+}
+
+OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& ocean) {
+    std::unique_ptr<Gpu>& gpu = mGpu[e];
+    if (!gpu)
+        gpu = std::make_unique<Gpu>();
+    if (gpu->surface != ocean.surface) {
+        uploadSurface(*gpu, *ocean.surface);
+        gpu->surface = ocean.surface;
+    }
+    if (!gpu->vao || !sameGrid(gpu->gridDesc, ocean.desc.grid))
+        buildGrid(*gpu, ocean.desc.grid);
+    return *gpu;
+}
+
+std::vector<glm::vec3> OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity,
+                                                        const OceanFrame& frame) {
+    const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);
+    if (!ocean || !ocean->surface)
+        throw std::invalid_argument("OceanRenderer::displacedVertices(): entity " + ecs::toString(entity) +
+                                    " has no OceanComponent");
+    if (!mPrograms->seaFeedback) {
+        mPrograms->seaFeedback =
+            gl::buildProgram({{gl::ShaderStage::Vertex, sources({"ocean_common.glsl", "ocean.vert"})}},
+                             "ocean sea (feedback)", {"vRel"});
+        mPrograms->feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
+        mPrograms->feedbackFbo = gl::Framebuffer::create();
+        mPrograms->feedbackFbo.attachColor(0, mPrograms->feedbackColor);
+    }
+    Gpu& gpu = prepare(entity, *ocean);
+    gl::StateGuard guard;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
+    const GLuint prog = mPrograms->seaFeedback.id();
+    glUseProgram(prog);
+    setSeaUniforms(prog, *ocean, gpu, frame);
+    const size_t count = static_cast<size_t>(gpu.vertexCount);
+    gl::Buffer captured = gl::Buffer::create(count * sizeof(glm::vec3), nullptr);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBindVertexArray(gpu.vao.id());
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count));
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    std::vector<glm::vec3> out(count);
+    glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), out.data());
+    return out;
 }
 
 } // namespace pacifica::ocean

@@ -76,7 +76,8 @@ std::string mapShaderLog(const std::string& log, const std::vector<ShaderSource>
     return log;
 }
 
-Program buildProgram(const std::vector<StageSources>& stages, const std::string& programName) {
+Program buildProgram(const std::vector<StageSources>& stages, const std::string& programName,
+                     const std::vector<std::string>& feedbackVaryings) {
     std::vector<GLuint> shaders;
     auto cleanup = [&] {
         for (GLuint s : shaders)
@@ -109,6 +110,13 @@ Program buildProgram(const std::vector<StageSources>& stages, const std::string&
     GLuint prog = glCreateProgram();
     for (GLuint s : shaders)
         glAttachShader(prog, s);
+    if (!feedbackVaryings.empty()) {
+        std::vector<const char*> names;
+        for (const std::string& v : feedbackVaryings)
+            names.push_back(v.c_str());
+        glTransformFeedbackVaryings(prog, static_cast<GLsizei>(names.size()), names.data(),
+                                    GL_INTERLEAVED_ATTRIBS);
+    }
     glLinkProgram(prog);
     cleanup();
     GLint ok = 0;

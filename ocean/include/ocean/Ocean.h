@@ -25,6 +25,7 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 namespace pacifica::ocean {
 
@@ -74,12 +75,20 @@ public:
     OceanRenderer& operator=(const OceanRenderer&) = delete;
 
     void render(ecs::Registry& registry, const OceanFrame& frame);
+
+    /// The camera-relative positions the sea's vertex shader produces for every grid vertex of `ocean`
+    /// (transform feedback, nothing drawn), in RadialGrid vertex order. For tests and accuracy reports that
+    /// compare the GPU with the CPU's double-precision queries. Throws std::invalid_argument if the entity
+    /// has no OceanComponent.
+    std::vector<glm::vec3> displacedVertices(ecs::Registry& registry, ecs::Entity ocean,
+                                             const OceanFrame& frame);
     const OceanStats& lastStats() const { return mStats; }
 
     struct Gpu;      ///< implementation detail: per-ocean GPU resources
     struct Programs; ///< implementation detail: compiled shader programs
 
 private:
+    Gpu& prepare(ecs::Entity e, const OceanComponent& ocean);
     std::unique_ptr<Programs> mPrograms;
     std::unordered_map<ecs::Entity, std::unique_ptr<Gpu>> mGpu;
     OceanStats mStats;

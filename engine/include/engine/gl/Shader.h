@@ -32,7 +32,9 @@ struct StageSources {
 };
 
 /// Compiles every stage and links them. Throws ShaderError with the driver log mapped to source names.
-Program buildProgram(const std::vector<StageSources>& stages, const std::string& programName);
+/// feedbackVaryings: outputs captured by transform feedback (interleaved), e.g. for GPU-vs-CPU readbacks.
+Program buildProgram(const std::vector<StageSources>& stages, const std::string& programName,
+                     const std::vector<std::string>& feedbackVaryings = {});
 
 /// Rewrites driver log locations "N:L(" (Mesa) and "N(L)" (NVIDIA) into "name:L". Exposed for tests.
 std::string mapShaderLog(const std::string& log, const std::vector<ShaderSource>& sources);
