@@ -7,12 +7,14 @@ layout(location = 0) in vec3 aGrid; // cos(theta), sin(theta), r (metres)
 uniform mat4 uViewProj;        // camera-relative: rotation and projection only
 uniform float uCameraHeight;   // camera z above mean sea level, metres
 uniform float uDisplaceRadius; // beyond this radius (the skirt) vertices stay flat
+uniform float uCurvature;      // 1 / (2 R) with Earth curvature, else 0 (OceanConstants.h curvatureDrop)
 
 out vec3 vRel; // camera-relative position of the displaced vertex
 
 void main() {
     vec2 rel = aGrid.xy * aGrid.z;
     float h = aGrid.z <= uDisplaceRadius ? displacedHeight(rel) : 0.0;
-    vRel = vec3(rel, h - uCameraHeight);
+    float drop = aGrid.z * aGrid.z * uCurvature; // d^2 / (2 R)
+    vRel = vec3(rel, h - drop - uCameraHeight);
     gl_Position = uViewProj * vec4(vRel, 1.0);
 }

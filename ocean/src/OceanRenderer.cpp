@@ -149,6 +149,8 @@ void setSeaUniforms(GLuint prog, const OceanComponent& ocean, const OceanRendere
                        static_cast<float>(frame.camera.origin.z));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uDisplaceRadius"),
                        static_cast<float>(ocean.desc.grid.rMax * 1.0001));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
+                       ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
 }
 
 void setLightingUniforms(GLuint prog, const LightingDesc& l) {

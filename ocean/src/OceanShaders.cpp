@@ -24,9 +24,11 @@ std::string shaderConstantDefines() {
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "#define MAX_OCTAVES %d\n#define GRAVITY %.9g\n#define WATER_F0 %.9g\n"
-                  "#define DEEP_WATER_R %.9g\n#define DEEP_WATER_G %.9g\n#define DEEP_WATER_B %.9g\n",
+                  "#define DEEP_WATER_R %.9g\n#define DEEP_WATER_G %.9g\n#define DEEP_WATER_B %.9g\n"
+                  "#define EARTH_RADIUS %.9g\n",
                   MAX_OCTAVES, GRAVITY, WATER_F0, static_cast<double>(DEEP_WATER_COLOR[0]),
-                  static_cast<double>(DEEP_WATER_COLOR[1]), static_cast<double>(DEEP_WATER_COLOR[2]));
+                  static_cast<double>(DEEP_WATER_COLOR[1]), static_cast<double>(DEEP_WATER_COLOR[2]),
+                  EARTH_RADIUS);
     return buf;
 }
 

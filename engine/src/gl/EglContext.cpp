@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -54,17 +55,34 @@ bool hasExtension(const char* list, const char* name) {
     return false;
 }
 
+/// eglInitialize/eglTerminate act on a display shared by every context of the platform: count our users and
+/// terminate only when the last context on a display goes, so destroying one context never breaks another.
+std::map<EGLDisplay, int>& displayUsers() {
+    static std::map<EGLDisplay, int> users;
+    return users;
+}
+
+void releaseDisplay(EGLDisplay display) {
+    auto it = displayUsers().find(display);
+    if (it != displayUsers().end() && --it->second > 0)
+        return;
+    if (it != displayUsers().end())
+        displayUsers().erase(it);
+    eglTerminate(display);
+}
+
 class EglContext final : public GlContext {
 public:
     EglContext(EGLDisplay display, EGLContext context, const std::string& platform, bool debug)
         : mDisplay(display), mContext(context) {
+        ++displayUsers()[display];
         makeCurrent();
         initialiseInfo(platform, debug);
     }
     ~EglContext() override {
         eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(mDisplay, mContext);
-        eglTerminate(mDisplay);
+        releaseDisplay(mDisplay);
     }
     void makeCurrent() override {
         if (!eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, mContext))
@@ -87,12 +105,14 @@ EGLContext makeCoreContext(EGLDisplay display, bool debug, std::string& why) {
     const char* exts = eglQueryString(display, EGL_EXTENSIONS);
     if (!hasExtension(exts, "EGL_KHR_surfaceless_context")) {
         why = "EGL display lacks EGL_KHR_surfaceless_context";
-        eglTerminate(display);
+        if (!displayUsers().count(display))
+            eglTerminate(display);
         return EGL_NO_CONTEXT;
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {
         why = "eglBindAPI(EGL_OPENGL_API) failed: " + eglErrorName(eglGetError());
-        eglTerminate(display);
+        if (!displayUsers().count(display))
+            eglTerminate(display);
         return EGL_NO_CONTEXT;
     }
     EGLConfig config = EGL_NO_CONFIG_KHR;
@@ -118,7 +138,8 @@ EGLContext makeCoreContext(EGLDisplay display, bool debug, std::string& why) {
     EGLContext ctx = eglCreateContext(display, config, EGL_NO_CONTEXT, ctxAttribs);
     if (ctx == EGL_NO_CONTEXT) {
         why = "eglCreateContext(GL 4.5 core) failed: " + eglErrorName(eglGetError());
-        eglTerminate(display);
+        if (!displayUsers().count(display))
+            eglTerminate(display);
     }
     return ctx;
 }

@@ -10,12 +10,29 @@
 namespace pacifica::gl {
 namespace {
 
+/// Reads the framebuffer with tightly packed client memory whatever the host's pack state was, and puts
+/// that state (pack parameters, pack buffer, read framebuffer) back afterwards.
 void readFlipped(const Framebuffer& fbo, int w, int h, std::vector<float>& out) {
     out.resize(static_cast<size_t>(w) * h * 4);
     std::vector<float> tmp(out.size());
+    const GLenum packParams[] = {GL_PACK_ALIGNMENT, GL_PACK_ROW_LENGTH, GL_PACK_SKIP_ROWS,
+                                 GL_PACK_SKIP_PIXELS};
+    GLint saved[4], readFbo = 0, packBuffer = 0;
+    for (int i = 0; i < 4; ++i)
+        glGetIntegerv(packParams[i], &saved[i]);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFbo);
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &packBuffer);
+    const GLint tight[4] = {4, 0, 0, 0};
+    for (int i = 0; i < 4; ++i)
+        glPixelStorei(packParams[i], tight[i]);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo.id());
-    glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, tmp.data());
+    glReadnPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(tmp.size() * sizeof(float)),
+                  tmp.data());
+    for (int i = 0; i < 4; ++i)
+        glPixelStorei(packParams[i], saved[i]);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(packBuffer));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(readFbo));
     const size_t row = static_cast<size_t>(w) * 4;
     for (int y = 0; y < h; ++y)
         std::copy_n(&tmp[static_cast<size_t>(h - 1 - y) * row], row, &out[static_cast<size_t>(y) * row]);

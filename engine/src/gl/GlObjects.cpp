@@ -38,7 +38,7 @@ Buffer Buffer::create(std::size_t bytes, const void* data, unsigned flags) {
 }
 
 void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
-    if (offset + bytes > mSize)
+    if (bytes > mSize || offset > mSize - bytes) // written so that offset + bytes cannot overflow
         throw std::logic_error("Buffer::upload(): range " + std::to_string(offset) + "+" +
                                std::to_string(bytes) + " exceeds size " + std::to_string(mSize));
     glNamedBufferSubData(id(), static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
@@ -134,8 +134,13 @@ StateGuard::StateGuard() {
     glGetIntegerv(GL_DEPTH_FUNC, &mDepthFunc);
     glGetIntegerv(GL_CLIP_ORIGIN, &mClipOrigin);
     glGetIntegerv(GL_CLIP_DEPTH_MODE, &mClipDepth);
-    glGetIntegerv(GL_BLEND_SRC_RGB, &mBlendSrc);
-    glGetIntegerv(GL_BLEND_DST_RGB, &mBlendDst);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &mBlendSrcRgb);
+    glGetIntegerv(GL_BLEND_DST_RGB, &mBlendDstRgb);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &mBlendSrcAlpha);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &mBlendDstAlpha);
+    glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &mPolygonOffsetFactor);
+    glGetFloatv(GL_POLYGON_OFFSET_UNITS, &mPolygonOffsetUnits);
+    mPolygonOffsetFill = glIsEnabled(GL_POLYGON_OFFSET_FILL);
     glGetBooleanv(GL_DEPTH_WRITEMASK, &mDepthMask);
     glGetFloatv(GL_COLOR_CLEAR_VALUE, mClearColor);
     glGetDoublev(GL_DEPTH_CLEAR_VALUE, &mClearDepth);
@@ -155,7 +160,10 @@ StateGuard::~StateGuard() {
     glActiveTexture(static_cast<GLenum>(mActiveTexture));
     glDepthFunc(static_cast<GLenum>(mDepthFunc));
     glClipControl(static_cast<GLenum>(mClipOrigin), static_cast<GLenum>(mClipDepth));
-    glBlendFunc(static_cast<GLenum>(mBlendSrc), static_cast<GLenum>(mBlendDst));
+    glBlendFuncSeparate(static_cast<GLenum>(mBlendSrcRgb), static_cast<GLenum>(mBlendDstRgb),
+                        static_cast<GLenum>(mBlendSrcAlpha), static_cast<GLenum>(mBlendDstAlpha));
+    glPolygonOffset(mPolygonOffsetFactor, mPolygonOffsetUnits);
+    set(GL_POLYGON_OFFSET_FILL, mPolygonOffsetFill);
     glDepthMask(mDepthMask);
     glClearColor(mClearColor[0], mClearColor[1], mClearColor[2], mClearColor[3]);
     glClearDepth(mClearDepth);

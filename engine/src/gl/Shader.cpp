@@ -9,6 +9,9 @@
 namespace pacifica::gl {
 namespace {
 
+/// Lines per source in the concatenated shader (see mapShaderLog); no source may be this long.
+constexpr long LINE_BLOCK = 100000;
+
 GLenum glStage(ShaderStage s) {
     switch (s) {
     case ShaderStage::Vertex:
@@ -37,11 +40,13 @@ const char* stageName(ShaderStage s) {
 
 std::string mapShaderLog(const std::string& log, const std::vector<ShaderSource>& sources) {
     // Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error ...". Source index 0 is the #version line we add,
-    // sources[i] is string i+1.
+    // sources[i] is string i+1. buildProgram starts source k at line k * LINE_BLOCK + 1, because Mesa reports
+    // source number 0 for semantic errors whatever #line said: a line above LINE_BLOCK identifies its source
+    // by itself; smaller lines (other producers of logs) fall back to the reported source number.
     static const std::regex mesa(R"((^|\n)(\d+):(\d+)\((\d+)\))");
     static const std::regex nvidia(R"((^|\n)(\d+)\((\d+)\))");
-    auto nameOf = [&](int index) -> std::string {
-        if (index >= 1 && index <= static_cast<int>(sources.size()))
+    auto nameOf = [&](long index) -> std::string {
+        if (index >= 1 && index <= static_cast<long>(sources.size()))
             return sources[static_cast<size_t>(index - 1)].name;
         std::string unnamed = "<source ";
         unnamed += std::to_string(index);
@@ -50,26 +55,31 @@ std::string mapShaderLog(const std::string& log, const std::vector<ShaderSource>
     };
     std::string out;
     std::smatch m;
-    std::string rest = log;
     const std::regex* patterns[] = {&mesa, &nvidia};
     for (const std::regex* re : patterns) {
         out.clear();
-        auto begin = rest.cbegin();
+        auto begin = log.cbegin();
         bool matched = false;
-        while (std::regex_search(begin, rest.cend(), m, *re)) {
+        while (std::regex_search(begin, log.cend(), m, *re)) {
             matched = true;
+            long index = std::stol(m[2].str());
+            long line = std::stol(m[3].str());
+            if (line > LINE_BLOCK) {
+                index = line / LINE_BLOCK;
+                line %= LINE_BLOCK;
+            }
             out.append(begin, m[0].first);
             out += m[1].str();
-            out += nameOf(std::stoi(m[2].str()));
+            out += nameOf(index);
             out += ':';
-            out += m[3].str();
+            out += std::to_string(line);
             if (re == &mesa) {
                 out += ':';
                 out += m[4].str();
             }
             begin = m[0].second;
         }
-        out.append(begin, rest.cend());
+        out.append(begin, log.cend());
         if (matched)
             return out;
     }
@@ -87,7 +97,8 @@ Program buildProgram(const std::vector<StageSources>& stages, const std::string&
         std::vector<std::string> texts;
         texts.emplace_back("#version 450 core\n");
         for (size_t i = 0; i < st.sources.size(); ++i)
-            texts.push_back("#line 1 " + std::to_string(i + 1) + "\n" + st.sources[i].text + "\n");
+            texts.push_back("#line " + std::to_string((i + 1) * LINE_BLOCK + 1) + " " +
+                            std::to_string(i + 1) + "\n" + st.sources[i].text + "\n");
         std::vector<const char*> ptrs;
         for (const std::string& t : texts)
             ptrs.push_back(t.c_str());

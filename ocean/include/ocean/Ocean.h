@@ -42,6 +42,9 @@ struct OceanDesc {
     RadialGridDesc grid;
     LightingDesc lighting;
     bool drawSky = true; ///< false when the host draws its own sky
+    /// Drop the sea by curvatureDrop(d) with distance from the camera, so the horizon is where a spherical
+    /// Earth puts it (OceanConstants.h). CPU height queries stay in the local (flat) frame.
+    bool earthCurvature = true;
 };
 
 /// The component: a description plus the CPU surface built from it (shared, immutable).

@@ -77,6 +77,12 @@ struct QueryDeleter {
 class Buffer : public Handle<BufferDeleter> {
 public:
     Buffer() = default;
+    Buffer(Buffer&& o) noexcept : Handle(std::move(o)), mSize(std::exchange(o.mSize, 0)) {}
+    Buffer& operator=(Buffer&& o) noexcept {
+        Handle::operator=(std::move(o));
+        mSize = std::exchange(o.mSize, 0);
+        return *this;
+    }
     /// glCreateBuffers + immutable glNamedBufferStorage (flags: GL_DYNAMIC_STORAGE_BIT etc.; 0 = static).
     static Buffer create(std::size_t bytes, const void* data, unsigned flags = 0);
     static Buffer wrap(GLid id) { return Buffer(id, false); }
@@ -92,6 +98,17 @@ private:
 class Texture : public Handle<TextureDeleter> {
 public:
     Texture() = default;
+    Texture(Texture&& o) noexcept
+        : Handle(std::move(o)), mTarget(std::exchange(o.mTarget, 0)), mWidth(std::exchange(o.mWidth, 0)),
+          mHeight(std::exchange(o.mHeight, 0)), mDepth(std::exchange(o.mDepth, 0)) {}
+    Texture& operator=(Texture&& o) noexcept {
+        Handle::operator=(std::move(o));
+        mTarget = std::exchange(o.mTarget, 0);
+        mWidth = std::exchange(o.mWidth, 0);
+        mHeight = std::exchange(o.mHeight, 0);
+        mDepth = std::exchange(o.mDepth, 0);
+        return *this;
+    }
     /// glCreateTextures(target) + glTextureStorage2D/3D. depth = 0 for 2D targets.
     static Texture create2D(GLenumT internalFormat, int width, int height, int levels = 1);
     static Texture create3D(GLenumT internalFormat, int width, int height, int depth, int levels = 1);
@@ -162,7 +179,8 @@ private:
 
 /// Saves the GL state the ocean component changes and restores it on destruction, so a host's state
 /// survives a frame of ours (viewport, draw framebuffer, program, VAO, depth/blend/cull enables,
-/// depth func and mask, clip control, polygon offset, active texture).
+/// depth func and mask, clip control, separate blend factors, polygon offset (fill), clear values, active
+/// texture unit). Texture bindings are not saved.
 class StateGuard {
 public:
     StateGuard();
@@ -173,9 +191,11 @@ public:
 private:
     int mViewport[4]{};
     int mDrawFbo = 0, mReadFbo = 0, mProgram = 0, mVao = 0, mActiveTexture = 0;
-    int mDepthFunc = 0, mClipOrigin = 0, mClipDepth = 0, mBlendSrc = 0, mBlendDst = 0;
+    int mDepthFunc = 0, mClipOrigin = 0, mClipDepth = 0;
+    int mBlendSrcRgb = 0, mBlendDstRgb = 0, mBlendSrcAlpha = 0, mBlendDstAlpha = 0;
+    float mPolygonOffsetFactor = 0.0f, mPolygonOffsetUnits = 0.0f;
     unsigned char mDepthMask = 1;
-    bool mDepthTest = false, mBlend = false, mCull = false, mScissor = false;
+    bool mDepthTest = false, mBlend = false, mCull = false, mScissor = false, mPolygonOffsetFill = false;
     float mClearColor[4]{};
     double mClearDepth = 1.0;
 };

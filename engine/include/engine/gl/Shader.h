@@ -1,9 +1,10 @@
 // Shader: compiles and links GLSL programs from named sources, so compile and link errors name the
 // shader file and line ("ocean.vert:42: error: ..."), not a source-string index.
 //
-// Each stage is a list of sources concatenated in order after a `#version 450 core` line; every source
-// is prefixed with `#line 1 N` (N = its index), and the driver's "N:LINE" / "N(LINE)" locations in the
-// info log are rewritten to "name:LINE".
+// Each stage is a list of sources concatenated in order after a `#version 450 core` line; source N starts
+// at line N * 100000 + 1 (`#line`), and the driver's "N:LINE" / "N(LINE)" locations in the info log are
+// rewritten to "name:LINE" — the line alone tells the source, since Mesa reports source 0 for semantic
+// errors.
 #pragma once
 
 #include "engine/gl/GlObjects.h"
