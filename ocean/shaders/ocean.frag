@@ -1,9 +1,10 @@
-// ocean.frag: per-pixel sea lighting in scene-linear HDR — normals from all octaves (§18.2.1: four maps
-// light, two displace), the normal tilt toward the viewer (§18.2.6), Schlick's Fresnel (Schlick 1994),
+// ocean.frag: per-pixel sea lighting in scene-linear HDR — normals from the surface model's modelLighting()
+// (for octaves: all maps light, the leading ones displace, §18.2.1), the normal tilt toward the viewer (§18.2.6), Schlick's Fresnel (Schlick 1994),
 // reflection of the procedural sky, a normalised Blinn-Phong sun highlight, deep-water upwelling colour
 // and exponential distance fog.
 
 in vec3 vRel;
+in vec2 vGrid;
 out vec4 fragColor;
 
 uniform float uNormalTilt;
@@ -12,7 +13,7 @@ uniform float uFogDensity;
 void main() {
     float dist = length(vRel);
     vec3 v = -vRel / max(dist, 1e-6); // towards the eye
-    vec3 g = filteredGradient(vRel.xy);
+    vec3 g = modelLighting(vGrid);
     vec3 n = normalize(vec3(-g.xy, 1.0));
     // §18.2.6: the surface is lit as if flat under the displacement; tilt toward the viewer so back faces
     // of waves seen at grazing angles do not flash.

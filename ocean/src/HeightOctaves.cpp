@@ -235,11 +235,17 @@ glm::dvec3 HeightOctaves::normalAt(const glm::dvec2& worldXY, double time) const
     return glm::normalize(glm::dvec3(-hg.y, -hg.z, 1.0));
 }
 
-void HeightOctaves::heightsAt(const std::vector<glm::dvec2>& points, double time,
-                              std::vector<double>& out) const {
-    out.resize(points.size());
-    for (size_t i = 0; i < points.size(); ++i)
-        out[i] = heightAt(points[i], time);
+glm::dvec3 HeightOctaves::displacementAt(const glm::dvec2& worldXY, double time) const {
+    return {0.0, 0.0, heightAt(worldXY, time)};
+}
+
+double HeightOctaves::significantWaveHeight() const {
+    double sumSq = 0.0;
+    for (int i = 0; i < mDesc.displacedOctaves; ++i) {
+        const double a = mDesc.octaves[static_cast<size_t>(i)].amplitude;
+        sumSq += a * a;
+    }
+    return 4.0 * std::sqrt(sumSq);
 }
 
 } // namespace pacifica::ocean

@@ -1,20 +1,23 @@
-// OceanRenderer: the ocean render system — per OceanComponent GPU resources (radial grid buffers, octave
-// map textures), and the frame's passes: sky (optional) then the sea, into a framebuffer the host lends.
+// OceanRenderer: the ocean render system — per OceanComponent GPU resources (radial grid buffers and the
+// surface model's GPU twin), shader programs compiled per surface model (a model the scene doesn't use
+// costs no shader work), and the frame's passes: sky (optional) then the sea, into a framebuffer the host
+// lends.
 #include "ocean/Ocean.h"
 
 #include "engine/Log.h"
 #include "engine/gl/GlObjects.h"
 #include "engine/gl/Shader.h"
+#include "gpu/SurfaceGpuFactory.h"
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanShaders.h"
+#include "ocean/SurfaceModels.h"
 
 #include <epoxy/gl.h>
 
-#include <glm/gtc/packing.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
-#include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -38,37 +41,51 @@ OceanComponent makeOcean(const OceanDesc& desc) {
     (void)RadialGrid(desc.grid); // validates the grid description, naming the field
     OceanComponent c;
     c.desc = desc;
-    c.surface = std::make_shared<HeightOctaves>(desc.surface);
+    c.surface = makeSurfaceModel(desc);
     return c;
 }
 
 struct OceanRenderer::Programs {
-    gl::Program sea;
-    gl::Program seaFeedback;   // vertex stage only, captures vRel; built on first use
+    std::map<std::string, gl::Program> sea;         // per surface model's GLSL set
+    std::map<std::string, gl::Program> seaFeedback; // vertex stage only, captures vRel
+    gl::Program sky;                                // built on first use
+    gl::VertexArray emptyVao;  // the sky's fullscreen triangle needs a bound VAO in core profile
     gl::Texture feedbackColor; // a 1x1 target: drawing needs a complete framebuffer even with discard
     gl::Framebuffer feedbackFbo;
-    gl::Program sky;
-    gl::VertexArray emptyVao; // the sky's fullscreen triangle needs a bound VAO in core profile
 };
 
 struct OceanRenderer::Gpu {
-    std::shared_ptr<const HeightOctaves> surface; // the surface these resources were built from
+    std::shared_ptr<const SurfaceModel> surface; // the model these resources were built from
+    std::unique_ptr<SurfaceGpu> model;
+    std::string programKey;
     RadialGridDesc gridDesc;
     gl::Buffer vertices, indices;
     gl::VertexArray vao;
     GLsizei indexCount = 0;
     long long vertexCount = 0;
-    std::vector<gl::Texture> maps;
 };
 
 namespace {
 
-std::vector<gl::ShaderSource> sources(std::initializer_list<const char*> names) {
+std::vector<gl::ShaderSource> sources(const std::vector<std::string>& names) {
     std::vector<gl::ShaderSource> out;
     out.push_back({"<ocean constants>", shaderConstantDefines()});
-    for (const char* n : names)
+    for (const std::string& n : names)
         out.push_back({n, std::string(shaderText(n))});
     return out;
+}
+
+std::vector<std::string> concat(std::vector<std::string> a, std::initializer_list<const char*> b) {
+    for (const char* s : b)
+        a.emplace_back(s);
+    return a;
+}
+
+std::string joined(const std::vector<std::string>& files) {
+    std::string key;
+    for (const std::string& f : files)
+        key += f + ";";
+    return key;
 }
 
 bool sameGrid(const RadialGridDesc& a, const RadialGridDesc& b) {
@@ -92,57 +109,11 @@ void buildGrid(OceanRenderer::Gpu& gpu, const RadialGridDesc& desc) {
     gpu.vertexCount = static_cast<long long>(grid.vertexCount());
 }
 
-void uploadSurface(OceanRenderer::Gpu& gpu, const HeightOctaves& surface) {
-    gpu.maps.clear();
-    for (const OctaveMap& map : surface.maps()) {
-        const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(map.size)));
-        gl::Texture t = gl::Texture::createArray2D(GL_RGBA16F, map.size, map.size, map.frames, levels);
-        // The CPU copy already holds half-rounded values, so this conversion is exact.
-        std::vector<uint16_t> half(map.texels.size());
-        for (size_t i = 0; i < half.size(); ++i)
-            half[i] = glm::packHalf1x16(map.texels[i]);
-        glTextureSubImage3D(t.id(), 0, 0, 0, 0, map.size, map.size, map.frames, GL_RGBA, GL_HALF_FLOAT,
-                            half.data());
-        glGenerateTextureMipmap(t.id());
-        t.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
-        gpu.maps.push_back(std::move(t));
-    }
-}
-
-/// Location of `base[i]` (snprintf: GCC 12 warns falsely about string concatenation here).
-GLint arrayLocation(GLuint prog, const char* base, int i) {
-    char name[64];
-    std::snprintf(name, sizeof name, "%s[%d]", base, i);
-    return glGetUniformLocation(prog, name);
-}
-
-void setOctaveUniforms(GLuint prog, const HeightOctaves& surface,
-                       const std::vector<OctaveFrameParams>& params, const std::vector<gl::Texture>& maps) {
-    const int n = static_cast<int>(params.size());
-    for (int i = 0; i < n; ++i) {
-        const OctaveFrameParams& p = params[static_cast<size_t>(i)];
-        glBindTextureUnit(static_cast<GLuint>(i), maps[static_cast<size_t>(i)].id());
-        glProgramUniform1i(prog, arrayLocation(prog, "uMaps", i), i);
-        glProgramUniform2f(prog, arrayLocation(prog, "uUvOffset", i), p.uvOffset.x, p.uvOffset.y);
-        glProgramUniform1f(prog, arrayLocation(prog, "uInvTile", i), p.invTileSize);
-        glProgramUniform1f(prog, arrayLocation(prog, "uAmplitude", i), p.amplitude);
-        glProgramUniform1f(prog, arrayLocation(prog, "uFramePos", i), p.framePosition);
-    }
-    // Unused sampler slots must still point at a unit holding a 2D array texture: reuse unit 0.
-    for (int i = n; i < MAX_OCTAVES; ++i)
-        glProgramUniform1i(prog, arrayLocation(prog, "uMaps", i), 0);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uOctaveCount"), n);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDisplacedCount"), surface.desc().displacedOctaves);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uMapSize"), surface.desc().mapSize);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uFrames"), surface.desc().frames);
-}
-
-/// Per-frame uniforms of the sea's vertex stage: octave parameters wrapped in double, camera-relative
-/// transform, camera height.
-void setSeaUniforms(GLuint prog, const OceanComponent& ocean, const OceanRenderer::Gpu& gpu,
+/// Per-frame uniforms of the sea's vertex stage: the model's (wrapped in double), the camera-relative
+/// transform, the camera height, the curvature drop.
+void setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
                     const OceanFrame& frame) {
-    const auto params = ocean.surface->frameParams(glm::dvec2(frame.camera.origin), frame.time);
-    setOctaveUniforms(prog, *ocean.surface, params, gpu.maps);
+    gpu.model->bind(prog, 0, frame.time, frame.camera.origin);
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE,
                               glm::value_ptr(frame.camera.viewProj));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uCameraHeight"),
@@ -164,19 +135,23 @@ void setLightingUniforms(GLuint prog, const LightingDesc& l) {
 
 } // namespace
 
-OceanRenderer::OceanRenderer() : mPrograms(std::make_unique<Programs>()) {
-    using gl::ShaderStage;
-    mPrograms->sea =
-        gl::buildProgram({{ShaderStage::Vertex, sources({"ocean_common.glsl", "ocean.vert"})},
-                          {ShaderStage::Fragment, sources({"ocean_common.glsl", "sky.glsl", "ocean.frag"})}},
-                         "ocean sea");
-    mPrograms->sky = gl::buildProgram({{ShaderStage::Vertex, sources({"sky.vert"})},
-                                       {ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
-                                      "ocean sky");
-    mPrograms->emptyVao = gl::VertexArray::create();
-}
+OceanRenderer::OceanRenderer() : mPrograms(std::make_unique<Programs>()) {}
 
 OceanRenderer::~OceanRenderer() = default;
+
+OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& ocean) {
+    std::unique_ptr<Gpu>& gpu = mGpu[e];
+    if (!gpu)
+        gpu = std::make_unique<Gpu>();
+    if (gpu->surface != ocean.surface) {
+        gpu->model = makeSurfaceGpu(ocean.surface);
+        gpu->surface = ocean.surface;
+        gpu->programKey = joined(gpu->model->glslFiles());
+    }
+    if (!gpu->vao || !sameGrid(gpu->gridDesc, ocean.desc.grid))
+        buildGrid(*gpu, ocean.desc.grid);
+    return *gpu;
+}
 
 void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
     mStats = {};
@@ -188,14 +163,8 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             ++it;
     }
     auto view = registry.view<OceanComponent>();
-    bool any = false;
-    for (ecs::Entity e : view) {
-        (void)e;
-        any = true;
-        break;
-    }
-    if (!any)
-        return; // nothing to draw: no pass, no draw, no upload
+    if (view.begin() == view.end())
+        return; // nothing to draw: no pass, no draw, no upload, no shader compiled
 
     gl::StateGuard guard;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frame.targetFramebuffer);
@@ -213,8 +182,18 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         if (!ocean.surface)
             return;
         Gpu& gpu = prepare(e, ocean);
+        const SurfaceGpuStats work = gpu.model->update(frame.time, frame.camera.origin);
+        mStats.passes += work.computePasses;
+        mStats.uploads += work.uploads;
 
         if (ocean.desc.drawSky) {
+            if (!mPrograms->sky) {
+                mPrograms->sky =
+                    gl::buildProgram({{gl::ShaderStage::Vertex, sources({"sky.vert"})},
+                                      {gl::ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
+                                     "ocean sky");
+                mPrograms->emptyVao = gl::VertexArray::create();
+            }
             const GLuint sky = mPrograms->sky.id();
             glUseProgram(sky);
             setLightingUniforms(sky, ocean.desc.lighting);
@@ -229,7 +208,15 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             mStats.vertices += 3;
         }
 
-        const GLuint sea = mPrograms->sea.id();
+        gl::Program& seaProgram = mPrograms->sea[gpu.programKey];
+        if (!seaProgram) {
+            const std::vector<std::string> model = gpu.model->glslFiles();
+            seaProgram = gl::buildProgram(
+                {{gl::ShaderStage::Vertex, sources(concat(model, {"ocean.vert"}))},
+                 {gl::ShaderStage::Fragment, sources(concat(model, {"sky.glsl", "ocean.frag"}))}},
+                "ocean sea (" + gpu.programKey + ")");
+        }
+        const GLuint sea = seaProgram.id();
         glUseProgram(sea);
         setSeaUniforms(sea, ocean, gpu, frame);
         setLightingUniforms(sea, ocean.desc.lighting);
@@ -244,37 +231,27 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
     });
 }
 
-OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& ocean) {
-    std::unique_ptr<Gpu>& gpu = mGpu[e];
-    if (!gpu)
-        gpu = std::make_unique<Gpu>();
-    if (gpu->surface != ocean.surface) {
-        uploadSurface(*gpu, *ocean.surface);
-        gpu->surface = ocean.surface;
-    }
-    if (!gpu->vao || !sameGrid(gpu->gridDesc, ocean.desc.grid))
-        buildGrid(*gpu, ocean.desc.grid);
-    return *gpu;
-}
-
 std::vector<glm::vec3> OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity,
                                                         const OceanFrame& frame) {
     const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);
     if (!ocean || !ocean->surface)
         throw std::invalid_argument("OceanRenderer::displacedVertices(): entity " + ecs::toString(entity) +
                                     " has no OceanComponent");
-    if (!mPrograms->seaFeedback) {
-        mPrograms->seaFeedback =
-            gl::buildProgram({{gl::ShaderStage::Vertex, sources({"ocean_common.glsl", "ocean.vert"})}},
-                             "ocean sea (feedback)", {"vRel"});
+    Gpu& gpu = prepare(entity, *ocean);
+    gl::Program& program = mPrograms->seaFeedback[gpu.programKey];
+    if (!program)
+        program = gl::buildProgram(
+            {{gl::ShaderStage::Vertex, sources(concat(gpu.model->glslFiles(), {"ocean.vert"}))}},
+            "ocean sea feedback (" + gpu.programKey + ")", {"vRel"});
+    if (!mPrograms->feedbackFbo) {
         mPrograms->feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
         mPrograms->feedbackFbo = gl::Framebuffer::create();
         mPrograms->feedbackFbo.attachColor(0, mPrograms->feedbackColor);
     }
-    Gpu& gpu = prepare(entity, *ocean);
     gl::StateGuard guard;
+    gpu.model->update(frame.time, frame.camera.origin);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
-    const GLuint prog = mPrograms->seaFeedback.id();
+    const GLuint prog = program.id();
     glUseProgram(prog);
     setSeaUniforms(prog, *ocean, gpu, frame);
     const size_t count = static_cast<size_t>(gpu.vertexCount);

@@ -21,6 +21,8 @@
 
 #include <glm/glm.hpp>
 
+#include "ocean/SurfaceModel.h"
+
 namespace pacifica::ocean {
 
 struct OctaveDesc {
@@ -65,7 +67,7 @@ struct OctaveFrameParams {
     float framePosition; ///< wrap(t, T_i) / T_i * frames in [0, frames)
 };
 
-class HeightOctaves {
+class HeightOctaves final : public SurfaceModel {
 public:
     /// Validates (throws std::invalid_argument naming the field) and generates the maps.
     explicit HeightOctaves(const HeightOctavesDesc& desc = {});
@@ -76,14 +78,20 @@ public:
     /// Per-octave parameters for the GPU, computed in double from the camera's world position.
     std::vector<OctaveFrameParams> frameParams(const glm::dvec2& cameraXY, double time) const;
 
+    SurfaceKind kind() const override { return SurfaceKind::Octaves; }
+    /// (0, 0, heightAt): height maps displace vertically only.
+    glm::dvec3 displacementAt(const glm::dvec2& worldXY, double time) const override;
+    /// 1: no horizontal displacement.
+    double jacobianAt(const glm::dvec2&, double) const override { return 1.0; }
+    /// 4 * sqrt(sum of A_i^2) over the displaced octaves (each map has unit RMS).
+    double significantWaveHeight() const override;
+
     /// Height of the displaced surface (the first displacedOctaves octaves) at world (x, y), time t.
-    double heightAt(const glm::dvec2& worldXY, double time) const;
+    double heightAt(const glm::dvec2& worldXY, double time) const override;
     /// Height and world-space gradient (dH/dx, dH/dy) summed over octaves [0, octaveCount).
     glm::dvec3 heightAndGradient(const glm::dvec2& worldXY, double time, int octaveCount) const;
     /// Unit normal from all octaves' slopes (what the fragment shader lights with).
-    glm::dvec3 normalAt(const glm::dvec2& worldXY, double time) const;
-    /// Batched heightAt.
-    void heightsAt(const std::vector<glm::dvec2>& points, double time, std::vector<double>& out) const;
+    glm::dvec3 normalAt(const glm::dvec2& worldXY, double time) const override;
 
     /// Samples one octave's map (bilinear in space, linear in time) at tile coordinate u (any real value,
     /// wrapped) and frame position f in [0, frames). Returns (h, dh/du, dh/dv).

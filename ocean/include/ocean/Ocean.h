@@ -20,6 +20,7 @@
 #include "engine/Space.h"
 #include "ocean/HeightOctaves.h"
 #include "ocean/RadialGrid.h"
+#include "ocean/SurfaceModel.h"
 
 #include <glm/glm.hpp>
 #include <memory>
@@ -38,7 +39,8 @@ struct LightingDesc {
 };
 
 struct OceanDesc {
-    HeightOctavesDesc surface;
+    SurfaceKind model = SurfaceKind::Octaves; ///< which surface model displaces and lights the sea
+    HeightOctavesDesc octaves;                ///< used when model == Octaves
     RadialGridDesc grid;
     LightingDesc lighting;
     bool drawSky = true; ///< false when the host draws its own sky
@@ -47,10 +49,11 @@ struct OceanDesc {
     bool earthCurvature = true;
 };
 
-/// The component: a description plus the CPU surface built from it (shared, immutable).
+/// The component: a description plus the CPU surface model built from it (shared, immutable). CPU queries
+/// (heightAt, normalAt, displacementAt) go through `surface` and match what the GPU draws.
 struct OceanComponent {
     OceanDesc desc;
-    std::shared_ptr<const HeightOctaves> surface;
+    std::shared_ptr<const SurfaceModel> surface;
 };
 
 /// Validates the description (std::invalid_argument naming the field) and builds the CPU surface.
@@ -63,9 +66,11 @@ struct OceanFrame {
     int width = 0, height = 0;
 };
 
+/// What the last render() did: render and compute passes, draw calls, buffer/texture uploads, vertices.
 struct OceanStats {
     int passes = 0;
     int draws = 0;
+    int uploads = 0;
     long long vertices = 0;
 };
 

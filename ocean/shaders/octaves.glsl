@@ -1,4 +1,4 @@
-// ocean_common.glsl: height-map octave sampling shared by the ocean vertex and fragment shaders.
+// octaves.glsl: the height-map octave surface model (GPU side of HeightOctaves) for the sea shaders.
 // The exact (texelFetch) path mirrors HeightOctaves::sampleMap() on the CPU line by line
 // (GPU Gems 2 §18.2.1: H(x,t) = sum A_i h_i(B_i x, t)); the filtered path uses hardware trilinear
 // filtering with mipmaps for lighting normals, where aliasing matters more than exactness.
@@ -69,3 +69,7 @@ vec3 filteredGradient(vec2 rel) {
     }
     return g;
 }
+
+// The surface-model contract (ocean/src/gpu/SurfaceGpu.h).
+vec3 modelDisplacement(vec2 rel) { return vec3(0.0, 0.0, displacedHeight(rel)); }
+vec3 modelLighting(vec2 rel) { return filteredGradient(rel); }

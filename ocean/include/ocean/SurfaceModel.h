@@ -1,0 +1,45 @@
+// SurfaceModel: the CPU side of every ocean surface model (height-map octaves, Gerstner sum, FFT ocean),
+// evaluated in double — the reference the GPU is tested against and what CPU queries (physics, cameras)
+// use. Each model is defined once: its GLSL twin (ocean/shaders/<model>.glsl) uses the same constants and
+// the same formulas, with every phase wrapped in double here before the GPU sees a float.
+//
+// Positions are world ENU metres. A model displaces the undisplaced (Lagrangian) grid point p = (x, y, 0)
+// to p + displacementAt(p, t) = (x + dx, y + dy, dz). Models without horizontal displacement return
+// dx = dy = 0.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace pacifica::ocean {
+
+enum class SurfaceKind { Octaves, Gerstner, Fft };
+
+/// "octaves", "gerstner", "fft".
+const char* toString(SurfaceKind kind);
+
+class SurfaceModel {
+public:
+    virtual ~SurfaceModel() = default;
+    virtual SurfaceKind kind() const = 0;
+
+    /// (dx, dy, dz) of the undisplaced grid point (x, y) at time t (seconds, any magnitude).
+    virtual glm::dvec3 displacementAt(const glm::dvec2& xy, double t) const = 0;
+    /// Unit normal of the displaced surface at the image of grid point (x, y).
+    virtual glm::dvec3 normalAt(const glm::dvec2& xy, double t) const = 0;
+    /// Determinant of the Jacobian of the horizontal map (x, y) -> (x + dx, y + dy); 1 without horizontal
+    /// displacement, <= 0 where the surface folds (Tessendorf 2001 §4.4; foam).
+    virtual double jacobianAt(const glm::dvec2& xy, double t) const = 0;
+    /// Significant wave height Hs = 4 * RMS height (for normalising errors), metres.
+    virtual double significantWaveHeight() const = 0;
+
+    /// Height of the surface above world point (x, y) (Eulerian): solves x0 + d_xy(x0) = (x, y) by
+    /// fixed-point iteration (converges while the surface does not fold), then returns dz(x0).
+    virtual double heightAt(const glm::dvec2& xy, double t) const;
+    /// Batched heightAt.
+    void heightsAt(const std::vector<glm::dvec2>& points, double t, std::vector<double>& out) const;
+};
+
+} // namespace pacifica::ocean
