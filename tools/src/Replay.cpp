@@ -44,40 +44,84 @@ std::string hex64(uint64_t v) {
     return buf;
 }
 
-/// Tracks what a run wrote so a failure can take it all back.
+/// Output as a transaction: frames are written into a hidden staging directory inside DIR and moved into
+/// DIR only when the whole run succeeded (summary.json last), so a failed run leaves DIR exactly as it was
+/// (files of an earlier run included) and a directory it had to create is removed again.
 class OutputTransaction {
 public:
     explicit OutputTransaction(fs::path dir) : mDir(std::move(dir)) {
         std::error_code ec;
         if (!fs::exists(mDir, ec)) {
+            // Remember the outermost directory we create, to remove exactly that on failure.
+            fs::path probe = mDir;
+            while (!probe.empty() && !fs::exists(probe, ec)) {
+                mCreatedRoot = probe;
+                probe = probe.parent_path();
+            }
             fs::create_directories(mDir, ec);
             if (ec)
                 throw UsageError("--out: cannot create directory '" + mDir.string() + "': " + ec.message());
-            mCreatedDir = true;
         } else if (!fs::is_directory(mDir, ec)) {
             throw UsageError("--out: '" + mDir.string() + "' exists and is not a directory");
         }
+        mStaging = mDir / (".pacifica-staging-" + std::to_string(getpid()));
+        fs::create_directory(mStaging, ec);
+        if (ec)
+            throw UsageError("--out: cannot write into '" + mDir.string() + "': " + ec.message());
     }
     ~OutputTransaction() {
-        if (mCommitted)
-            return;
         std::error_code ec;
-        for (const fs::path& p : mWritten)
-            fs::remove(p, ec);
-        if (mCreatedDir)
-            fs::remove(mDir, ec); // only succeeds if empty: never deletes what others put there
+        fs::remove_all(mStaging, ec);
+        if (!mCommitted && !mCreatedRoot.empty())
+            fs::remove_all(mCreatedRoot, ec); // everything under it is ours
     }
-    void wrote(const fs::path& p) { mWritten.push_back(p); }
-    void commit() { mCommitted = true; }
+    /// Where to write a file that will appear as DIR/name on commit.
+    fs::path staged(const std::string& name) {
+        mNames.push_back(name);
+        return mStaging / name;
+    }
+    /// Moves every staged file into DIR, then writes summary.json (atomically) last. Files of an earlier run
+    /// that get replaced are kept aside until the end, so a failure part-way puts DIR back as it was.
+    void commit(const nlohmann::json& summary) {
+        std::error_code ec;
+        for (const std::string& n :
+             mNames) { // check first: never half-commit over something we can't replace
+            const fs::path dest = mDir / n;
+            if (fs::exists(dest, ec) && !fs::is_regular_file(dest, ec))
+                throw std::runtime_error(dest.string() +
+                                         ": exists and is not a regular file; not replacing it");
+        }
+        const fs::path old = mStaging / ".replaced";
+        fs::create_directory(old);
+        std::vector<std::string> moved, replaced;
+        try {
+            for (const std::string& n : mNames) {
+                if (fs::exists(mDir / n, ec)) {
+                    fs::rename(mDir / n, old / n);
+                    replaced.push_back(n);
+                }
+                fs::rename(mStaging / n, mDir / n);
+                moved.push_back(n);
+            }
+            writeJsonAtomic(mDir / "summary.json", summary);
+        } catch (...) {
+            for (const std::string& n : moved)
+                fs::remove(mDir / n, ec);
+            for (const std::string& n : replaced)
+                fs::rename(old / n, mDir / n, ec);
+            throw;
+        }
+        mCommitted = true;
+    }
 
 private:
-    fs::path mDir;
-    std::vector<fs::path> mWritten;
-    bool mCreatedDir = false;
+    static void writeJsonAtomic(const fs::path& path, const nlohmann::json& j);
+    fs::path mDir, mStaging, mCreatedRoot;
+    std::vector<std::string> mNames;
     bool mCommitted = false;
 };
 
-void writeJsonAtomic(const fs::path& path, const nlohmann::json& j) {
+void OutputTransaction::writeJsonAtomic(const fs::path& path, const nlohmann::json& j) {
     const fs::path tmp =
         path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(getpid()));
     {
@@ -121,6 +165,8 @@ void runReplay(const ReplayOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!std::isfinite(o.fps) || o.fps <= 0.0 || o.fps > 1000.0)
         throw UsageError("--fps must be in (0, 1000], got " + std::to_string(o.fps));
+    if (!std::isfinite(o.fovYDeg) || o.fovYDeg < 1.0f || o.fovYDeg > 170.0f)
+        throw UsageError("--fov must be in [1, 170] degrees, got " + std::to_string(o.fovYDeg));
     if (o.outDir.empty())
         throw UsageError("--out: an output directory is required");
 
@@ -190,10 +236,8 @@ void runReplay(const ReplayOptions& o) {
                             {"ocio_view", colour.selectedView()},
                             {"gl_renderer", context->info().renderer},
                             {"flight", o.flight.filename().string()}};
-            hash = capture::writeExrHalf(o.outDir / exrName, o.width, o.height, 4, scene.data(), meta);
-            out.wrote(o.outDir / exrName);
-            capture::writePng8(o.outDir / pngName, o.width, o.height, 4, display.data());
-            out.wrote(o.outDir / pngName);
+            hash = capture::writeExrHalf(out.staged(exrName), o.width, o.height, 4, scene.data(), meta);
+            capture::writePng8(out.staged(pngName), o.width, o.height, 4, display.data());
         } else {
             const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
             hash = capture::hashHalfPixels(half.data(), half.size());
@@ -222,6 +266,7 @@ void runReplay(const ReplayOptions& o) {
     if (tty)
         std::fprintf(stderr, "\n");
 
+    gpuTimer.drain(); // timer queries of the last frames are still in flight on real GPUs
     const double totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json summary;
     summary["flight"] = o.flight.string();
@@ -245,9 +290,9 @@ void runReplay(const ReplayOptions& o) {
                           {"frame_wall_ms_median", median(frameWallMs)},
                           {"time_to_first_frame_s", firstFrameSeconds},
                           {"total_s", totalSeconds},
-                          {"frames_per_second", static_cast<double>(frameCount) / totalSeconds}};
-    writeJsonAtomic(o.outDir / "summary.json", summary);
-    out.commit();
+                          {"frames_per_second_overall", static_cast<double>(frameCount) / totalSeconds},
+                          {"frames_per_second_steady", 1000.0 / std::max(median(frameWallMs), 1e-9)}};
+    out.commit(summary);
     logInfo("replay: " + std::to_string(frameCount) + " frames in " + std::to_string(totalSeconds) +
             " s -> " + o.outDir.string());
 }

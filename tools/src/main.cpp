@@ -37,8 +37,16 @@ int main(int argc, char** argv) {
 
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        // Same contract as every other bad input: one "pacifica: error:" line, exit status 2.
+        std::fprintf(stderr, "pacifica: error: %s\nRun with --help for usage.\n", e.what());
+        return 2;
     }
 
     try {

@@ -81,6 +81,13 @@ void GpuTimer::collect(bool wait) {
     }
 }
 
+void GpuTimer::drain() {
+    if (mClock != Clock::TimerQuery)
+        return;
+    for (size_t k = 0; k < mQueries.size(); ++k)
+        collect(true); // each call takes the oldest pending result, waiting for it
+}
+
 std::optional<double> GpuTimer::poll() {
     if (mClock == Clock::TimerQuery)
         collect(false);

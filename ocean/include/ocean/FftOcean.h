@@ -2,14 +2,32 @@
 // Fourier amplitudes h0(k) evolved with the dispersion relation and transformed to heights, slopes and
 // horizontal ("choppy", seed 002 "direct displacement") displacements by inverse FFT on the GPU.
 //
-//   h(x, t)  = sum_k htilde(k, t) e^{i k.x},   htilde(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t} (eq.
-//   26) D(x, t)  = sum_k -i (k / |k|) htilde(k, t) e^{i k.x} (eq. 29) P        = (x + lambda D_x, y + lambda
-//   D_y, h)                                                       (eq. 30) h0(k)    = (xi_r + i xi_i)
-//   sqrt(P(k) / 2)   (eq. 25) with the Phillips (eq. 40) or JONSWAP spectrum
+//   h(x, t)  = sum_k htilde(k, t) e^{i k.x},   htilde(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}   (eq. 26)
+//   D(x, t)  = sum_k -i (k / |k|) htilde(k, t) e^{i k.x}                                                 (eq. 29)
+//   P        = (x + lambda D_x, y + lambda D_y, h)                                                       (eq. 30)
+//   h0(k)    = (xi_r + i xi_i) sqrt(P(k) / 2)   (eq. 25) with the Phillips (eq. 40) or JONSWAP spectrum
 //
 // The wave vectors lie on the lattice k = 2 pi (n, m) / L (n, m in [-N/2, N/2)), so the field tiles with
 // period L. This class is the double-precision CPU reference: it evaluates the same spectral components by
 // direct sum at any point (O(N^2) per point) — the yardstick for the GPU FFT's accuracy.
+//
+// STEP BY STEP
+//   1. FftDesc d; d.size = 256; d.tileSize = 500.0; d.windSpeed = 12.0; d.fetch = 200e3;   // or defaults
+//   2. auto sea = std::make_shared<const FftOcean>(d);        // validates, draws h0(k) (deterministic per seed)
+//   3. CPU queries: sea->displacementAt(xy, t), normalAt, jacobianAt, heightAt (any t: time loops with T)
+//   4. GPU: FftGpu gpu(sea) (ocean/src/gpu/FftGpu.h); per frame gpu.update(t, camera); gpu.bind(program, ...)
+//
+// Conventions (shared with the GPU, ocean/shaders/fft_*.comp):
+//   - Lattice index (n, m) in [0, N)^2 stands for the wave vector k = 2 pi (n - N/2, m - N/2) / L;
+//     x = east, y = north (ENU); the wind direction is a compass angle, so w_hat = (sin a, cos a).
+//   - Nyquist row and column (n = 0 or m = 0, wave number -N/2) carry h0 = 0: their partner -k is not on
+//     the lattice, so with them the sum would not be real between grid points, and i k (slopes, eq. 29) is
+//     ambiguous there. With them zeroed, htilde(-k) = conj(htilde(k)) holds for every lattice k, the field
+//     is real everywhere and the CPU sum and the GPU FFT hold exactly the same components.
+//   - Time loops with period T = loopPeriod (Tessendorf §3.3): w(k) = q(k) w0, w0 = 2 pi / T, with the
+//     integer q(k) = max(1, round(sqrt(g |k|) / w0)). So e^{i w t} depends only on wrap(t, T), which is
+//     taken in double before anything else; the phase is q * wrap(t, T) / T turns, reduced mod 1.
+//   - amplitudeScale multiplies every h0 (so the variance by amplitudeScale^2).
 #pragma once
 
 #include "ocean/SurfaceModel.h"
@@ -32,7 +50,19 @@ struct FftDesc {
     double choppiness = 1.0;     ///< lambda (eq. 30); the surface must not fold at the chosen value
     double amplitudeScale = 1.0; ///< multiplies the spectrum's amplitude (a look knob)
     uint32_t seed = 3;
+    double loopPeriod = 200.0; ///< T: seconds after which the animation repeats exactly (Tessendorf §3.3)
 };
+
+/// Directional wavenumber spectrum F(k) of `desc` (without amplitudeScale): the height variance per unit
+/// area of wave-vector space, m^4, so that Var h = integral F d^2k. Phillips: Tessendorf eq. 40 with the
+/// small-wave factor exp(-k^2 l^2); JONSWAP: S(w) converted through dw/dk with cos^2 spreading (see
+/// FftOcean.cpp for the formulas and sources). F(0) = 0.
+double directionalSpectrum(const FftDesc& desc, const glm::dvec2& k);
+
+/// JONSWAP frequency spectrum S(w), m^2 s (Hasselmann et al. 1973): alpha g^2 w^-5 exp(-5/4 (wp/w)^4)
+/// gamma^r with alpha = 0.076 (U^2 / (F g))^0.22, wp = 22 (g^2 / (U F))^(1/3), gamma = 3.3,
+/// sigma = 0.07 (w <= wp) / 0.09. 0 for w <= 0.
+double jonswapFrequencySpectrum(double omega, double windSpeed, double fetch);
 
 class FftOcean final : public SurfaceModel {
 public:
@@ -40,22 +70,39 @@ public:
     explicit FftOcean(const FftDesc& desc = {});
 
     SurfaceKind kind() const override { return SurfaceKind::Fft; }
+    /// Direct sum over all N^2 components at the point: O(N^2) (about 0.3 ms for N = 256), for tests and
+    /// sparse CPU queries; the GPU evaluates the whole tile by FFT.
     glm::dvec3 displacementAt(const glm::dvec2& xy, double t) const override;
+    /// Normal of the displaced surface: normalize(dP/dx x dP/dy) (eq. 30), O(N^2). It points down where the
+    /// surface has folded (jacobianAt < 0).
     glm::dvec3 normalAt(const glm::dvec2& xy, double t) const override;
+    /// (1 + l Dxx)(1 + l Dyy) - (l Dxy)^2 (Tessendorf §4.4), O(N^2).
     double jacobianAt(const glm::dvec2& xy, double t) const override;
+    /// 4 * RMS of h over one tile at t = 0, from Parseval: 4 sqrt(sum_k |htilde(k, 0)|^2) — the sea actually
+    /// realised (random draws, lattice truncation), not the spectrum's expectation.
     double significantWaveHeight() const override;
 
+    /// Test hook: the direct height sum sum_k htilde(k, t) e^{i k.x} before taking its real part. Its
+    /// imaginary part measures the Hermitian symmetry of the realised spectrum (0 up to rounding).
+    std::complex<double> complexHeightAt(const glm::dvec2& xy, double t) const;
+
     const FftDesc& desc() const { return mDesc; }
-    /// h0(k) for lattice index (n, m), n, m in [0, N): row-major, n = column. Index (i - N/2) is the wave
-    /// number.
+    /// h0(k) for lattice index (n, m), n, m in [0, N): row-major, n = column. Index (i - N/2) is the wave number.
     const std::vector<std::complex<double>>& h0() const { return mH0; }
-    /// w(k) for the same lattice.
+    /// w(k) for the same lattice (quantised: integer multiples of 2 pi / loopPeriod; 0 at k = 0).
     const std::vector<double>& omega() const { return mOmega; }
+    /// The integer q(k) = w(k) / w0 for the same lattice (0 at k = 0), as the GPU receives it.
+    const std::vector<uint32_t>& omegaMultiple() const { return mQ; }
 
 private:
+    struct Sums; // complex field sums at one point (FftOcean.cpp)
+    Sums sumAt(const glm::dvec2& xy, double t, bool derivatives) const;
+
     FftDesc mDesc;
     std::vector<std::complex<double>> mH0;
     std::vector<double> mOmega;
+    std::vector<uint32_t> mQ;
+    uint32_t mMaxQ = 0;
     double mHs = 0.0;
 };
 

@@ -75,6 +75,11 @@ public:
     /// 4 sqrt(sum_i A_i^2 / 2).
     double significantWaveHeight() const override;
 
+    /// D_i: the unit (east, north) vector of wave i's compass direction of travel.
+    static glm::dvec2 direction(const GerstnerWave& wave);
+    /// k_i = 2 pi / L_i, radians per metre.
+    static double wavenumber(const GerstnerWave& wave);
+
     /// The waves as used (steepness after the limit).
     const std::vector<GerstnerWave>& waves() const { return mWaves; }
     /// sum_i Q_i k_i A_i as requested, and the factor applied to every Q_i (1 if none was needed).

@@ -26,6 +26,8 @@ public:
     void end();
     /// The newest finished measurement in milliseconds, if any (never blocks in TimerQuery mode).
     std::optional<double> poll();
+    /// Waits for every span still in flight and collects it (call once at the end of a run).
+    void drain();
     /// Every measurement collected so far (ms), in order.
     const std::vector<double>& samples() const { return mSamples; }
     Clock clock() const { return mClock; }

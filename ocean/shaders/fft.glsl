@@ -1,0 +1,38 @@
+// fft.glsl: FftOcean's surface for the ocean shaders (SurfaceGpu contract, ocean/src/gpu/SurfaceGpu.h),
+// sampling the maps FftGpu computes (fft_finalize.comp). Texel (i, j) holds the field at the grid point
+// (i, j) L / N of the tile; the tile coordinate of a camera-relative point is uv = rel / L + uFftUvOffset,
+// with uFftUvOffset = fract(camera.xy / L) formed in double on the CPU, so only [0, 1) offsets and
+// camera-relative metres are ever floats.
+//   modelDisplacement: exact path — texelFetch and bilinear weights between grid points formed here, so a
+//     CPU implementation of the same formula reproduces it (at grid points: the FFT values themselves).
+//   modelLighting: hardware trilinear filtering of the mipmapped slope map (GL's texel centres sit at
+//     (i + 0.5) / N, hence the half-texel shift) and, in .z, the slope variance the filtering averaged
+//     away, E[|g|^2] - |E[g]|^2 (LEAN mapping, Olano & Baker 2010), as ocean_common.glsl does for octaves.
+
+uniform sampler2D uFftDisplacement; // RGBA32F (lambda Dx, lambda Dy, h, J), one level
+uniform sampler2D uFftSlope;        // RGBA32F (g_x, g_y, g_x^2, g_y^2), full mip chain, repeat
+uniform vec2 uFftUvOffset;          // fract(camera.xy / L)
+uniform float uFftInvTile;          // 1 / L
+uniform int uFftSize;               // N (power of two)
+
+vec3 fftFetch(ivec2 t) { return texelFetch(uFftDisplacement, t & (uFftSize - 1), 0).xyz; }
+
+vec3 modelDisplacement(vec2 rel) {
+    vec2 p = fract(rel * uFftInvTile + uFftUvOffset) * float(uFftSize); // grid units, [0, N]
+    vec2 p0 = floor(p);
+    vec2 a = p - p0;
+    ivec2 t0 = ivec2(p0);
+    vec3 d00 = fftFetch(t0);
+    vec3 d10 = fftFetch(t0 + ivec2(1, 0));
+    vec3 d01 = fftFetch(t0 + ivec2(0, 1));
+    vec3 d11 = fftFetch(t0 + ivec2(1, 1));
+    vec3 bottom = d00 + (d10 - d00) * a.x;
+    vec3 top = d01 + (d11 - d01) * a.x;
+    return bottom + (top - bottom) * a.y;
+}
+
+vec3 modelLighting(vec2 rel) {
+    vec2 uv = rel * uFftInvTile + uFftUvOffset + 0.5 / float(uFftSize);
+    vec4 s = texture(uFftSlope, uv);
+    return vec3(s.xy, max(s.z + s.w - dot(s.xy, s.xy), 0.0));
+}

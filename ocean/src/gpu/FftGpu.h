@@ -1,0 +1,79 @@
+// FftGpu (internal): the GPU side of FftOcean — each update() evolves the spectrum to the wrapped time and
+// inverse-FFTs it in GL compute shaders into two tiling textures that ocean/shaders/fft.glsl samples:
+//   displacement map, RGBA32F, 1 level:  (lambda Dx, lambda Dy, h, J) at grid point (i, j) L / N
+//   slope map, RGBA32F, full mip chain:   (dH/dx, dH/dy, (dH/dx)^2, (dH/dy)^2) of the displaced surface
+// (J is the Jacobian determinant of eq. 30's horizontal map, for foam.) Per update, four compute passes:
+//   1. fft_spectrum.comp  htilde(k, t) (eq. 26) and its derived spectra (eq. 29, slopes, dD/dx), packed as
+//                         four complex N x N planes (two real fields per complex FFT: all are Hermitian)
+//   2. fft_pass.comp      inverse FFT along x: one workgroup per row and plane, radix-2 in shared memory
+//   3. fft_pass.comp      inverse FFT along y: one workgroup per column and plane
+//   4. fft_finalize.comp  unpack, apply lambda, the displaced-surface gradient, write both maps
+// then glGenerateTextureMipmap on the slope map.
+//
+// Time: only w = q w0 (integer q) reaches the GPU, and the time as the 32-bit fixed-point fraction
+// word = round(wrap(t, T) / T * 2^32), formed in double here. The shader's phase q * word (mod 2^32, exact
+// uint arithmetic) / 2^32 turns is then exact up to the final float conversion, for any t.
+//
+// GL state: update() restores the current program (gl::StateGuard) but leaves shader-storage buffer
+// bindings 0..3 and image units 0..1 pointing at this object's resources; bind() binds texture units
+// [firstUnit, firstUnit + 2). Needs a current GL 4.5 context for construction, update(), bind() and the
+// destructor.
+#pragma once
+
+#include "gpu/SurfaceGpu.h"
+#include "ocean/FftOcean.h"
+
+#include "engine/gl/GlObjects.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pacifica::ocean {
+
+class FftGpu final : public SurfaceGpu {
+public:
+    /// Compiles the compute programs and allocates the buffers and maps (no upload yet: the first update()
+    /// uploads h0 and q once and reports it).
+    explicit FftGpu(std::shared_ptr<const FftOcean> ocean);
+
+    std::vector<std::string> glslFiles() const override { return {"fft.glsl"}; }
+    /// Recomputes the maps for time t: 4 compute passes (+ 1 upload the first time). Skipped entirely — no
+    /// pass, returns zeros — when the time word equals the last update's (same wrapped time, e.g. t and
+    /// t + T, or a paused game), since the maps are then bitwise what they would be. The FFT tile does
+    /// not depend on the camera; cameraWorld is unused here (bind() uses it).
+    SurfaceGpuStats update(double time, const glm::dvec3& cameraWorld) override;
+    /// Sets fft.glsl's uniforms (tile offset fract(camera.xy / L) formed in double) and binds the maps of
+    /// the last update() to units firstUnit (displacement) and firstUnit + 1 (slopes). Does no GPU work;
+    /// `time` is not used (call update() first).
+    void bind(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld) override;
+    int unitsUsed() const override { return 2; }
+
+    const FftOcean& ocean() const { return *mOcean; }
+    /// Sums of every update()'s stats since construction.
+    SurfaceGpuStats totals() const { return mTotals; }
+    /// round(wrap(t, T) / T * 2^32) mod 2^32: the only form in which time reaches the GPU.
+    static uint32_t timeWord(double time, double loopPeriod);
+
+    /// Read-backs for tests and tools: RGBA floats, row-major (j * N + i) * 4; level of the slope map.
+    std::vector<float> readDisplacementMap() const;
+    std::vector<float> readSlopeMap(int level = 0) const;
+    unsigned displacementTexture() const { return mDisplacement.id(); }
+    unsigned slopeTexture() const { return mSlope.id(); }
+
+private:
+    void upload();
+
+    std::shared_ptr<const FftOcean> mOcean;
+    int mSize = 0;
+    gl::Program mSpectrumProgram, mPassProgram, mFinalizeProgram;
+    gl::Buffer mH0Pairs, mOmegaMultiples, mTwiddles, mData;
+    gl::Texture mDisplacement, mSlope;
+    bool mUploaded = false;
+    bool mHaveMaps = false;
+    uint32_t mLastWord = 0;
+    SurfaceGpuStats mTotals;
+};
+
+} // namespace pacifica::ocean

@@ -1,0 +1,469 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `pacifica replay`: run the real CLI on a slice of the demo flight and check what it
+wrote from the outside, reading the images back with OpenImageIO's command-line tools (iinfo, oiiotool).
+
+Cases (chosen with --case, one ctest test each):
+  replay       the demo slice 0..3 s at 2 fps, 320x180: summary.json (frame count, times, poses against the
+               flight CSV, files), the EXR/PNG files (resolution, channels, pixel types, header attributes),
+               the EXR pixel hash recomputed from the decoded pixels, no leftover temp files; then the same
+               slice with --view "Un-tone-mapped": different PNGs, identical scene-linear EXR pixels.
+  studio-ocio  one frame through the ACES studio config (--ocio-config, display "sRGB - Display"): succeeds,
+               and summary.json and the EXR header record that config, display and view.
+
+Usage: test_e2e.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library only)
+Temp dirs are removed on success and kept (path printed) on failure.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+DEFAULT_VIEW = "ACES 1.0 - SDR Video"
+UNTONEMAPPED_VIEW = "Un-tone-mapped"
+EMBEDDED_DISPLAY = "sRGB"
+STUDIO_CONFIG = "data/ocio/studio-config-v1.0.0_aces-v1.3_ocio-v2.1.ocio"  # relative to the shared dir
+RUN_TIMEOUT_S = 180
+
+# ---------------------------------------------------------------------------------------------------------
+# Check bookkeeping: every check prints one line; a failed `require` also stops the current case.
+
+
+class CaseAborted(Exception):
+    pass
+
+
+class Checks:
+    def __init__(self):
+        self.passed = 0
+        self.failed = []
+
+    def check(self, ok, what, detail=""):
+        if ok:
+            self.passed += 1
+            print(f"  ok    {what}")
+        else:
+            self.failed.append(what + (f": {detail}" if detail else ""))
+            print(f"  FAIL  {what}" + (f": {detail}" if detail else ""))
+        return ok
+
+    def require(self, ok, what, detail=""):
+        if not self.check(ok, what, detail):
+            raise CaseAborted(what)
+
+
+# ---------------------------------------------------------------------------------------------------------
+# XXH64 (Yann Collet's xxHash, 64-bit variant, seed 0), used to recompute summary.json's exr_pixel_hash from
+# the decoded EXR pixels. Reference: https://github.com/Cyan4973/xxHash/blob/dev/doc/xxhash_spec.md
+# (section "XXH64 Algorithm Description"). Checked against the spec's values for "", "a" and "abc" below.
+
+_M64 = (1 << 64) - 1
+_P1, _P2, _P3 = 0x9E3779B185EBCA87, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9
+_P4, _P5 = 0x85EBCA77C2B2AE63, 0x27D4EB2F165667C5
+
+
+def _rotl(x, r):
+    return ((x << r) | (x >> (64 - r))) & _M64
+
+
+def _round(acc, lane):
+    acc = (acc + lane * _P2) & _M64
+    return (_rotl(acc, 31) * _P1) & _M64
+
+
+def _merge(acc, v):
+    acc ^= _round(0, v)
+    return (acc * _P1 + _P4) & _M64
+
+
+def xxh64(data, seed=0):
+    n = len(data)
+    i = 0
+    if n >= 32:
+        v1, v2, v3, v4 = (seed + _P1 + _P2) & _M64, (seed + _P2) & _M64, seed, (seed - _P1) & _M64
+        stripes = n // 32
+        lanes = struct.unpack_from(f"<{stripes * 4}Q", data, 0)
+        for j in range(0, stripes * 4, 4):
+            v1 = _round(v1, lanes[j])
+            v2 = _round(v2, lanes[j + 1])
+            v3 = _round(v3, lanes[j + 2])
+            v4 = _round(v4, lanes[j + 3])
+        i = stripes * 32
+        h = (_rotl(v1, 1) + _rotl(v2, 7) + _rotl(v3, 12) + _rotl(v4, 18)) & _M64
+        for v in (v1, v2, v3, v4):
+            h = _merge(h, v)
+    else:
+        h = (seed + _P5) & _M64
+    h = (h + n) & _M64
+    while i + 8 <= n:
+        h ^= _round(0, struct.unpack_from("<Q", data, i)[0])
+        h = (_rotl(h, 27) * _P1 + _P4) & _M64
+        i += 8
+    if i + 4 <= n:
+        h ^= (struct.unpack_from("<I", data, i)[0] * _P1) & _M64
+        h = (_rotl(h, 23) * _P2 + _P3) & _M64
+        i += 4
+    while i < n:
+        h ^= (data[i] * _P5) & _M64
+        h = (_rotl(h, 11) * _P1) & _M64
+        i += 1
+    h ^= h >> 33
+    h = (h * _P2) & _M64
+    h ^= h >> 29
+    h = (h * _P3) & _M64
+    h ^= h >> 32
+    return h
+
+
+assert xxh64(b"") == 0xEF46DB3751D8E999 and xxh64(b"a") == 0xD24EC4F1A98C6E5B
+assert xxh64(b"abc") == 0x44BC2CF5AD770999
+
+# ---------------------------------------------------------------------------------------------------------
+# Running things.
+
+
+def child_env(extra=None):
+    env = dict(os.environ)
+    env.pop("OCIO", None)  # hermetic: $OCIO would replace the embedded config
+    env.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
+    env.update(extra or {})
+    return env
+
+
+def run_replay(exe, args, extra_env=None):
+    cmd = [exe, "replay", *args, "--no-progress"]
+    print("  $ " + " ".join(f"'{a}'" if " " in a else a for a in cmd))
+    t0 = time.monotonic()
+    proc = subprocess.run(cmd, env=child_env(extra_env), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    print(f"    exit {proc.returncode} after {time.monotonic() - t0:.1f} s")
+    return proc
+
+
+def oiio_tool(name):
+    path = shutil.which(name)
+    if not path:
+        raise CaseAborted(f"'{name}' not found on PATH (install Debian's openimageio-tools)")
+    return path
+
+
+def iinfo_verbose(directory, names):
+    """Runs `iinfo -v` once over `names` (relative to `directory`); returns {name: {"width", "height",
+    "channels", "type", "format", "attrs": {name: text}}}."""
+    proc = subprocess.run([oiio_tool("iinfo"), "-v", *names], cwd=directory, capture_output=True, text=True,
+                          timeout=RUN_TIMEOUT_S)
+    if proc.returncode != 0:
+        raise CaseAborted(f"iinfo failed (exit {proc.returncode}): {proc.stderr.strip()}")
+    header = re.compile(r"^(\S+)\s+:\s+(\d+)\s+x\s+(\d+),\s+(\d+)\s+channel,\s+(\S+)\s+(\S+)")
+    info, current = {}, None
+    for line in proc.stdout.splitlines():
+        m = header.match(line)
+        if m:
+            current = {"width": int(m[2]), "height": int(m[3]), "channels": int(m[4]), "type": m[5],
+                       "format": m[6], "attrs": {}}
+            info[m[1]] = current
+        elif current is not None and ": " in line:
+            # "    name: value"; names may contain ':' themselves (pacifica:time_s), never ": ".
+            key, value = line.strip().split(": ", 1)
+            current["attrs"][key] = value.strip().strip('"')
+    return info
+
+
+def pixel_sha1(directory, names):
+    """SHA-1 of the decoded pixels of each image (`iinfo --hash`), one process for all of them."""
+    proc = subprocess.run([oiio_tool("iinfo"), "--hash", *names], cwd=directory, capture_output=True, text=True,
+                          timeout=RUN_TIMEOUT_S)
+    if proc.returncode != 0:
+        raise CaseAborted(f"iinfo --hash failed (exit {proc.returncode}): {proc.stderr.strip()}")
+    out, current = {}, None
+    for line in proc.stdout.splitlines():
+        if not line.startswith(" ") and " : " in line:
+            current = line.split(" : ", 1)[0].strip()
+        elif "SHA-1:" in line and current:
+            out[current] = line.split("SHA-1:", 1)[1].strip()
+    return out
+
+
+def exr_xxh64(directory, names):
+    """Recomputes the EXR pixel hash the way summary.json defines it (XXH64 of the half-float RGBA pixels,
+    rows top-down): `oiiotool --dumpdata` prints every pixel, top row first, with 9 decimals, which is
+    exact enough to recover each half value bit for bit (the smallest half step, 2^-24 = 6e-8, is far
+    above 1e-9), and struct's 'e' format re-encodes it as IEEE half."""
+    proc = subprocess.run([oiio_tool("oiiotool"), "--dumpdata", *names], cwd=directory, capture_output=True,
+                          text=True, timeout=RUN_TIMEOUT_S)
+    if proc.returncode != 0:
+        raise CaseAborted(f"oiiotool --dumpdata failed (exit {proc.returncode}): {proc.stderr.strip()}")
+    values = {}
+    current = None
+    for line in proc.stdout.splitlines():
+        if line.startswith("    Pixel ("):
+            values[current].extend(float(v) for v in line.split(":", 1)[1].split())
+        elif " : " in line and not line.startswith(" "):
+            current = line.split(" : ", 1)[0].strip()
+            values[current] = []
+    return {name: "%016x" % xxh64(struct.pack(f"<{len(v)}e", *v)) for name, v in values.items()}
+
+
+def read_flight(path):
+    """time_s -> pose columns of a flight CSV (docs/FLIGHT_FORMAT.md; the demo file is well formed)."""
+    rows, header = {}, None
+    with open(path, encoding="utf-8-sig") as f:
+        for line in f:
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            fields = [x.strip() for x in line.split(",")]
+            if header is None:
+                header = fields
+                continue
+            rows[float(fields[0])] = dict(zip(header[1:], map(float, fields[1:])))
+    return rows
+
+
+def close(a, b, rel=1e-9, abs_tol=1e-9):
+    return math.isclose(float(a), float(b), rel_tol=rel, abs_tol=abs_tol)
+
+
+def listing(directory):
+    return sorted(os.listdir(directory))
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Shared checks of one run's output.
+
+
+def check_run_output(c, out_dir, summary, start, fps, expected_count, size, flight_rows, view, display):
+    frames = summary.get("frames", [])
+    c.require(len(frames) == expected_count, f"summary.json lists {expected_count} frames",
+              f"got {len(frames)}")
+    c.check(summary.get("size") == list(size), f"summary size is {list(size)}", f"got {summary.get('size')}")
+    c.check(close(summary.get("fps", -1), fps), f"summary fps is {fps}", f"got {summary.get('fps')}")
+    renderer = summary.get("gl", {}).get("renderer", "")
+    c.check(isinstance(renderer, str) and renderer.strip() != "", "gl.renderer is non-empty", repr(renderer))
+    print(f"    gl.renderer = {renderer!r}")
+    ocio = summary.get("ocio", {})
+    c.check(ocio.get("view") == view, f"ocio.view is '{view}'", f"got {ocio.get('view')!r}")
+    c.check(ocio.get("display") == display, f"ocio.display is '{display}'", f"got {ocio.get('display')!r}")
+    c.check(bool(ocio.get("config")), "ocio.config is non-empty", repr(ocio.get("config")))
+
+    times = [f.get("time_s") for f in frames]
+    c.check([f.get("index") for f in frames] == list(range(expected_count)), "frame indices are 0..n-1",
+            str([f.get("index") for f in frames]))
+    # Frame k is at exactly start + k/fps (Replay.cpp computes it from the index, not by accumulation);
+    # 1e-9 s only absorbs the printing of doubles in JSON.
+    expected_times = [start + k / fps for k in range(expected_count)]
+    c.check(all(close(t, e) for t, e in zip(times, expected_times)), "frame times are start + k/fps",
+            f"got {times}, expected {expected_times}")
+    c.check(all(b > a for a, b in zip(times, times[1:])), "frame times strictly increase", str(times))
+
+    # The slice's times fall on the CSV's own samples, so the pose must be that sample (up to the quaternion
+    # round trip of the attitude, 89.99999999999999 for 90: 1e-6 is far below anything visible).
+    pose_ok, pose_detail = True, ""
+    for f in frames:
+        row = flight_rows.get(f["time_s"])
+        if row is None:  # every case here picks times on the CSV's 0.5 s grid
+            pose_ok, pose_detail = False, f"frame {f['index']} t={f['time_s']} is not a CSV sample time"
+            continue
+        for key in ("x_m", "y_m", "z_m", "heading_deg", "pitch_deg", "roll_deg"):
+            if not close(f["pose"][key], row[key], rel=1e-9, abs_tol=1e-6):
+                pose_ok = False
+                pose_detail = f"frame {f['index']} {key}: {f['pose'][key]} vs CSV {row[key]}"
+    c.check(pose_ok, "poses match the flight CSV samples at those times", pose_detail)
+
+    exrs = [f.get("exr", "") for f in frames]
+    pngs = [f.get("png", "") for f in frames]
+    c.check(exrs == [f"frame_{k:05d}.exr" for k in range(expected_count)], "EXR names are frame_NNNNN.exr",
+            str(exrs))
+    c.check(pngs == [f"frame_{k:05d}.png" for k in range(expected_count)], "PNG names are frame_NNNNN.png",
+            str(pngs))
+    missing = [n for n in exrs + pngs if not os.path.isfile(os.path.join(out_dir, n))]
+    c.require(not missing, "every listed EXR and PNG exists", f"missing {missing}")
+    files = listing(out_dir)
+    hidden = [n for n in files if n.startswith(".")]
+    c.check(not hidden, "no leftover temp files (names starting with '.')", str(hidden))
+    c.check(files == sorted(exrs + pngs + ["summary.json"]), "DIR holds exactly the listed files + summary.json",
+            str(files))
+
+    info = iinfo_verbose(out_dir, exrs + pngs)
+    unread = [n for n in exrs + pngs if n not in info]
+    c.require(not unread, f"OIIO reads back all {len(exrs)} EXRs and {len(pngs)} PNGs", f"unreadable: {unread}")
+    w, h = size
+    problems = {}  # check description -> offending files, so each check prints one line for all frames
+
+    def expect(ok, what, detail):
+        problems.setdefault(what, [])
+        if not ok:
+            problems[what].append(detail)
+
+    for f in frames:
+        exr, png, a = info[f["exr"]], info[f["png"]], info[f["exr"]]["attrs"]
+        expect((exr["width"], exr["height"], exr["channels"], exr["type"], exr["format"]) ==
+               (w, h, 4, "half", "openexr"), f"EXRs are {w}x{h} half 4-channel OpenEXR",
+               f"{f['exr']}: {exr['width']}x{exr['height']} {exr['channels']} ch {exr['type']} {exr['format']}")
+        expect(a.get("channel list") == "R, G, B, A", "EXR channels are R, G, B, A",
+               f"{f['exr']}: {a.get('channel list')!r}")
+        expect((png["width"], png["height"], png["channels"], png["type"], png["format"]) ==
+               (w, h, 4, "uint8", "png"), f"PNGs are {w}x{h} 8-bit 4-channel PNG",
+               f"{f['png']}: {png['width']}x{png['height']} {png['channels']} ch {png['type']} {png['format']}")
+        expect(a.get("pacifica:frame") == str(f["index"]), "EXR pacifica:frame == summary index",
+               f"{f['exr']}: {a.get('pacifica:frame')!r} vs {f['index']}")
+        # iinfo prints double attributes with %g (6 significant digits): compare to that precision.
+        tv = a.get("pacifica:time_s")
+        expect(tv is not None and close(tv, f["time_s"], rel=1e-5, abs_tol=1e-9),
+               "EXR pacifica:time_s == summary time_s", f"{f['exr']}: {tv!r} vs {f['time_s']}")
+        xv = a.get("pacifica:camera_x_m")
+        expect(xv is not None and close(xv, f["pose"]["x_m"], rel=1e-5, abs_tol=1e-3),
+               "EXR pacifica:camera_x_m == summary pose.x_m", f"{f['exr']}: {xv!r} vs {f['pose']['x_m']}")
+        expect(a.get("pacifica:ocio_display") == display and a.get("pacifica:ocio_view") == view,
+               f"EXR pacifica:ocio_display/ocio_view == '{display}'/'{view}'",
+               f"{f['exr']}: {a.get('pacifica:ocio_display')!r}/{a.get('pacifica:ocio_view')!r}")
+        expect(a.get("pacifica:gl_renderer") == renderer, "EXR pacifica:gl_renderer == summary gl.renderer",
+               f"{f['exr']}: {a.get('pacifica:gl_renderer')!r}")
+    for what, bad in problems.items():
+        c.check(not bad, f"{what} ({len(frames)} frames)", "; ".join(bad))
+    return info
+
+
+def load_summary(c, out_dir):
+    path = os.path.join(out_dir, "summary.json")
+    c.require(os.path.isfile(path), "summary.json exists")
+    try:
+        with open(path, encoding="utf-8") as f:
+            return json.load(f)
+    except ValueError as e:
+        c.require(False, "summary.json is valid JSON", str(e))
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Cases.
+
+
+def case_replay(c, exe, source_dir, tmp):
+    flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
+    start, end, fps, size = 0.0, 3.0, 2.0, (320, 180)
+    expected = int(math.floor((end - start) * fps + 1e-9)) + 1  # 7: 0, 0.5, ..., 3.0
+    slice_args = ["--start", "0", "--end", "3", "--fps", "2", "--size", "320x180"]
+    rows = read_flight(flight)
+
+    print("[run A] default view")
+    out_a = os.path.join(tmp, "run_a")  # does not exist yet: the CLI must create it
+    proc = run_replay(exe, [flight, "--out", out_a, *slice_args])
+    c.require(proc.returncode == 0, "run A exits 0", proc.stderr.strip()[-2000:])
+    c.check("pacifica: error" not in proc.stderr, "run A prints no error", proc.stderr.strip()[-2000:])
+    summary_a = load_summary(c, out_a)
+    check_run_output(c, out_a, summary_a, start, fps, expected, size, rows, DEFAULT_VIEW, EMBEDDED_DISPLAY)
+
+    frames_a = summary_a["frames"]
+    exrs = [f["exr"] for f in frames_a]
+    recomputed = exr_xxh64(out_a, exrs)
+    bad = [(f["exr"], f["exr_pixel_hash"], recomputed.get(f["exr"])) for f in frames_a
+           if recomputed.get(f["exr"]) != f["exr_pixel_hash"]]
+    c.check(not bad, "exr_pixel_hash == XXH64 of the EXR's decoded half RGBA pixels, rows top-down", str(bad))
+    hashes_a = [f["exr_pixel_hash"] for f in frames_a]
+    # A moving camera over a moving sea: consecutive frames must differ (guards against a stuck renderer).
+    c.check(len(set(hashes_a)) == len(hashes_a), "every frame's EXR pixels differ", str(hashes_a))
+
+    print(f"[run B] --view '{UNTONEMAPPED_VIEW}'")
+    out_b = os.path.join(tmp, "run_b")
+    proc = run_replay(exe, [flight, "--out", out_b, *slice_args, "--view", UNTONEMAPPED_VIEW])
+    c.require(proc.returncode == 0, "run B exits 0", proc.stderr.strip()[-2000:])
+    summary_b = load_summary(c, out_b)
+    check_run_output(c, out_b, summary_b, start, fps, expected, size, rows, UNTONEMAPPED_VIEW, EMBEDDED_DISPLAY)
+    hashes_b = [f["exr_pixel_hash"] for f in summary_b["frames"]]
+    # The view only changes the display transform; scene-linear data must be bit-identical.
+    c.check(hashes_a == hashes_b, "same exr_pixel_hash per frame as run A (tonemap leaves scene-linear alone)",
+            f"A {hashes_a} B {hashes_b}")
+    sha_a = pixel_sha1(out_a, exrs + [f["png"] for f in frames_a])
+    sha_b = pixel_sha1(out_b, exrs + [f["png"] for f in frames_a])
+    c.check(all(sha_a.get(n) and sha_a.get(n) == sha_b.get(n) for n in exrs),
+            "decoded EXR pixels identical to run A (iinfo --hash)",
+            str([(n, sha_a.get(n), sha_b.get(n)) for n in exrs if sha_a.get(n) != sha_b.get(n)]))
+    same_png = [f["png"] for f in frames_a if not sha_a.get(f["png"]) or sha_a.get(f["png"]) == sha_b.get(f["png"])]
+    c.check(not same_png, "every PNG differs from run A's (decoded pixels)", f"identical: {same_png}")
+
+
+def case_studio_ocio(c, exe, source_dir, tmp):
+    flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
+    shared = os.environ.get("PACIFICA_SHARED_DIR") or os.path.join(source_dir, "..", "shared")
+    config = os.path.normpath(os.path.join(shared, STUDIO_CONFIG))
+    c.require(os.path.isfile(config), f"studio config present at {config}")
+    with open(config, encoding="utf-8") as f:
+        m = re.search(r"^name:\s*(.+?)\s*$", f.read(), re.MULTILINE)
+    c.require(m is not None, "studio config has a name: line")
+    config_name = m[1]
+    display, view = "sRGB - Display", DEFAULT_VIEW
+    rows = read_flight(flight)
+    args = ["--start", "8", "--end", "8", "--size", "320x180"]
+
+    print(f"[studio] --ocio-config {config} --display '{display}' --view '{view}'")
+    out_s = os.path.join(tmp, "studio")
+    proc = run_replay(exe, [flight, "--out", out_s, *args, "--ocio-config", config, "--display", display,
+                            "--view", view])
+    c.require(proc.returncode == 0, "studio-config run exits 0", proc.stderr.strip()[-2000:])
+    summary = load_summary(c, out_s)
+    info = check_run_output(c, out_s, summary, 8.0, summary.get("fps", 10.0), 1, (320, 180), rows, view, display)
+    # summary.json names the config by its `name:` (ColorPipeline::configDescription), not by path.
+    c.check(summary["ocio"].get("config") == config_name, f"summary ocio.config is '{config_name}'",
+            f"got {summary['ocio'].get('config')!r}")
+    exr = summary["frames"][0]["exr"]
+    c.check(info[exr]["attrs"].get("pacifica:ocio_config") == config_name,
+            f"{exr} pacifica:ocio_config is '{config_name}'", repr(info[exr]["attrs"].get("pacifica:ocio_config")))
+
+    print("[embedded] same frame with the embedded config, for comparison")
+    out_e = os.path.join(tmp, "embedded")
+    proc = run_replay(exe, [flight, "--out", out_e, *args])
+    c.require(proc.returncode == 0, "embedded-config run exits 0", proc.stderr.strip()[-2000:])
+    summary_e = load_summary(c, out_e)
+    c.check(summary_e["ocio"].get("config") != config_name, "embedded run records a different config",
+            repr(summary_e["ocio"].get("config")))
+    # The OCIO config only drives the display transform: the scene-linear EXR must not depend on it.
+    c.check(summary_e["frames"][0]["exr_pixel_hash"] == summary["frames"][0]["exr_pixel_hash"],
+            "same exr_pixel_hash as with the embedded config",
+            f"{summary_e['frames'][0]['exr_pixel_hash']} vs {summary['frames'][0]['exr_pixel_hash']}")
+    png = summary["frames"][0]["png"]
+    sha_s, sha_e = pixel_sha1(out_s, [png]), pixel_sha1(out_e, [png])
+    print(f"    info: studio vs embedded PNG pixels {'identical' if sha_s == sha_e else 'differ'}"
+          " (not asserted: the studio config's scene_linear role is ACEScg, the embedded one's linear Rec.709)")
+
+
+CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--case", choices=sorted(CASES), required=True)
+    ap.add_argument("pacifica_exe")
+    ap.add_argument("source_dir")
+    ns = ap.parse_args()
+
+    c = Checks()
+    tmp = tempfile.mkdtemp(prefix=f"pacifica-e2e-{ns.case}-")
+    t0 = time.monotonic()
+    print(f"e2e case '{ns.case}': {ns.pacifica_exe} (temp dir {tmp})")
+    try:
+        CASES[ns.case](c, ns.pacifica_exe, os.path.abspath(ns.source_dir), tmp)
+    except CaseAborted as e:
+        if not c.failed:
+            c.failed.append(str(e))
+        print(f"  case aborted: {e}")
+    except subprocess.TimeoutExpired as e:
+        c.failed.append(f"timed out: {e}")
+        print(f"  FAIL  timed out: {e}")
+    elapsed = time.monotonic() - t0
+    print(f"\nSUMMARY e2e/{ns.case}: {c.passed} checks passed, {len(c.failed)} failed, {elapsed:.1f} s")
+    if c.failed:
+        for f in c.failed:
+            print(f"  failed: {f}")
+        print(f"  output kept in {tmp}")
+        return 1
+    shutil.rmtree(tmp, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
