@@ -7,6 +7,7 @@
 #include "engine/Log.h"
 #include "engine/gl/GlObjects.h"
 #include "engine/gl/Shader.h"
+#include "gpu/LightingGpu.h"
 #include "gpu/SurfaceGpuFactory.h"
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanShaders.h"
@@ -67,6 +68,9 @@ struct OceanRenderer::Gpu {
 
 namespace {
 
+/// Texture units: the surface model binds from 0, the lighting (environment map, foam) from here.
+constexpr int LIGHTING_FIRST_UNIT = 12;
+
 std::vector<gl::ShaderSource> sources(const std::vector<std::string>& names) {
     std::vector<gl::ShaderSource> out;
     out.push_back({"<ocean constants>", shaderConstantDefines()});
@@ -124,18 +128,10 @@ void setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
                        ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
 }
 
-void setLightingUniforms(GLuint prog, const LightingDesc& l) {
-    const glm::vec3 sun = glm::vec3(glm::normalize(l.sunDirection));
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "uSunDir"), sun.x, sun.y, sun.z);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSkyIntensity"), l.skyIntensity);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSunIntensity"), l.sunIntensity);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uFogDensity"), l.fogDensity);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uNormalTilt"), l.normalTilt);
-}
-
 } // namespace
 
-OceanRenderer::OceanRenderer() : mPrograms(std::make_unique<Programs>()) {}
+OceanRenderer::OceanRenderer()
+    : mPrograms(std::make_unique<Programs>()), mLighting(std::make_unique<LightingGpu>()) {}
 
 OceanRenderer::~OceanRenderer() = default;
 
@@ -196,7 +192,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             }
             const GLuint sky = mPrograms->sky.id();
             glUseProgram(sky);
-            setLightingUniforms(sky, ocean.desc.lighting);
+            mLighting->bind(sky, LIGHTING_FIRST_UNIT, ocean.desc.lighting);
             glProgramUniformMatrix4fv(sky, glGetUniformLocation(sky, "uInvViewProj"), 1, GL_FALSE,
                                       glm::value_ptr(invViewProj));
             glDisable(GL_DEPTH_TEST);
@@ -219,7 +215,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         const GLuint sea = seaProgram.id();
         glUseProgram(sea);
         setSeaUniforms(sea, ocean, gpu, frame);
-        setLightingUniforms(sea, ocean.desc.lighting);
+        mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc.lighting);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);

@@ -2,10 +2,10 @@
 // Fourier amplitudes h0(k) evolved with the dispersion relation and transformed to heights, slopes and
 // horizontal ("choppy", seed 002 "direct displacement") displacements by inverse FFT on the GPU.
 //
-//   h(x, t)  = sum_k htilde(k, t) e^{i k.x},   htilde(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}   (eq. 26)
-//   D(x, t)  = sum_k -i (k / |k|) htilde(k, t) e^{i k.x}                                                 (eq. 29)
-//   P        = (x + lambda D_x, y + lambda D_y, h)                                                       (eq. 30)
-//   h0(k)    = (xi_r + i xi_i) sqrt(P(k) / 2)   (eq. 25) with the Phillips (eq. 40) or JONSWAP spectrum
+//   h(x, t)  = sum_k htilde(k, t) e^{i k.x},   htilde(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t} (eq.
+//   26) D(x, t)  = sum_k -i (k / |k|) htilde(k, t) e^{i k.x} (eq. 29) P        = (x + lambda D_x, y + lambda
+//   D_y, h)                                                       (eq. 30) h0(k)    = (xi_r + i xi_i)
+//   sqrt(P(k) / 2)   (eq. 25) with the Phillips (eq. 40) or JONSWAP spectrum
 //
 // The wave vectors lie on the lattice k = 2 pi (n, m) / L (n, m in [-N/2, N/2)), so the field tiles with
 // period L. This class is the double-precision CPU reference: it evaluates the same spectral components by
@@ -13,7 +13,8 @@
 //
 // STEP BY STEP
 //   1. FftDesc d; d.size = 256; d.tileSize = 500.0; d.windSpeed = 12.0; d.fetch = 200e3;   // or defaults
-//   2. auto sea = std::make_shared<const FftOcean>(d);        // validates, draws h0(k) (deterministic per seed)
+//   2. auto sea = std::make_shared<const FftOcean>(d);        // validates, draws h0(k) (deterministic per
+//   seed)
 //   3. CPU queries: sea->displacementAt(xy, t), normalAt, jacobianAt, heightAt (any t: time loops with T)
 //   4. GPU: FftGpu gpu(sea) (ocean/src/gpu/FftGpu.h); per frame gpu.update(t, camera); gpu.bind(program, ...)
 //
@@ -87,7 +88,8 @@ public:
     std::complex<double> complexHeightAt(const glm::dvec2& xy, double t) const;
 
     const FftDesc& desc() const { return mDesc; }
-    /// h0(k) for lattice index (n, m), n, m in [0, N): row-major, n = column. Index (i - N/2) is the wave number.
+    /// h0(k) for lattice index (n, m), n, m in [0, N): row-major, n = column. Index (i - N/2) is the wave
+    /// number.
     const std::vector<std::complex<double>>& h0() const { return mH0; }
     /// w(k) for the same lattice (quantised: integer multiples of 2 pi / loopPeriod; 0 at k = 0).
     const std::vector<double>& omega() const { return mOmega; }

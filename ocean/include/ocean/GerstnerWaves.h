@@ -59,12 +59,12 @@ public:
     /// clamps.
     explicit GerstnerWaves(const GerstnerDesc& desc = {});
 
-    /// A deterministic wind sea of `count` waves around `windDirectionDeg`: wavelengths log-spaced over
-    /// 8..120 m (jittered), wave slopes k A in [0.018, 0.028] (equal slope per log band, the saturation range
-    /// of Phillips 1958), so Hs is ~1.5-2 m for 8 waves; directions within +-40 degrees of the wind;
-    /// Q in [0.5, 1]; phases in [0, 2 pi). Depends only on the arguments (std::mt19937_64 and a portable
-    /// mapping to [0, 1)). Throws std::invalid_argument unless 1 <= count <= MAX_WAVES and the direction is
-    /// finite.
+    /// A deterministic wind sea of `count` waves around `windDirectionDeg`: wavelengths log-spaced from
+    /// 120 m down to 8 m, each jittered by up to +-10%; wave slopes k A in [0.015, 0.025] (equal slope per
+    /// log band, the saturation range of Phillips 1958), so Hs is 1.1-1.9 m for 8 waves; directions within
+    /// +-40 degrees of the wind; Q in [0.5, 1]; phases in [0, 2 pi). Depends only on the arguments
+    /// (std::mt19937_64 and a portable mapping to [0, 1)). Throws std::invalid_argument unless
+    /// 1 <= count <= MAX_WAVES and the direction is finite.
     static std::vector<GerstnerWave> defaultWaves(int count, double windDirectionDeg, uint32_t seed);
 
     SurfaceKind kind() const override { return SurfaceKind::Gerstner; }

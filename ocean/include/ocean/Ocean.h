@@ -19,6 +19,7 @@
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "ocean/HeightOctaves.h"
+#include "ocean/Lighting.h"
 #include "ocean/RadialGrid.h"
 #include "ocean/SurfaceModel.h"
 
@@ -29,14 +30,6 @@
 #include <vector>
 
 namespace pacifica::ocean {
-
-struct LightingDesc {
-    glm::dvec3 sunDirection{0.35, -0.55, 0.30}; ///< towards the sun, world ENU (normalised on use)
-    float sunIntensity = 40.0f;         ///< scene-linear radiance scale of the sun's specular highlight
-    float skyIntensity = 1.0f;          ///< scale of the procedural sky radiance
-    float fogDensity = 1.0f / 60000.0f; ///< 1/m
-    float normalTilt = 0.15f;           ///< §18.2.6: tilt of the lighting normal toward the viewer
-};
 
 struct OceanDesc {
     SurfaceKind model = SurfaceKind::Octaves; ///< which surface model displaces and lights the sea
@@ -74,6 +67,8 @@ struct OceanStats {
     long long vertices = 0;
 };
 
+class LightingGpu; // implementation detail (ocean/src/gpu/LightingGpu.h)
+
 /// The ocean render system: draws every OceanComponent in a registry.
 class OceanRenderer {
 public:
@@ -98,6 +93,7 @@ public:
 private:
     Gpu& prepare(ecs::Entity e, const OceanComponent& ocean);
     std::unique_ptr<Programs> mPrograms;
+    std::unique_ptr<LightingGpu> mLighting;
     std::unordered_map<ecs::Entity, std::unique_ptr<Gpu>> mGpu;
     OceanStats mStats;
 };
