@@ -5,7 +5,7 @@
 // stages, and writes the line back. Lines are disjoint, so in-place is safe across workgroups; shared memory
 // is N complex floats (8 KiB at N = 1024, well inside GL's 32 KiB minimum). One dispatch per direction.
 // Twiddles e^{+2 pi i j / N}, j < N/2, come precomputed in double (rounded once) from the CPU.
-// Defines: FFT_N, FFT_LOG2N, FFT_THREADS (min(N/2, 256)), FFT_PLANES.
+// Defines: FFT_N, FFT_LOG2N, FFT_THREADS (min(N/2, 64)), FFT_PLANES.
 
 layout(local_size_x = FFT_THREADS) in;
 

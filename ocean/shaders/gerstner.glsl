@@ -44,8 +44,9 @@ vec3 gerstnerDisplacement(vec2 rel) {
 // columns of GPU Gems 1 ch.1 eq. 10-11) and g = sum_i a_i k_i cos(theta_i) D_i the gradient of dz over the
 // grid, the Eulerian slope at the displaced point is J^-T g = adj(J) g / det J — the exact normal B x T,
 // not Finch's eq. 12, which drops products of different waves. det J is floored at uGerstnerMinJacobian so
-// a cusp (the clamped sum may touch J = 0) gives a steep but finite slope. The variance is what the lighting fade
-// removed, sum_i ((1 - f_i) k_i A_i)^2 / 2, which the fragment shader adds to the specular roughness.
+// a cusp (the clamped sum may touch J = 0) gives a steep but finite slope. The variance is what the
+// lighting fade removed, sum_i ((1 - f_i) k_i A_i)^2 / 2, which the fragment shader adds to the specular
+// roughness.
 vec3 gerstnerLighting(vec2 rel) {
     float r = length(rel);
     float sxx = 0.0, sxy = 0.0, syy = 0.0, variance = 0.0;

@@ -44,9 +44,11 @@ void validate(const FftDesc& d) {
             "FftDesc.windSpeed must be finite and > 0, got " + num(d.windSpeed));
     require(std::isfinite(d.windDirectionDeg),
             "FftDesc.windDirectionDeg must be finite, got " + num(d.windDirectionDeg));
-    require(std::isfinite(d.fetch) && d.fetch > 0.0, "FftDesc.fetch must be finite and > 0, got " + num(d.fetch));
+    require(std::isfinite(d.fetch) && d.fetch > 0.0,
+            "FftDesc.fetch must be finite and > 0, got " + num(d.fetch));
     require(d.spectrum == Spectrum::Phillips || d.spectrum == Spectrum::Jonswap,
-            "FftDesc.spectrum must be Phillips or Jonswap, got " + std::to_string(static_cast<int>(d.spectrum)));
+            "FftDesc.spectrum must be Phillips or Jonswap, got " +
+                std::to_string(static_cast<int>(d.spectrum)));
     require(std::isfinite(d.choppiness) && d.choppiness >= 0.0,
             "FftDesc.choppiness must be finite and >= 0, got " + num(d.choppiness));
     require(std::isfinite(d.amplitudeScale) && d.amplitudeScale >= 0.0,
@@ -111,7 +113,8 @@ double directionalSpectrum(const FftDesc& desc, const glm::dvec2& kv) {
     const double g = GRAVITY;
     if (desc.spectrum == Spectrum::Phillips) {
         // Tessendorf 2001 eq. 40 times the small-wave factor exp(-k^2 l^2) of §3.2.1:
-        //   F(k) = A exp(-1 / (k Lw)^2) / k^4 |k_hat . w_hat|^2 exp(-k^2 l^2),  Lw = U^2 / g,  A = alpha / (2 pi)
+        //   F(k) = A exp(-1 / (k Lw)^2) / k^4 |k_hat . w_hat|^2 exp(-k^2 l^2),  Lw = U^2 / g,  A = alpha / (2
+        //   pi)
         // (A from Phillips' alpha, see PHILLIPS_ALPHA). l = half a grid spacing L / (2 N): waves near the
         // grid's Nyquist wavenumber pi N / L are damped (by e^{-pi^2/4} = 0.085 there) instead of aliasing.
         // Waves travelling against the wind keep their cos^2 share, as in eq. 40.
@@ -134,9 +137,9 @@ double directionalSpectrum(const FftDesc& desc, const glm::dvec2& kv) {
 }
 
 struct FftOcean::Sums {
-    std::complex<double> h, dx, dy;      // height, D_x, D_y (eq. 29, without lambda)
-    std::complex<double> hx, hy;         // dh/dx, dh/dy
-    std::complex<double> dxx, dyy, dxy;  // dD_x/dx, dD_y/dy, dD_x/dy = dD_y/dx
+    std::complex<double> h, dx, dy;     // height, D_x, D_y (eq. 29, without lambda)
+    std::complex<double> hx, hy;        // dh/dx, dh/dy
+    std::complex<double> dxx, dyy, dxy; // dD_x/dx, dD_y/dy, dD_x/dy = dD_y/dx
 };
 
 FftOcean::FftOcean(const FftDesc& desc) : mDesc(desc) {
@@ -171,7 +174,8 @@ FftOcean::FftOcean(const FftDesc& desc) : mDesc(desc) {
             mH0[idx] = xi * std::sqrt(ph / 2.0) * desc.amplitudeScale;
         }
     }
-    // Parseval over one tile at t = 0: mean of h^2 = sum_k |htilde(k, 0)|^2, htilde(k, 0) = h0(k) + conj(h0(-k)).
+    // Parseval over one tile at t = 0: mean of h^2 = sum_k |htilde(k, 0)|^2, htilde(k, 0) = h0(k) +
+    // conj(h0(-k)).
     double var = 0.0;
     for (int m = 1; m < n; ++m) {
         for (int i = 1; i < n; ++i) {

@@ -65,8 +65,8 @@ std::vector<GerstnerWave> GerstnerWaves::defaultWaves(int count, double windDire
         const double u = count > 1 ? double(i) / double(count - 1) : 0.5;
         w.wavelength = 120.0 * std::pow(8.0 / 120.0, u) * (0.9 + 0.2 * uniform01(rng));
         // Equal wave slope k A per log-wavelength band (Phillips' saturation range): the short waves are as
-        // steep as the long ones and much lower. k A in [0.018, 0.028] gives Hs ~1.5-2 m for 8 waves.
-        const double slope = 0.018 + 0.010 * uniform01(rng);
+        // steep as the long ones and much lower. k A in [0.015, 0.025] gives Hs 1.1-1.9 m for 8 waves.
+        const double slope = 0.015 + 0.010 * uniform01(rng);
         w.amplitude = slope * w.wavelength / TWO_PI;
         w.directionDeg = wrapPhase(windDirectionDeg + 40.0 * (2.0 * uniform01(rng) - 1.0), 360.0);
         w.steepness = 0.5 + 0.5 * uniform01(rng);
@@ -89,7 +89,8 @@ GerstnerWaves::GerstnerWaves(const GerstnerDesc& desc) {
                 field + "amplitude must be finite and >= 0, got " + num(w.amplitude));
         require(std::isfinite(w.wavelength) && w.wavelength > 0.0,
                 field + "wavelength must be finite and > 0, got " + num(w.wavelength));
-        require(std::isfinite(w.directionDeg), field + "directionDeg must be finite, got " + num(w.directionDeg));
+        require(std::isfinite(w.directionDeg),
+                field + "directionDeg must be finite, got " + num(w.directionDeg));
         require(std::isfinite(w.steepness) && w.steepness >= 0.0 && w.steepness <= 1.0,
                 field + "steepness must be finite and in [0, 1], got " + num(w.steepness));
         require(std::isfinite(w.phase), field + "phase must be finite, got " + num(w.phase));

@@ -33,11 +33,19 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
     mA1 = (desc.rMax - desc.rMin) / (n1 * n1 * n1 * n1);
 
     const int m = desc.segments;
-    const int ringCount = desc.rings + (desc.skirtRadius > 0.0 ? 1 : 0);
+    require(desc.skirtRings >= 1 && desc.skirtRings <= 256,
+            "RadialGridDesc.skirtRings must be in [1, 256], got " + std::to_string(desc.skirtRings));
+    const int skirt = desc.skirtRadius > 0.0 ? desc.skirtRings : 0;
+    const int ringCount = desc.rings + skirt;
     mVertices.reserve(static_cast<size_t>(3 * (1 + ringCount * m)));
     mVertices.insert(mVertices.end(), {1.0f, 0.0f, 0.0f}); // centre
     for (int i = 0; i < ringCount; ++i) {
-        const double r = i < desc.rings ? radius(i) : desc.skirtRadius;
+        // Skirt ring s = 1..K at rMax * (skirtRadius / rMax)^(s / K): geometric, ending exactly at
+        // skirtRadius.
+        const double r = i < desc.rings       ? radius(i)
+                         : i == ringCount - 1 ? desc.skirtRadius
+                                              : desc.rMax * std::pow(desc.skirtRadius / desc.rMax,
+                                                                     double(i - desc.rings + 1) / skirt);
         for (int j = 0; j < m; ++j) {
             const double theta = 2.0 * std::numbers::pi * j / m;
             mVertices.push_back(static_cast<float>(std::cos(theta)));

@@ -1,6 +1,7 @@
 // makeSurfaceModel: the CPU surface model an OceanDesc selects.
 #include "ocean/SurfaceModels.h"
 
+#include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"
 
 #include <stdexcept>
@@ -12,6 +13,8 @@ std::shared_ptr<const SurfaceModel> makeSurfaceModel(const OceanDesc& desc) {
     switch (desc.model) {
     case SurfaceKind::Octaves:
         return std::make_shared<HeightOctaves>(desc.octaves);
+    case SurfaceKind::Gerstner:
+        return std::make_shared<GerstnerWaves>(desc.gerstner);
     default:
         break;
     }

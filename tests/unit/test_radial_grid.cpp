@@ -32,15 +32,19 @@ TEST(RadialGrid, RadiiFollowA0PlusA1ITo4) {
 }
 
 TEST(RadialGrid, TopologyHasCentreFanRingsAndSkirt) {
-    const RadialGridDesc d{.rings = 10, .segments = 8, .rMin = 0.1, .rMax = 1000.0, .skirtRadius = 1e6};
+    const RadialGridDesc d{
+        .rings = 10, .segments = 8, .rMin = 0.1, .rMax = 1000.0, .skirtRadius = 1e6, .skirtRings = 3};
     const RadialGrid grid(d);
-    // centre + (rings + skirt) * segments vertices
-    EXPECT_EQ(grid.vertexCount(), 1u + 11u * 8u);
-    // centre fan (8 tris) + 10 ring gaps (incl. skirt) * 8 segments * 2 tris
-    EXPECT_EQ(grid.indices().size(), 3u * (8u + 10u * 8u * 2u));
+    // centre + (rings + skirt rings) * segments vertices
+    EXPECT_EQ(grid.vertexCount(), 1u + 13u * 8u);
+    // centre fan (8 tris) + 12 ring gaps (incl. skirt) * 8 segments * 2 tris
+    EXPECT_EQ(grid.indices().size(), 3u * (8u + 12u * 8u * 2u));
     for (uint32_t idx : grid.indices())
         EXPECT_LT(idx, grid.vertexCount());
-    EXPECT_FLOAT_EQ(grid.vertices()[(1 + 10 * 8) * 3 + 2], 1e6f);
+    // Skirt rings are geometric from rMax to skirtRadius: 1e4, 1e5, 1e6.
+    EXPECT_FLOAT_EQ(grid.vertices()[(1 + 10 * 8) * 3 + 2], 1e4f);
+    EXPECT_FLOAT_EQ(grid.vertices()[(1 + 11 * 8) * 3 + 2], 1e5f);
+    EXPECT_FLOAT_EQ(grid.vertices()[(1 + 12 * 8) * 3 + 2], 1e6f);
     // Every triangle winds counter-clockwise seen from above (+z).
     const auto& v = grid.vertices();
     for (size_t t = 0; t < grid.indices().size(); t += 3) {
@@ -70,4 +74,5 @@ TEST(RadialGrid, InvalidDescriptionsNameTheField) {
     EXPECT_NE(message({.rMin = NAN}).find("RadialGridDesc.rMin"), std::string::npos);
     EXPECT_NE(message({.rMax = 0.05}).find("RadialGridDesc.rMax"), std::string::npos);
     EXPECT_NE(message({.skirtRadius = 10.0}).find("RadialGridDesc.skirtRadius"), std::string::npos);
+    EXPECT_NE(message({.skirtRings = 0}).find("RadialGridDesc.skirtRings"), std::string::npos);
 }

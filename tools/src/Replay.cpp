@@ -187,7 +187,7 @@ void runReplay(const ReplayOptions& o) {
     // 2. Scene: one ocean entity; the GL resources.
     ecs::Registry registry;
     const ecs::Entity oceanEntity = registry.create();
-    registry.emplace<ocean::OceanComponent>(oceanEntity, ocean::makeOcean({}));
+    registry.emplace<ocean::OceanComponent>(oceanEntity, ocean::makeOcean(o.ocean));
     ocean::OceanRenderer renderer;
     gl::FrameTargets targets(o.width, o.height);
     color::Tonemapper tonemapper(colour);

@@ -3,6 +3,8 @@
 // hash) with GL_RENDERER and timings. Used by `pacifica replay` and `./pacifica demo`.
 #pragma once
 
+#include "ocean/Ocean.h"
+
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -30,6 +32,7 @@ struct ReplayOptions {
     bool writeImages = true; ///< false: render, tonemap and read back, but write no images (benchmarks)
     bool progress = true;    ///< progress line when stderr is a TTY
     float fovYDeg = 60.0f;
+    ocean::OceanDesc ocean; ///< the ocean to render (surface model, grid, lighting)
 };
 
 /// Parses "WxH" (e.g. "640x360"); throws UsageError naming --size.

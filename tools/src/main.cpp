@@ -3,6 +3,7 @@
 //          [--ocio-config FILE] [--no-images]
 // Any failure prints "pacifica: error: ..." naming the file/line/option and exits non-zero, leaving no
 // partial output behind.
+#include "OceanOptions.h"
 #include "Replay.h"
 
 #include <CLI/CLI.hpp>
@@ -34,6 +35,8 @@ int main(int argc, char** argv) {
     rp->add_flag("--no-images", noImages, "render and read back but write no images (benchmarking)");
     rp->add_flag("--no-progress", noProgress, "no progress line");
     rp->add_option("--fov", replay.fovYDeg, "vertical field of view, degrees")->default_val(60.0f);
+    pacifica::tools::OceanOptions oceanOptions;
+    pacifica::tools::addOceanOptions(*rp, oceanOptions);
 
     try {
         app.parse(argc, argv);
@@ -61,6 +64,7 @@ int main(int argc, char** argv) {
             if (ocioOpt->count())
                 replay.ocioConfig = ocioConfig;
             replay.writeImages = !noImages;
+            replay.ocean = pacifica::tools::toOceanDesc(oceanOptions);
             replay.progress = !noProgress;
             pacifica::tools::runReplay(replay);
         }

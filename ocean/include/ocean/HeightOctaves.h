@@ -10,9 +10,40 @@
 // (h, dh/du, dh/dv, |grad h|^2) with the derivatives taken analytically, in units of the tile coordinate
 // u = B x; the squared slope lets mipmapped lighting recover the unresolved slope variance.
 //
-// Sampling (CPU here, GPU in ocean.vert/ocean.frag) is bilinear in space between texels and linear in time
-// between slices, with the same texel data and the same formula on both sides, so CPU queries match what
-// the GPU renders. Space and time are wrapped per octave in double before any float is formed.
+// Vertex displacement paths (§18.2.4, §18.2.5), chosen by HeightOctavesDesc.vertexFilter and
+// .combinedDisplacement, each defined once here in double and once in ocean/shaders/octaves.glsl in float
+// with the same texel data and the same formula, so CPU queries match what the GPU renders in every mode.
+// Space and time are wrapped per octave in double before any float is formed; time is always linear
+// between the two slices around t.
+//   Nearest           the texel containing the point (1 fetch per slice; discontinuous at texel edges)
+//   Bilinear          exact bilinear between texel centres, 4 texelFetch per slice (the default)
+//   HardwareBilinear  texture() with GL_LINEAR on a non-mipmapped R16F copy (1 fetch per slice). GPUs filter
+//                     with fixed-point weights: the CPU emulates HARDWARE_WEIGHT_BITS = 8 fractional bits
+//                     of sub-texel position, rounded to nearest (D3D11's required sub-texel precision and
+//                     NVIDIA's documented 9-bit fixed-point weights with 8 fractional bits, CUDA
+//                     Programming Guide, "Texture Fetching"/linear filtering; OpenGL itself sets no
+//                     minimum, Vulkan's subTexelPrecisionBits minimum is 4). Exact-weight filtering
+//                     (llvmpipe) or truncation differ from this by at most 2^-8 texel per axis:
+//                     hardwareBilinearBound() turns that into metres.
+//   Packed4Tap        listing 18-2: RGBA16F texel (i, j) = (h(i,j), h(i+1,j), h(i,j+1), h(i+1,j+1)),
+//                     one fetch per bilinear lookup; equal to Bilinear (lossless packing, packedTexel())
+//   Trilinear         listing 18-3: the packed maps of mip levels L and L+1 (box-filtered, heightMip()),
+//                     lambda_i = log2(d B_i size / trilinearLodTexels) from the camera distance d, with the
+//                     0.3/0.7 snap band: one packed fetch per slice outside the band, two inside
+//   combined          §18.2.5 two-pass: a compute pass first evaluates the selected filter's sum at the
+//                     nodes of a camera-centred stack of nested square levels (combinedSize^2 texels each,
+//                     texel combinedTexel * 2^k, snapped to world multiples of the texel), then the vertex
+//                     shader does ONE textureGather of the finest level that holds the point and
+//                     interpolates bilinearly. combinedHeight() samples the CPU's own double evaluation of
+//                     the same nodes.
+//
+// STEP BY STEP
+//   1. HeightOctaves sea(HeightOctavesDesc{.vertexFilter = VertexFilter::Trilinear});
+//   2. sea.heightAt(xy, t)                          // CPU query: as drawn for a camera right above xy
+//   3. sea.heightSeenFrom(xy, t, cameraXY)          // exactly what the GPU draws for a camera at cameraXY
+//   4. OctavesGpu gpu(std::make_shared<const HeightOctaves>(sea));   // ocean/src/gpu/OctavesGpu.h
+//      gpu.update(t, camera) runs the combine pass (combined only); gpu.bind(program, unit, t, camera)
+//   5. sea.filteredHeight(xy, t, cameraXY, filter) / combinedHeight(...): any path, for benchmarks
 #pragma once
 
 #include <array>
@@ -31,6 +62,18 @@ struct OctaveDesc {
     double loopPeriod = 20.0; ///< T_i: seconds per animation loop
 };
 
+/// How the vertex stage filters each displaced octave's map (GPU Gems 2 §18.2.4; see the file comment).
+enum class VertexFilter {
+    Nearest,          ///< the texel containing the point: 1 texelFetch per slice
+    Bilinear,         ///< exact manual bilinear via 4 texelFetch per slice (the default)
+    HardwareBilinear, ///< texture() with GL_LINEAR on an R16F copy: 1 fetch, 8-bit weights emulated
+    Packed4Tap,       ///< listing 18-2: 1 fetch of a texel packing the 2x2 footprint
+    Trilinear,        ///< listing 18-3: packed maps of two mip levels, LOD from distance, 0.3/0.7 band
+};
+
+/// "nearest", "bilinear", "hardware-bilinear", "packed-4tap", "trilinear".
+const char* toString(VertexFilter filter);
+
 struct HeightOctavesDesc {
     // Tile sizes are mutually incommensurate (ratios ~4.1-4.4) so no two octaves repeat together, which is
     // what hides the tiling from 10 cm to 40 km (§18.2.1: "eliminate tiling artifacts").
@@ -46,6 +89,28 @@ struct HeightOctavesDesc {
     int wavesPerOctave = 48;        ///< cosine components generated per map
     double windDirectionDeg = 60.0; ///< compass direction the wind blows toward
     uint32_t seed = 1;
+
+    /// How vertices sample the displaced octaves (GPU Gems 2 §18.2.4).
+    VertexFilter vertexFilter = VertexFilter::Bilinear;
+    /// Trilinear only: the distance from the camera, in texels of an octave's map, at which that octave's
+    /// LOD starts to rise: lambda_i = log2(d * B_i * mapSize / trilinearLodTexels), clamped to the mip chain
+    /// (the GL 4.5 spec §8.14.1 lambda = log2(rho), with rho = the vertex spacing in texels, taken as
+    /// d / trilinearLodTexels; the default 256 x 512 radial grid's radial spacing is d/14 at 100 m and
+    /// d/64 at 40 km, so 64 resolves the near field first). The seed (listing 18-3) "uses the distance from
+    /// the camera" as LOD; per octave it must scale with the texel size or the 1.1 km swell would be
+    /// flattened as soon as the 61 m octave is.
+    double trilinearLodTexels = 64.0;
+    /// §18.2.5 two-pass displacement: a compute pass sums the displaced octaves (with vertexFilter) into a
+    /// camera-centred texture stack, and the vertex shader does one fetch of it.
+    bool combinedDisplacement = false;
+    /// Texels per side of each combined level (power of two in [16, 4096]).
+    int combinedSize = 256;
+    /// Texel of the finest combined level, metres; level k has texel combinedTexel * 2^k. A power of two
+    /// keeps every level's node positions exact in float.
+    double combinedTexel = 0.25;
+    /// The combined levels reach at least this far from the camera (Chebyshev distance): keep it >= the
+    /// radial grid's rMax (40 km). Levels = the fewest with (combinedSize / 2 - 2) * texel_k >= it.
+    double combinedRadius = 40000.0;
 };
 
 /// One generated octave: frames * size * size texels of (h, dh/du, dh/dv, |grad h|^2), slice-major,
@@ -69,6 +134,15 @@ struct OctaveFrameParams {
 
 class HeightOctaves final : public SurfaceModel {
 public:
+    /// Fractional bits of sub-texel position emulated for VertexFilter::HardwareBilinear (see the file
+    /// comment for the source).
+    static constexpr int HARDWARE_WEIGHT_BITS = 8;
+    /// Listing 18-3's snap band: below LOW the finer level alone, above HIGH the coarser alone.
+    static constexpr double TRILINEAR_BAND_LOW = 0.3;
+    static constexpr double TRILINEAR_BAND_HIGH = 0.7;
+    /// Size of the GLSL's per-level uniform arrays (octaves.glsl OCTAVES_MAX_COMBINED_LEVELS).
+    static constexpr int MAX_COMBINED_LEVELS = 16;
+
     /// Validates (throws std::invalid_argument naming the field) and generates the maps.
     explicit HeightOctaves(const HeightOctavesDesc& desc = {});
 
@@ -86,8 +160,59 @@ public:
     /// 4 * sqrt(sum of A_i^2) over the displaced octaves (each map has unit RMS).
     double significantWaveHeight() const override;
 
-    /// Height of the displaced surface (the first displacedOctaves octaves) at world (x, y), time t.
+    /// Height of the displaced surface (the first displacedOctaves octaves) at world (x, y), time t, as the
+    /// GPU draws it for a camera right above (x, y): heightSeenFrom(worldXY, time, worldXY). Equal to what
+    /// is drawn anywhere for Nearest, Bilinear, HardwareBilinear and Packed4Tap; near the camera for
+    /// Trilinear (LOD 0 within trilinearLodTexels texels) and combined (within the finest level).
     double heightAt(const glm::dvec2& worldXY, double time) const override;
+
+    /// What the GPU draws at world (x, y) for a camera at cameraXY, with the desc's vertexFilter and
+    /// combinedDisplacement.
+    double heightSeenFrom(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY) const;
+    /// (0, 0, heightSeenFrom()).
+    glm::dvec3 displacementSeenFrom(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY) const;
+    /// The per-vertex path: sum over the displaced octaves of A_i * sampleHeight(i, filter, B_i x, f_i,
+    /// trilinearLod(i, |x - camera|)). What the vertex shader computes without the combine pass, and what
+    /// the combine pass computes at its nodes.
+    double filteredHeight(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY,
+                          VertexFilter filter) const;
+    /// The combined path: filteredHeight(filter) at the nodes of the combined level that holds the point,
+    /// interpolated bilinearly (the vertex shader's one textureGather).
+    double combinedHeight(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY,
+                          VertexFilter filter) const;
+
+    /// Height of one octave's map (unit RMS) with `filter`, at tile coordinate u (any real value, wrapped)
+    /// and frame position f in [0, frames), linear in time between slices; lod is used by Trilinear only.
+    double sampleHeight(int octave, VertexFilter filter, const glm::dvec2& u, double framePosition,
+                        double lod = 0.0) const;
+    /// Trilinear LOD of a displaced octave at distance d from the camera, clamped to [0, mipLevels() - 1].
+    double trilinearLod(int octave, double distance) const;
+    /// Mip levels of the displaced maps: log2(mapSize) + 1 (down to 1 x 1).
+    int mipLevels() const { return static_cast<int>(mHeightMips.empty() ? 1 : mHeightMips[0].size() + 1); }
+    /// Height texel of displaced octave `octave`, mip level `level` (0 = the map's h), frame, texel (x, y)
+    /// wrapped: level k+1 is the 2x2 box average of level k, rounded to half like the GPU's RGBA16F.
+    float heightMip(int octave, int level, int frame, int x, int y) const;
+    /// Listing 18-2's packed texel (x, y) of a level: (h(x,y), h(x+1,y), h(x,y+1), h(x+1,y+1)), wrapped.
+    /// OctavesGpu uploads exactly these values.
+    glm::vec4 packedTexel(int octave, int level, int frame, int x, int y) const;
+    /// Largest |difference| between edge-adjacent height texels of displaced octave i (level 0, any frame).
+    double maxTexelStep(int octave) const { return mMaxStep[static_cast<size_t>(octave)]; }
+    /// |HardwareBilinear - Bilinear| <= this everywhere, metres: per octave two axes of up to 2^-8 texel of
+    /// weight error (round or truncate, or llvmpipe's exact weights vs the CPU's rounded ones) times the
+    /// largest texel step, times A_i.
+    double hardwareBilinearBound() const;
+
+    /// The combined levels (see HeightOctavesDesc.combined*): count, texel of level k, and reach of level k
+    /// ((combinedSize / 2 - 2) texels: a bilinear footprint around any point with Chebyshev distance
+    /// <= reach from the camera lies inside the level whatever its snapping).
+    int combinedLevels() const { return mCombinedLevels; }
+    double combinedTexel(int level) const;
+    double combinedReach(int level) const;
+    /// Finest level whose reach holds camera-relative point rel (the last level beyond all reaches).
+    int combinedLevelFor(const glm::dvec2& rel) const;
+    /// World origin of level k's node grid for a camera at cameraXY: floor(camera / texel_k) * texel_k.
+    /// Node (i, j) lies at origin + ((i, j) + 0.5 - combinedSize / 2) * texel_k.
+    glm::dvec2 combinedOrigin(int level, const glm::dvec2& cameraXY) const;
     /// Height and world-space gradient (dH/dx, dH/dy) summed over octaves [0, octaveCount).
     glm::dvec3 heightAndGradient(const glm::dvec2& worldXY, double time, int octaveCount) const;
     /// Unit normal from all octaves' slopes (what the fragment shader lights with).
@@ -101,9 +226,17 @@ public:
     double maxDisplacement() const { return mMaxDisplacement; }
 
 private:
+    /// One time slice of one octave at level `level` with the filter (no time interpolation).
+    double sliceHeight(int octave, VertexFilter filter, int level, int frame, const glm::dvec2& u) const;
+    double packedBilinear(int octave, int level, int frame, const glm::dvec2& u) const;
+
     HeightOctavesDesc mDesc;
     std::vector<OctaveMap> mMaps;
+    /// [displaced octave][level - 1]: frames * s_k * s_k heights, s_k = mapSize >> level.
+    std::vector<std::vector<std::vector<float>>> mHeightMips;
+    std::vector<double> mMaxStep;
     double mMaxDisplacement = 0.0;
+    int mCombinedLevels = 1;
 };
 
 } // namespace pacifica::ocean

@@ -18,6 +18,7 @@
 
 #include "engine/Ecs.h"
 #include "engine/Space.h"
+#include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"
 #include "ocean/Lighting.h"
 #include "ocean/RadialGrid.h"
@@ -34,6 +35,7 @@ namespace pacifica::ocean {
 struct OceanDesc {
     SurfaceKind model = SurfaceKind::Octaves; ///< which surface model displaces and lights the sea
     HeightOctavesDesc octaves;                ///< used when model == Octaves
+    GerstnerDesc gerstner;                    ///< used when model == Gerstner
     RadialGridDesc grid;
     LightingDesc lighting;
     bool drawSky = true; ///< false when the host draws its own sky

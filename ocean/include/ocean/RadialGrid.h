@@ -4,7 +4,7 @@
 //   with a0 = r_min (10 cm) and a0 + a1 (N-1)^4 = r_max (40 km).
 //
 // The grid gives distance-based tessellation for free. Two additions to the seed: a centre vertex at r = 0
-// (so looking straight down from 0.5 m shows no 10 cm hole) and an undisplaced skirt ring far beyond r_max
+// (so looking straight down from 0.5 m shows no 10 cm hole) and undisplaced skirt rings far beyond r_max
 // so the sea reaches the horizon at any altitude. Radii are computed in double and stored as float; the
 // grid is drawn camera-relative, so float precision at 40 km is ~4 mm.
 #pragma once
@@ -20,7 +20,9 @@ struct RadialGridDesc {
     int segments = 512;       ///< M: vertices around each ring
     double rMin = 0.1;        ///< r_0, metres (seed: 10 cm)
     double rMax = 40000.0;    ///< r_{N-1}, metres (seed: 40 km)
-    double skirtRadius = 1e6; ///< undisplaced outer ring for the horizon; 0 disables it
+    double skirtRadius = 1e6; ///< undisplaced outer rings reach this radius for the horizon; 0 disables them
+    int skirtRings = 16; ///< rings from rMax to skirtRadius, geometrically spaced, so the Earth-curvature
+                         ///< drop (d^2 / 2R, interpolated linearly per triangle) follows the sphere
 };
 
 class RadialGrid {

@@ -14,9 +14,9 @@ GerstnerGpu::GerstnerGpu(std::shared_ptr<const GerstnerWaves> waves) : mWaves(st
         throw std::invalid_argument("GerstnerGpu::GerstnerGpu(): waves is null");
     for (const GerstnerWave& w : mWaves->waves()) {
         const glm::dvec2 d = GerstnerWaves::direction(w);
-        mWave.insert(mWave.end(), {static_cast<float>(d.x), static_cast<float>(d.y),
-                                   static_cast<float>(GerstnerWaves::wavenumber(w)),
-                                   static_cast<float>(w.amplitude)});
+        mWave.insert(mWave.end(),
+                     {static_cast<float>(d.x), static_cast<float>(d.y),
+                      static_cast<float>(GerstnerWaves::wavenumber(w)), static_cast<float>(w.amplitude)});
         mExtra.insert(mExtra.end(),
                       {static_cast<float>(w.steepness), 0.0f,
                        static_cast<float>(GerstnerWaves::DISPLACEMENT_FADE_WAVELENGTHS * w.wavelength),
