@@ -1,4 +1,5 @@
-// fft_pass.comp: passes 2 and 3 of FftGpu — unnormalised inverse DFT, out[x] = sum_p in[p] e^{+2 pi i p x / N},
+// fft_pass.comp: passes 2 and 3 of FftGpu — unnormalised inverse DFT,
+//   out[x] = sum_p in[p] e^{+2 pi i p x / N},
 // along rows (uDirection = 0) or columns (1) of every complex plane, in place in the Planes buffer.
 // One workgroup transforms one whole line: it loads the line into shared memory in bit-reversed order, runs
 // the log2(N) radix-2 decimation-in-time butterfly stages there (Cooley & Tukey 1965) with a barrier between

@@ -18,7 +18,6 @@ uniform uint uTimeWord; // wrap(t, T) / T as a 32-bit fixed-point fraction (form
 uniform float uDeltaK;  // 2 pi / L
 
 vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
-vec2 timesI(vec2 a) { return vec2(-a.y, a.x); }
 
 void main() {
     uvec2 p = gl_GlobalInvocationID.xy;
@@ -37,14 +36,16 @@ void main() {
     float k2 = dot(k, k);
     vec2 kHat = k2 > 0.0 ? k * inversesqrt(k2) : vec2(0.0); // k = 0 carries htilde = 0 anyway
 
-    vec2 iht = timesI(ht);
-    vec2 dx = -kHat.x * iht, dy = -kHat.y * iht;
-    vec2 hx = k.x * iht, hy = k.y * iht;
-    vec2 dxx = (k.x * kHat.x) * ht, dyy = (k.y * kHat.y) * ht, dxy = (k.x * kHat.y) * ht;
-
+    // Each plane is htilde times one complex factor (A + i B with A, B the real factors of the two fields):
+    //   D_x + i D_y     = -i (kh_x + i kh_y) htilde  = (kh_y - i kh_x) htilde
+    //   h + i D_xx      = (1 + i k_x kh_x) htilde
+    //   h_x + i h_y     = i (k_x + i k_y) htilde     = (-k_y + i k_x) htilde
+    //   D_yy + i D_xy   = (k_y kh_y + i k_x kh_y) htilde
+    // Written as one complex product each, not as i * (i * ...) chains: NVIDIA's GLSL compiler (driver
+    // 580, H100) folded timesI(c * timesI(x)) into the wrong swizzle, corrupting D and the slopes.
     uint plane = FFT_N * FFT_N;
-    planes[idx] = dx + timesI(dy);
-    planes[plane + idx] = ht + timesI(dxx);
-    planes[2u * plane + idx] = hx + timesI(hy);
-    planes[3u * plane + idx] = dyy + timesI(dxy);
+    planes[idx] = cmul(ht, vec2(kHat.y, -kHat.x));
+    planes[plane + idx] = cmul(ht, vec2(1.0, k.x * kHat.x));
+    planes[2u * plane + idx] = cmul(ht, vec2(-k.y, k.x));
+    planes[3u * plane + idx] = cmul(ht, vec2(k.y * kHat.y, k.x * kHat.y));
 }

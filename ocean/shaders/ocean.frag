@@ -1,14 +1,71 @@
 // ocean.frag: per-pixel sea lighting in scene-linear HDR — normals from the surface model's modelLighting()
-// (for octaves: all maps light, the leading ones displace, §18.2.1), the normal tilt toward the viewer (§18.2.6), Schlick's Fresnel (Schlick 1994),
-// reflection of the procedural sky, a normalised Blinn-Phong sun highlight, deep-water upwelling colour
-// and exponential distance fog.
+// (for octaves: all maps light, the leading ones displace, §18.2.1), the normal tilt toward the viewer
+// (§18.2.6), Schlick's Fresnel (Schlick 1994), reflection of the sky or environment map over the LEAN
+// roughness lobe, a normalised Blinn-Phong sun highlight, the view-dependent water body colour (Snell),
+// foam (§18.3 height threshold, Jacobian folding) and Perlin fog with height falloff (seed 003). The shared
+// pieces (sky, fog, water body, highlight) are in sky.glsl, included before this file.
+//
+// Foam inputs — the optional third function of the surface-model contract (ocean/src/gpu/SurfaceGpu.h):
+// a model that knows its height and horizontal-displacement Jacobian per fragment adds
+//     #define MODEL_HAS_FOAM_INPUTS
+//     vec2 modelFoamInputs(vec2 rel); // (H: height above mean sea level, metres; J: Jacobian determinant)
+// to its GLSL file (rel = the camera-relative undisplaced grid point, as for modelLighting). Without it the
+// height is the interpolated displaced vertex height and J = 1 (no folding foam).
 
-in vec3 vRel;
-in vec2 vGrid;
+in vec3 vRel;  // camera-relative displaced position (ocean.vert)
+in vec2 vGrid; // camera-relative undisplaced grid point
 out vec4 fragColor;
 
 uniform float uNormalTilt;
-uniform float uFogDensity;
+uniform float uDisplaceRadius; // ocean.vert's: beyond it the grid is the undisplaced skirt
+
+uniform sampler2D uFoamMap;   // the foam pattern (makeFoamPattern), repeating, mipmapped
+uniform vec2 uFoamOffsetNear; // fract((camera.xy + drift t) / FOAM_TILE_NEAR), wrapped in double
+uniform vec2 uFoamOffsetFar;
+uniform float uFoamHeightStart; // H0
+uniform float uFoamHeightFull;  // Hmax
+uniform float uFoamJacobianThreshold;
+uniform float uFoamIntensity;
+
+// GPU Gems 2 §18.3: alpha = (H - H0) / (Hmax - H0), clamped (the C++ twin: foamAlpha in Lighting.h).
+float foamAlpha(float h) {
+    if (uFoamHeightFull <= uFoamHeightStart)
+        return h >= uFoamHeightStart ? 1.0 : 0.0;
+    return clamp((h - uFoamHeightStart) / (uFoamHeightFull - uFoamHeightStart), 0.0, 1.0);
+}
+
+// Folding: alpha = (J0 - J) / J0, clamped (foamAlphaJacobian in Lighting.h).
+float foamAlphaJacobian(float j) {
+    if (uFoamJacobianThreshold <= 0.0)
+        return 0.0;
+    return clamp((uFoamJacobianThreshold - j) / uFoamJacobianThreshold, 0.0, 1.0);
+}
+
+// Height above the curved mean sea level of this fragment: the vertex stage subtracted the camera height and
+// the curvature drop |rel|^2 / (2 R), so both are added back. The skirt beyond uDisplaceRadius is flat sea
+// by definition (0): its triangles are chords kilometres long, whose midpoints stand up to metres above
+// the sphere, which a fog of a few metres' scale height would show as rings.
+float surfaceHeight() {
+    if (dot(vGrid, vGrid) > uDisplaceRadius * uDisplaceRadius)
+        return 0.0;
+    return vRel.z + uCameraHeight + dot(vGrid, vGrid) * uCurvature;
+}
+
+vec2 foamInputs() {
+#ifdef MODEL_HAS_FOAM_INPUTS
+    return modelFoamInputs(vGrid);
+#else
+    return vec2(surfaceHeight(), 1.0);
+#endif
+}
+
+// The foam texture at this point of the water: two layers of the pattern at incommensurate scales drifting
+// apart, so the bubbles change over time and the repetition does not show.
+float foamPattern() {
+    float a = texture(uFoamMap, vGrid / FOAM_TILE_NEAR + uFoamOffsetNear).r;
+    float b = texture(uFoamMap, vGrid / FOAM_TILE_FAR + uFoamOffsetFar).r;
+    return 0.6 * a + 0.4 * b;
+}
 
 void main() {
     float dist = length(vRel);
@@ -21,21 +78,32 @@ void main() {
     if (dot(n, v) < 0.0) // viewer below the tangent plane (grazing): reflect about the view-facing normal
         n = normalize(n - (dot(n, v) - 0.01) * v);
     float ndv = clamp(dot(n, v), 0.0, 1.0);
-    float fresnel = WATER_F0 + (1.0 - WATER_F0) * pow(1.0 - ndv, 5.0); // Schlick 1994
+    float fresnel = fresnelSchlick(ndv);
+    float z = surfaceHeight();
+    // Beckmann mean-square slope m^2 = resolved micro-roughness + unresolved octave slope variance (LEAN):
+    // it sets both the sun's lobe and the blur of the reflected sky.
+    float m2 = 0.0012 + g.z;
     vec3 r = reflect(-v, n);
     r.z = abs(r.z); // rays reflected into the sea would hit another wave: use the sky above instead
-    vec3 reflected = skyRadiance(r);
-    vec3 deep = vec3(DEEP_WATER_R, DEEP_WATER_G, DEEP_WATER_B) * uSkyIntensity *
-                (0.6 + 0.4 * max(uSunDir.z, 0.0)) * 4.0;
-    vec3 h = normalize(uSunDir + v);
-    // Beckmann mean-square slope m^2 = resolved micro-roughness + unresolved octave slope variance; the
-    // Blinn-Phong exponent that matches it is 2/m^2 - 2 (Walter et al. 2007, eq. 30).
-    float m2 = 0.0012 + g.z;
-    float shininess = max(2.0 / m2 - 2.0, 1.0);
-    float spec = pow(max(dot(n, h), 0.0), shininess) * (shininess + 8.0) / (8.0 * 3.14159265);
-    vec3 sun = vec3(1.0, 0.92, 0.80) * uSunIntensity * spec * fresnel * step(0.0, uSunDir.z);
-    vec3 color = fresnel * reflected + (1.0 - fresnel) * deep + sun;
-    vec3 fogColor = skyRadiance(normalize(vec3(-v.xy, 0.02)));
-    float fog = exp(-uFogDensity * dist);
-    fragColor = vec4(mix(fogColor, color, fog), 1.0);
+    vec3 sunLight = sunLightAt(max(z, 0.0));
+    vec3 water = fresnel * reflectedSky(r, m2, max(z, 0.0)) + (1.0 - fresnel) * waterBody(v, n) +
+                 sunSpecular(n, v, m2, fresnel, sunLight);
+
+    // Foam (§18.3): coverage from height and folding, textured by the pattern; a diffuse white (albedo
+    // FOAM_ALBEDO) lit by the sun (SUN_DIFFUSE_SCALE) and the sky, covering the water's reflection and
+    // highlight.
+    vec2 fi = foamInputs();
+    float coverage = max(foamAlpha(fi.x), foamAlphaJacobian(fi.y)) * uFoamIntensity *
+                     (1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist));
+    // The coverage thresholds the pattern: a little coverage shows only its densest films and bubbles,
+    // full coverage is solid foam (the texture is the §18.3 "foam texture", its alpha the coverage).
+    float pattern = foamPattern(); // outside any branch: implicit derivatives need uniform control flow
+    float foam = clamp((pattern + 1.2 * coverage - 1.0) / 0.3, 0.0, 1.0);
+    vec3 foamColor =
+        FOAM_ALBEDO / PI * (sunLight * (SUN_DIFFUSE_SCALE * max(dot(n, uSunDir), 0.0)) + skyIrradiance());
+    vec3 color = mix(water, foamColor, foam);
+
+    // Fog between the eye and the surface (seed 003: f = e^(-tau n)), tau integrated over the height falloff.
+    float tau = fogOpticalDepth(uCameraHeight, z, dist) * fogNoiseFactor(vRel);
+    fragColor = vec4(mix(fogColor(-v), color, exp(-tau)), 1.0);
 }

@@ -1,9 +1,53 @@
-// sky.frag: the procedural sky behind the sea, one ray per pixel through the inverse camera rotation.
+// sky.frag: the sky behind the sea, one ray per pixel through the inverse camera rotation: the procedural
+// sky or the environment map, fogged from the camera's altitude (sky.glsl). Rays that reach the sea beyond
+// the grid (a host's smaller grid, or altitudes where the horizon lies past the skirt) see a flat, distant
+// sea with the same water shading and fog as ocean.frag, so the two meet without a seam.
 in vec2 vNdc;
 out vec4 fragColor;
 uniform mat4 uInvViewProj; // inverse of the camera-relative view-projection
+
+// Distance along dir (unit) from the camera to the sea on a sphere (surface drop k x^2 at horizontal
+// distance x, k = uCurvature): the nearer root of k c^2 s^2 + mu s + z0 = 0 in the cancellation-free form
+// 2 z0 / (-mu + sqrt(mu^2 - 4 k c^2 z0)); negative when the ray misses.
+float seaHitDistance(vec3 dir, float z0) {
+    float mu = dir.z;
+    if (mu >= 0.0)
+        return -1.0;
+    float c2 = 1.0 - mu * mu;
+    float disc = mu * mu - 4.0 * uCurvature * c2 * z0;
+    return disc < 0.0 ? -1.0 : 2.0 * z0 / (-mu + sqrt(disc));
+}
+
+// A flat sea far away: its waves are far below a pixel, so the surface is the mean plane with the slope
+// variance of a moderate sea as roughness (mean-square slope ~0.02, Cox & Munk 1954 at ~5 m/s wind).
+vec3 distantSea(vec3 dir) {
+    const float m2 = 0.02;
+    vec3 n = vec3(0.0, 0.0, 1.0);
+    vec3 v = -dir;
+    float fresnel = fresnelSchlick(clamp(v.z, 0.0, 1.0));
+    vec3 r = reflect(dir, n);
+    vec3 sea = fresnel * reflectedSky(r, m2, 0.0) + (1.0 - fresnel) * waterBody(v, n) +
+               sunSpecular(n, v, m2, fresnel, sunLightAt(0.0));
+    return sea;
+}
+
 void main() {
     vec4 p = uInvViewProj * vec4(vNdc, 0.5, 1.0);
     vec3 dir = normalize(p.xyz / p.w);
-    fragColor = vec4(skyRadiance(dir), 1.0);
+    float z0 = max(uCameraHeight, 0.01);
+    float s = seaHitDistance(dir, z0);
+    vec3 color;
+    if (s > 0.0) {
+        // No noise factor: beyond the grid it has averaged out to 1 (its mipmaps), and the texture()
+        // derivatives would be undefined inside this branch.
+        float tau = fogOpticalDepth(z0, 0.0, s);
+        color = mix(fogColor(dir), distantSea(dir), exp(-tau));
+    } else {
+        // The sky. Below the horizontal (rays from altitude that pass over the curved sea) there is no sky
+        // to show — a map has its ground there — so the horizon's haze colour, blended in over half a degree.
+        vec3 sky = backgroundRadiance(dir.z < 0.0 ? normalize(vec3(dir.xy, 1e-4)) : dir);
+        sky = mix(sky, fogColor(dir), smoothstep(0.0, 0.009, -dir.z));
+        color = mix(fogColor(dir), sky, skyTransmittance(z0, dir));
+    }
+    fragColor = vec4(color, 1.0);
 }

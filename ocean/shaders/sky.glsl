@@ -1,28 +1,227 @@
-// sky.glsl: the procedural scene-linear HDR sky used for the background and for sea reflections.
-// A zenith-to-horizon gradient (Rayleigh-like blue overhead, brighter haze at the horizon), a darker
-// hemisphere below the horizon, a sun glow and a sun disk. Radiance units are arbitrary scene-linear;
-// 0.18 ~ mid grey after the tonemap.
+// sky.glsl: the scene-linear HDR sky and the shading both the sky pass and the sea use, so they agree at the
+// horizon: the procedural sky or an HDR lat-long environment map, Perlin fog with height falloff, the water
+// body colour and the sun highlight. Included by the sky program (sky.frag) and the sea program (before
+// ocean.frag). Radiance units are arbitrary scene-linear; 0.18 ~ mid grey after the tonemap. The C++ twins
+// of the fog and foam formulas are in ocean/include/ocean/Lighting.h (fogOpticalDepth, foamAlpha).
 
-uniform vec3 uSunDir;       // towards the sun, world ENU, normalised
+uniform vec3 uSunDir; // towards the sun, world ENU, normalised
 uniform float uSkyIntensity;
 uniform float uSunIntensity;
 
-vec3 skyRadiance(vec3 dir) {
-    const vec3 zenith = vec3(0.060, 0.150, 0.420);
-    const vec3 horizon = vec3(0.480, 0.580, 0.720);
-    const vec3 below = vec3(0.090, 0.120, 0.160);
+// Environment map (LightingDesc::environment): lat-long, rows top-down, u = heading clockwise from north
+// with north at u = 0.5 (south on the seam u = 0), v = elevation from +90 deg (top) to -90 deg.
+uniform bool uHasEnvironment;
+uniform bool uEnvironmentBackground; // the sky pass shows the map (else the procedural sky)
+uniform sampler2D uEnvironment;
+uniform float uEnvironmentIntensity;
+uniform float uEnvironmentMaxLod;    // log2(width): the 1-texel-wide level
+uniform vec3 uEnvironmentIrradiance; // environmentIrradiance(): sky irradiance without the sun (CPU)
+// environmentHorizonBand(): the fog colour per heading, and its mean.
+uniform vec3 uEnvironmentHorizon[ENVIRONMENT_HORIZON_BINS];
+uniform vec3 uEnvironmentHorizonMean;
+
+// Camera altitude (metres above mean sea level) and Earth curvature 1 / (2 R) (0 = flat). The sea's vertex
+// stage declares the same uniforms, so in the sea program they are one.
+uniform float uCameraHeight;
+uniform float uCurvature;
+
+// Fog (seed 003, with height falloff): rho(z) = uFogDensity e^(-z / uFogHeightFalloff), modulated by a
+// tileable 3D noise n in [1 - uFogNoise, 1 + uFogNoise]; transmittance f = e^(-tau n).
+uniform float uFogDensity;
+uniform float uFogHeightFalloff; // H, metres; 0 = uniform fog on the sea, clear sky
+uniform float uFogNoise;
+uniform sampler3D uFogNoiseMap;
+uniform vec3 uFogNoiseOffset; // fract((camera - wind t) / tile), wrapped in double on the CPU
+uniform bool uHasFogColor;
+uniform vec3 uFogColor;
+
+const float PI = 3.14159265;
+const vec3 SUN_COLOR = vec3(1.0, 0.92, 0.80);
+const vec3 SKY_ZENITH = vec3(0.036, 0.115, 0.400);
+const vec3 SKY_HORIZON = vec3(0.480, 0.580, 0.720);
+const vec3 SKY_BELOW = vec3(0.090, 0.120, 0.160);
+
+// ---- sky radiance --------------------------------------------------------------------------------------
+
+// A zenith-to-horizon gradient (Rayleigh-like blue overhead, brighter toward the horizon), a darker
+// hemisphere below the horizon, a sun glow and (optionally) the sun disk. This is the sky above the haze:
+// the fog (LightingDesc::fogDensity, default a light marine haze) adds the milky band near the horizon, so
+// the gradient is tighter and the zenith deeper than a sea-level sky, and from 15 km the sky is bluer.
+vec3 proceduralSky(vec3 dir, bool sunDisk) {
     float z = dir.z;
     vec3 sky;
     if (z >= 0.0) {
-        float t = pow(1.0 - z, 5.0);
-        sky = mix(zenith, horizon, t);
+        float t = pow(1.0 - z, 7.0);
+        sky = mix(SKY_ZENITH, SKY_HORIZON, t);
     } else {
-        sky = mix(horizon, below, clamp(-z * 8.0, 0.0, 1.0));
+        sky = mix(SKY_HORIZON, SKY_BELOW, clamp(-z * 8.0, 0.0, 1.0));
     }
     float c = max(dot(dir, uSunDir), 0.0);
-    vec3 sunColor = vec3(1.0, 0.92, 0.80);
-    sky += sunColor * (0.35 * pow(c, 32.0) + 0.12 * pow(c, 4.0));
+    sky += SUN_COLOR * (0.35 * pow(c, 32.0) + 0.12 * pow(c, 4.0));
     // Sun disk (~0.5 degree): cos(0.27 deg) = 0.999989
-    sky += sunColor * uSunIntensity * 25.0 * smoothstep(0.99997, 0.99999, c);
+    if (sunDisk)
+        sky += SUN_COLOR * uSunIntensity * 25.0 * smoothstep(0.99997, 0.99999, c);
     return sky * uSkyIntensity;
+}
+
+// Lat-long coordinate of a direction (the C++ twin: environmentUv in Lighting.h).
+vec2 environmentUv(vec3 d) {
+    float heading = abs(d.x) + abs(d.y) < 1e-12 ? 0.0 : atan(d.x, d.y);
+    return vec2(heading * (0.5 / PI) + 0.5, 0.5 - asin(clamp(d.z, -1.0, 1.0)) / PI);
+}
+
+// The map at an explicit mip level (textureLod: the u seam has no derivative jump, and the level comes
+// from the reflection lobe, not from the screen).
+vec3 environmentRadiance(vec3 dir, float lod) {
+    return textureLod(uEnvironment, environmentUv(dir), clamp(lod, 0.0, uEnvironmentMaxLod)).rgb *
+           uEnvironmentIntensity;
+}
+
+// The sky seen in direction dir (sharp): the environment map when there is one, else the procedural sky.
+vec3 skyRadiance(vec3 dir) {
+    return uHasEnvironment ? environmentRadiance(dir, 0.0) : proceduralSky(dir, true);
+}
+
+// The sky averaged over a reflection lobe of mean-square slope m2 (Beckmann): the reflected directions
+// spread by about sqrt(2 m2) radians (twice the slope angle per axis), so the map is read at the level
+// whose texels (2 pi / width radians at level 0) are that wide.
+vec3 skyRadianceLobe(vec3 dir, float m2) {
+    if (!uHasEnvironment)
+        return proceduralSky(dir, true);
+    float spread = sqrt(2.0 * m2);
+    float texel = 2.0 * PI / exp2(uEnvironmentMaxLod);
+    // Toward the poles a lat-long texel spans only cos(elevation) of its width in angle, so neighbouring
+    // pixels would pick scattered headings (a star pinched at the zenith): blur by that factor too.
+    float pole = -log2(max(sqrt(max(1.0 - dir.z * dir.z, 0.0)), 1.0 / 1024.0));
+    return environmentRadiance(dir, log2(max(spread / texel, 1.0)) + pole);
+}
+
+// What the sky pass draws above the horizon (the procedural sky when the map lights the sea only).
+vec3 backgroundRadiance(vec3 dir) {
+    return uHasEnvironment && uEnvironmentBackground ? environmentRadiance(dir, 0.0)
+                                                     : proceduralSky(dir, true);
+}
+
+// Irradiance of a horizontal surface from the sky (no sun), for diffuse foam and the water body's light.
+// Procedural: the cosine-weighted mean of mix(zenith, horizon, (1 - mu)^7) is zenith + (horizon - zenith)
+// * integral_0^1 (1 - mu)^7 2 mu dmu = ... * 2 / 72.
+const float SKY_HORIZON_WEIGHT = 2.0 / 72.0;
+vec3 skyIrradiance() {
+    if (uHasEnvironment)
+        return uEnvironmentIrradiance * uEnvironmentIntensity;
+    return PI * mix(SKY_ZENITH, SKY_HORIZON, SKY_HORIZON_WEIGHT) * uSkyIntensity;
+}
+
+// ---- fog ----------------------------------------------------------------------------------------------
+
+// The colour the fog scatters toward the eye for a view direction: the sky's own radiance just above the
+// horizon in that azimuth (blurred for a map), so fully fogged sea and sky meet the horizon without a seam;
+// or LightingDesc::fogColor.
+vec3 fogColor(vec3 viewDir) {
+    if (uHasFogColor)
+        return uFogColor;
+    vec2 h = viewDir.xy;
+    float len = length(h);
+    h = len > 1e-5 ? h / len : vec2(0.0, 1.0);
+    // Looking steeply up or down the heading loses its meaning (it is undefined at the zenith and nadir,
+    // where it would draw a star): there the fog takes the band's mean colour.
+    float azimuthal = smoothstep(0.2, 0.7, len);
+    if (uHasEnvironment && uEnvironmentBackground) { // the map's horizon band, interpolated in heading
+        float b = (atan(h.x, h.y) * (0.5 / PI) + 0.5) * float(ENVIRONMENT_HORIZON_BINS) - 0.5;
+        float b0 = floor(b);
+        int i0 = int(mod(b0, float(ENVIRONMENT_HORIZON_BINS)));
+        int i1 = int(mod(b0 + 1.0, float(ENVIRONMENT_HORIZON_BINS)));
+        vec3 band = mix(uEnvironmentHorizon[i0], uEnvironmentHorizon[i1], b - b0);
+        return mix(uEnvironmentHorizonMean, band, azimuthal) * uEnvironmentIntensity;
+    }
+    return mix(SKY_HORIZON * uSkyIntensity, proceduralSky(vec3(h, 0.0), false), azimuthal);
+}
+
+// Optical depth of the fog between altitudes z0 and z1 (metres above mean sea level) over a straight path
+// of length dist, for rho(z) = rho0 e^(-z/H):  rho0 H (e^(-z0/H) - e^(-z1/H)) / ((z1 - z0) / dist),
+// evaluated as rho0 dist e^(-min(z0,z1)/H) (1 - e^(-delta)) / delta, delta = |z1 - z0| / H, so no factor
+// overflows or cancels; delta -> 0 is the horizontal limit rho0 e^(-z0/H) dist. Same expression as
+// fogOpticalDepth() in Lighting.h (which the unit test checks against a numerical integral).
+float fogOpticalDepth(float z0, float z1, float dist) {
+    float H = uFogHeightFalloff;
+    if (H <= 0.0)
+        return uFogDensity * dist;
+    float delta = abs(z1 - z0) / H;
+    float shape = delta < 1e-3 ? 1.0 - delta * (0.5 - delta / 6.0) : (1.0 - exp(-delta)) / delta;
+    return uFogDensity * dist * exp(-min(z0, z1) / H) * shape;
+}
+
+// Optical depth from altitude z0 along dir out of the fog (to the sky). Steep rays: the limit of
+// fogOpticalDepth as dist -> infinity, rho0 H e^(-z0/H) / mu. Near the horizon a spherical Earth keeps
+// the air mass finite (Chapman): a tangent ray sees rho0 e^(-z/H) sqrt(pi R H / 2), which the grazing term
+// sqrt(2 H / (pi R)) in the denominator reproduces at mu = 0. A ray dipping below the horizontal without
+// hitting the sea passes its lowest altitude zmin = z0 - mu^2 / (4 k c^2) (k = 1/(2R), c^2 = 1 - mu^2) and
+// climbs out again: both halves counted. Uniform fog (H = 0) never reaches the sky.
+float fogOpticalDepthToSky(float z0, vec3 dir) {
+    float H = uFogHeightFalloff;
+    if (H <= 0.0 || uFogDensity <= 0.0)
+        return 0.0;
+    float grazing = uCurvature > 0.0 ? sqrt(4.0 * H * uCurvature / PI) : 0.0;
+    float mu = dir.z;
+    if (mu >= 0.0 || uCurvature <= 0.0)
+        return uFogDensity * H * exp(-z0 / H) / max(max(mu, 0.0) + grazing, 1e-6);
+    float c2 = max(1.0 - mu * mu, 1e-6);
+    float zmin = z0 - mu * mu / (4.0 * uCurvature * c2);
+    return uFogDensity * H * (2.0 * exp(-zmin / H) - exp(-z0 / H)) / grazing;
+}
+
+// Seed 003's noise factor n at a camera-relative point: 1 + uFogNoise (2 N - 1), N the tileable noise
+// (mean 0.5) scrolled with the wind. Mipmapped, so far away it averages to n = 1.
+float fogNoiseFactor(vec3 rel) {
+    vec3 p = vec3(rel.xy / FOG_NOISE_TILE, rel.z / FOG_NOISE_TILE_VERTICAL) + uFogNoiseOffset;
+    return 1.0 + uFogNoise * (2.0 * texture(uFogNoiseMap, p).r - 1.0);
+}
+
+// Fog seen along dir out to the sky from altitude z0: the transmittance of the fog between.
+float skyTransmittance(float z0, vec3 dir) {
+    return exp(-fogOpticalDepthToSky(z0, dir));
+}
+
+// ---- water -------------------------------------------------------------------------------------------
+
+float fresnelSchlick(float ndv) {
+    return WATER_F0 + (1.0 - WATER_F0) * pow(1.0 - ndv, 5.0);
+} // Schlick 1994
+
+// Sunlight reaching altitude z through the fog.
+vec3 sunLightAt(float z) {
+    return SUN_COLOR * uSunIntensity * skyTransmittance(z, uSunDir) * step(0.0, uSunDir.z);
+}
+
+// Light scattered up out of the water body toward the eye (seed 004's "dull colour", made view dependent):
+// the view ray refracts into the water (Snell, n = WATER_IOR) and crosses the sunlit layer of depth D over
+// D / cos(theta_t), gathering scatter (1 - e^(-sigma D / cos theta_t)). Scaled so that looking straight down
+// gives DEEP_WATER_COLOR under the default sky; oblique views see more (bluer) scattering. The light in the
+// water follows the sky's irradiance and the sun's elevation.
+vec3 waterBody(vec3 v, vec3 n) {
+    vec3 t = refract(-v, n, 1.0 / WATER_IOR);
+    float cosT = max(abs(t.z), 0.1);
+    vec3 sigma = vec3(WATER_EXT_R, WATER_EXT_G, WATER_EXT_B);
+    vec3 nadir = 1.0 - exp(-sigma * WATER_SCATTER_DEPTH);
+    vec3 along = 1.0 - exp(-sigma * (WATER_SCATTER_DEPTH / cosT));
+    vec3 reference = PI * mix(SKY_ZENITH, SKY_HORIZON, SKY_HORIZON_WEIGHT); // skyIrradiance(), default sky
+    float light =
+        dot(skyIrradiance(), vec3(0.2126, 0.7152, 0.0722)) / dot(reference, vec3(0.2126, 0.7152, 0.0722));
+    return vec3(DEEP_WATER_R, DEEP_WATER_G, DEEP_WATER_B) * (along / nadir) * light *
+           (0.6 + 0.4 * max(uSunDir.z, 0.0)) * 4.0;
+}
+
+// Normalised Blinn-Phong sun highlight for a Beckmann mean-square slope m2: exponent 2/m2 - 2 (Walter et
+// al. 2007, eq. 30), times Fresnel and the sunlight that reaches the surface.
+vec3 sunSpecular(vec3 n, vec3 v, float m2, float fresnel, vec3 sunLight) {
+    vec3 h = normalize(uSunDir + v);
+    float shininess = max(2.0 / m2 - 2.0, 1.0);
+    float spec = pow(max(dot(n, h), 0.0), shininess) * (shininess + 8.0) / (8.0 * PI);
+    return sunLight * spec * fresnel;
+}
+
+// The sky reflected at a surface point of altitude z: the sky over the reflection lobe, seen through the
+// fog between the surface and the sky (so grazing reflections turn to the fog colour, like the horizon).
+vec3 reflectedSky(vec3 r, float m2, float z) {
+    return mix(fogColor(r), skyRadianceLobe(r, m2), skyTransmittance(z, r));
 }

@@ -93,7 +93,7 @@ double jonswapFrequencySpectrum(double omega, double windSpeed, double fetch) {
     if (!(omega > 0.0))
         return 0.0;
     // Hasselmann et al. 1973 (JONSWAP) with its fetch laws for alpha and the peak frequency as usually
-    // quoted for graphics (Horvath 2015, "Empirical directional wave spectra for computer graphics", §3.4):
+    // quoted for graphics (Horvath 2015, "Empirical directional wave spectra for computer graphics"):
     // alpha = 0.076 (U^2/(F g))^0.22, wp = 22 (g^2/(U F))^(1/3).
     const double g = GRAVITY;
     const double alpha = 0.076 * std::pow(windSpeed * windSpeed / (fetch * g), 0.22);
@@ -112,12 +112,11 @@ double directionalSpectrum(const FftDesc& desc, const glm::dvec2& kv) {
     const double c = glm::dot(kv / k, windVector(desc)); // cos of the angle to the wind
     const double g = GRAVITY;
     if (desc.spectrum == Spectrum::Phillips) {
-        // Tessendorf 2001 eq. 40 times the small-wave factor exp(-k^2 l^2) of §3.2.1:
-        //   F(k) = A exp(-1 / (k Lw)^2) / k^4 |k_hat . w_hat|^2 exp(-k^2 l^2),  Lw = U^2 / g,  A = alpha / (2
-        //   pi)
-        // (A from Phillips' alpha, see PHILLIPS_ALPHA). l = half a grid spacing L / (2 N): waves near the
-        // grid's Nyquist wavenumber pi N / L are damped (by e^{-pi^2/4} = 0.085 there) instead of aliasing.
-        // Waves travelling against the wind keep their cos^2 share, as in eq. 40.
+        // Tessendorf 2001 eq. 40 times the small-wave factor exp(-k^2 l^2) Tessendorf gives after it:
+        //   F(k) = A exp(-1 / (k Lw)^2) / k^4 |k_hat . w_hat|^2 exp(-k^2 l^2),   Lw = U^2 / g,
+        // A = alpha / (2 pi) from Phillips' alpha (see PHILLIPS_ALPHA). l = half a grid spacing L / (2 N):
+        // waves near the grid's Nyquist wavenumber pi N / L are damped (by e^{-pi^2/4} = 0.085 there) instead
+        // of aliasing. Waves travelling against the wind keep their cos^2 share, as in eq. 40.
         const double lw = desc.windSpeed * desc.windSpeed / g;
         const double l = 0.5 * desc.tileSize / desc.size;
         const double kl = k * lw;
@@ -128,7 +127,7 @@ double directionalSpectrum(const FftDesc& desc, const glm::dvec2& kv) {
     // Phi(k) = S(w(k)) dw/dk (m^3) with deep water w = sqrt(g k), dw/dk = g / (2 w); the directional
     // spectrum over the wave-vector plane is F(k) = Phi(k) / k * D(theta) (d^2k = k dk dtheta), with the
     // "positive cosine squared" spreading D = (2 / pi) cos^2(theta) for |theta| < pi / 2, 0 otherwise
-    // (Horvath 2015 §3.5; integrates to 1: waves run with the wind only). Uses the unquantised w.
+    // (Horvath 2015; integrates to 1: waves run with the wind only). Uses the unquantised w.
     if (c <= 0.0)
         return 0.0;
     const double w = std::sqrt(g * k);
@@ -162,7 +161,7 @@ FftOcean::FftOcean(const FftDesc& desc) : mDesc(desc) {
             const double kl = glm::length(k);
             if (i == 0 || m == 0 || kl == 0.0)
                 continue; // Nyquist row/column and k = 0 stay 0 (see the header)
-            // Dispersion w = sqrt(g k) (deep water, Tessendorf eq. 14) quantised to the loop (§3.3).
+            // Dispersion w = sqrt(g k) (deep water) quantised to the loop (Tessendorf: looping in time).
             const double q = std::max(1.0, std::round(std::sqrt(GRAVITY * kl) / w0));
             mQ[idx] = static_cast<uint32_t>(q);
             mOmega[idx] = q * w0;
@@ -199,7 +198,8 @@ FftOcean::Sums FftOcean::sumAt(const glm::dvec2& xy, double t, bool derivatives)
         ex[static_cast<size_t>(i)] = cisTurns((i - n / 2) * u);
         ey[static_cast<size_t>(i)] = cisTurns((i - n / 2) * v);
     }
-    // Time: e^{i w t} = e^{i 2 pi q s}, s = wrap(t, T) / T (Tessendorf §3.3); one table entry per q.
+    // Time: e^{i w t} = e^{i 2 pi q s}, s = wrap(t, T) / T (Tessendorf: looping in time); one table entry per
+    // q.
     const double s = wrapPhase(t, mDesc.loopPeriod) / mDesc.loopPeriod;
     std::vector<std::complex<double>> et(static_cast<size_t>(mMaxQ) + 1);
     for (uint32_t q = 0; q <= mMaxQ; ++q)
@@ -266,6 +266,17 @@ double FftOcean::jacobianAt(const glm::dvec2& xy, double t) const {
 
 double FftOcean::significantWaveHeight() const {
     return mHs;
+}
+
+glm::dvec3 FftOcean::displacementSeenFrom(const glm::dvec2& xy, double t, const glm::dvec2&) const {
+    // Same lookup as fft.glsl's exact path: grid point i sits at x = i L / N (period L), bilinear between.
+    const double l = mDesc.tileSize, n = mDesc.size, dx = l / n;
+    const double px = wrapPhase(xy.x, l) / dx, py = wrapPhase(xy.y, l) / dx;
+    const double fx = std::floor(px), fy = std::floor(py), ax = px - fx, ay = py - fy;
+    auto at = [&](double i, double j) { return displacementAt({i * dx, j * dx}, t); };
+    const glm::dvec3 bottom = glm::mix(at(fx, fy), at(fx + 1.0, fy), ax);
+    const glm::dvec3 top = glm::mix(at(fx, fy + 1.0), at(fx + 1.0, fy + 1.0), ax);
+    return glm::mix(bottom, top, ay);
 }
 
 } // namespace pacifica::ocean

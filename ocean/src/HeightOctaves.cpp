@@ -1,5 +1,7 @@
 // HeightOctaves: procedural generation of tileable, looping height-map octaves and their CPU sampling
-// (GPU Gems 2 §18.2.1; dispersion and looping from Tessendorf 2001 §3.2). See the header for the model.
+// (GPU Gems 2 §18.2.1; dispersion and looping from Tessendorf 2001 §3.2), with every vertex filter of
+// §18.2.4 (listings 18-2, 18-3) and the combined two-pass path of §18.2.5 in double, mirroring
+// ocean/shaders/octaves.glsl line by line. See the header for the model and the modes.
 #include "ocean/HeightOctaves.h"
 
 #include "engine/Time.h"
@@ -151,9 +153,69 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
         require(std::isfinite(oct[i].loopPeriod) && oct[i].loopPeriod > 0.0,
                 f + "loopPeriod must be finite and > 0");
     }
+    require(desc.vertexFilter >= VertexFilter::Nearest && desc.vertexFilter <= VertexFilter::Trilinear,
+            "HeightOctavesDesc.vertexFilter is not a VertexFilter value: " +
+                std::to_string(static_cast<int>(desc.vertexFilter)));
+    require(std::isfinite(desc.trilinearLodTexels) && desc.trilinearLodTexels > 0.0,
+            "HeightOctavesDesc.trilinearLodTexels must be finite and > 0, got " +
+                std::to_string(desc.trilinearLodTexels));
+    require(desc.combinedSize >= 16 && desc.combinedSize <= 4096 &&
+                (desc.combinedSize & (desc.combinedSize - 1)) == 0,
+            "HeightOctavesDesc.combinedSize must be a power of two in [16, 4096], got " +
+                std::to_string(desc.combinedSize));
+    require(std::isfinite(desc.combinedTexel) && desc.combinedTexel > 0.0,
+            "HeightOctavesDesc.combinedTexel must be finite and > 0, got " +
+                std::to_string(desc.combinedTexel));
+    require(std::isfinite(desc.combinedRadius) && desc.combinedRadius > 0.0,
+            "HeightOctavesDesc.combinedRadius must be finite and > 0, got " +
+                std::to_string(desc.combinedRadius));
+    mCombinedLevels = 1;
+    while (combinedReach(mCombinedLevels - 1) < desc.combinedRadius && mCombinedLevels <= MAX_COMBINED_LEVELS)
+        ++mCombinedLevels;
+    require(mCombinedLevels <= MAX_COMBINED_LEVELS,
+            "HeightOctavesDesc.combinedRadius " + std::to_string(desc.combinedRadius) + " needs more than " +
+                std::to_string(MAX_COMBINED_LEVELS) + " combined levels of combinedSize " +
+                std::to_string(desc.combinedSize) + " from combinedTexel " +
+                std::to_string(desc.combinedTexel));
+
     std::mt19937_64 rng(desc.seed);
     for (const OctaveDesc& o : oct)
         mMaps.push_back(generate(o, desc, rng));
+    // Mip chain of every map's height (listing 18-3 needs the packed maps of two levels): 2x2 box average,
+    // rounded to half like the RGBA16F texture the GPU samples.
+    for (const OctaveMap& m : mMaps) {
+        std::vector<std::vector<float>> levels;
+        for (int fine = m.size; fine > 1; fine /= 2) {
+            const int c = fine / 2;
+            std::vector<float> next(static_cast<size_t>(m.frames) * c * c);
+            for (int f = 0; f < m.frames; ++f) {
+                for (int y = 0; y < c; ++y) {
+                    for (int x = 0; x < c; ++x) {
+                        double sum = 0.0;
+                        for (int k = 0; k < 4; ++k) {
+                            const int fx = 2 * x + (k & 1), fy = 2 * y + (k >> 1);
+                            sum += levels.empty()
+                                       ? m.texel(f, fx, fy)[0]
+                                       : levels.back()[(static_cast<size_t>(f) * fine + fy) * fine + fx];
+                        }
+                        next[(static_cast<size_t>(f) * c + y) * c + x] =
+                            glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(0.25 * sum)));
+                    }
+                }
+            }
+            levels.push_back(std::move(next));
+        }
+        mHeightMips.push_back(std::move(levels));
+        double step = 0.0;
+        for (int f = 0; f < m.frames; ++f)
+            for (int y = 0; y < m.size; ++y)
+                for (int x = 0; x < m.size; ++x) {
+                    const double h = m.texel(f, x, y)[0];
+                    step = std::max(step, std::abs(m.texel(f, (x + 1) % m.size, y)[0] - h));
+                    step = std::max(step, std::abs(m.texel(f, x, (y + 1) % m.size)[0] - h));
+                }
+        mMaxStep.push_back(step);
+    }
     for (int i = 0; i < desc.displacedOctaves; ++i) {
         float peak = 0.0f;
         for (size_t t = 0; t < mMaps[i].texels.size(); t += 4)
@@ -227,7 +289,199 @@ glm::dvec3 HeightOctaves::heightAndGradient(const glm::dvec2& worldXY, double ti
 }
 
 double HeightOctaves::heightAt(const glm::dvec2& worldXY, double time) const {
-    return heightAndGradient(worldXY, time, mDesc.displacedOctaves).x;
+    return heightSeenFrom(worldXY, time, worldXY);
+}
+
+float HeightOctaves::heightMip(int octave, int level, int frame, int x, int y) const {
+    const OctaveMap& map = mMaps[static_cast<size_t>(octave)];
+    const int s = map.size >> level;
+    x = wrapIndex(x, s);
+    y = wrapIndex(y, s);
+    if (level == 0)
+        return map.texel(frame, x, y)[0];
+    const std::vector<float>& l = mHeightMips[static_cast<size_t>(octave)][static_cast<size_t>(level - 1)];
+    return l[(static_cast<size_t>(frame) * s + y) * s + x];
+}
+
+glm::vec4 HeightOctaves::packedTexel(int octave, int level, int frame, int x, int y) const {
+    // GPU Gems 2 §18.2.4: "we can pack four height values into a single texel of a four-component texture".
+    return {heightMip(octave, level, frame, x, y), heightMip(octave, level, frame, x + 1, y),
+            heightMip(octave, level, frame, x, y + 1), heightMip(octave, level, frame, x + 1, y + 1)};
+}
+
+double HeightOctaves::packedBilinear(int octave, int level, int frame, const glm::dvec2& u) const {
+    // Listing 18-2 (tex2D_bilinear4x) with the footprint's lower-left texel fetched by index: same texel
+    // centre convention as Bilinear, so level 0 gives the identical value.
+    const int s = mDesc.mapSize >> level;
+    const double px = wrapPhase(u.x, 1.0) * s - 0.5, py = wrapPhase(u.y, 1.0) * s - 0.5;
+    const double fx0 = std::floor(px), fy0 = std::floor(py);
+    const double ax = px - fx0, ay = py - fy0;
+    const glm::dvec4 t(packedTexel(octave, level, frame, static_cast<int>(fx0), static_cast<int>(fy0)));
+    const double ab0 = t.x + (t.y - t.x) * ax; // lerp(tAB0.xz, tAB0.yw, f.x)
+    const double ab1 = t.z + (t.w - t.z) * ax;
+    return ab0 + (ab1 - ab0) * ay; // lerp(tAB.x, tAB.y, f.y)
+}
+
+double HeightOctaves::sliceHeight(int octave, VertexFilter filter, int level, int frame,
+                                  const glm::dvec2& u) const {
+    const int s = mDesc.mapSize;
+    const double wx = wrapPhase(u.x, 1.0), wy = wrapPhase(u.y, 1.0);
+    switch (filter) {
+    case VertexFilter::Nearest:
+        // The texel whose square [i, i + 1) / size holds u (GL's NEAREST rule).
+        return heightMip(octave, 0, frame, static_cast<int>(std::floor(wx * s)),
+                         static_cast<int>(std::floor(wy * s)));
+    case VertexFilter::Bilinear:
+    case VertexFilter::HardwareBilinear: {
+        double px = wx * s - 0.5, py = wy * s - 0.5;
+        if (filter == VertexFilter::HardwareBilinear) {
+            // Fixed-point sub-texel position with HARDWARE_WEIGHT_BITS fractional bits, rounded to nearest.
+            const double q = std::ldexp(1.0, HARDWARE_WEIGHT_BITS);
+            px = std::floor(px * q + 0.5) / q;
+            py = std::floor(py * q + 0.5) / q;
+        }
+        const double fx0 = std::floor(px), fy0 = std::floor(py);
+        const double ax = px - fx0, ay = py - fy0;
+        const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
+        const double h00 = heightMip(octave, 0, frame, x0, y0), h10 = heightMip(octave, 0, frame, x0 + 1, y0);
+        const double h01 = heightMip(octave, 0, frame, x0, y0 + 1);
+        const double h11 = heightMip(octave, 0, frame, x0 + 1, y0 + 1);
+        const double bottom = h00 + (h10 - h00) * ax;
+        const double top = h01 + (h11 - h01) * ax;
+        return bottom + (top - bottom) * ay;
+    }
+    case VertexFilter::Packed4Tap:
+    case VertexFilter::Trilinear:
+        break;
+    }
+    return packedBilinear(octave, level, frame, u);
+}
+
+double HeightOctaves::sampleHeight(int octave, VertexFilter filter, const glm::dvec2& u, double framePosition,
+                                   double lod) const {
+    const double ff = std::floor(framePosition);
+    const double at = framePosition - ff;
+    const int f0 = wrapIndex(static_cast<long long>(ff), mDesc.frames);
+    const int f1 = wrapIndex(static_cast<long long>(ff) + 1, mDesc.frames);
+    auto slice = [&](int frame) {
+        if (filter != VertexFilter::Trilinear)
+            return sliceHeight(octave, filter, 0, frame, u);
+        // Listing 18-3 (tex2D_trilinear): snap to the nearer level outside the 0.3..0.7 band of the LOD
+        // fraction (one packed fetch), blend the two levels inside it (two fetches).
+        const double l = std::clamp(lod, 0.0, static_cast<double>(mipLevels() - 1));
+        const double base = std::floor(l);
+        const double fr = l - base;
+        const int level = static_cast<int>(base);
+        if (fr < TRILINEAR_BAND_LOW)
+            return packedBilinear(octave, level, frame, u);
+        if (fr > TRILINEAR_BAND_HIGH)
+            return packedBilinear(octave, level + 1, frame, u);
+        const double r0 = packedBilinear(octave, level, frame, u);
+        const double r1 = packedBilinear(octave, level + 1, frame, u);
+        const double w = (fr - TRILINEAR_BAND_LOW) / (TRILINEAR_BAND_HIGH - TRILINEAR_BAND_LOW);
+        return r0 + (r1 - r0) * w;
+    };
+    const double a = slice(f0), b = slice(f1);
+    return a + (b - a) * at;
+}
+
+double HeightOctaves::trilinearLod(int octave, double distance) const {
+    const double texels = distance / mDesc.octaves[static_cast<size_t>(octave)].tileSize * mDesc.mapSize;
+    const double rho = texels / mDesc.trilinearLodTexels;
+    return std::clamp(std::log2(std::max(rho, 1.0)), 0.0, static_cast<double>(mipLevels() - 1));
+}
+
+double HeightOctaves::filteredHeight(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY,
+                                     VertexFilter filter) const {
+    const double distance = glm::length(worldXY - cameraXY);
+    double sum = 0.0;
+    for (int i = 0; i < mDesc.displacedOctaves; ++i) {
+        const OctaveDesc& o = mDesc.octaves[static_cast<size_t>(i)];
+        const double b = 1.0 / o.tileSize;
+        const double fpos = wrapPhase(time, o.loopPeriod) / o.loopPeriod * mDesc.frames;
+        const double lod = filter == VertexFilter::Trilinear ? trilinearLod(i, distance) : 0.0;
+        sum += o.amplitude * sampleHeight(i, filter, worldXY * b, fpos, lod);
+    }
+    return sum;
+}
+
+double HeightOctaves::combinedTexel(int level) const {
+    return std::ldexp(mDesc.combinedTexel, level);
+}
+
+double HeightOctaves::combinedReach(int level) const {
+    return (mDesc.combinedSize / 2 - 2) * combinedTexel(level);
+}
+
+int HeightOctaves::combinedLevelFor(const glm::dvec2& rel) const {
+    const double r = std::max(std::abs(rel.x), std::abs(rel.y));
+    int k = 0;
+    while (k < mCombinedLevels - 1 && r > combinedReach(k))
+        ++k;
+    return k;
+}
+
+glm::dvec2 HeightOctaves::combinedOrigin(int level, const glm::dvec2& cameraXY) const {
+    const double texel = combinedTexel(level);
+    return glm::floor(cameraXY / texel) * texel;
+}
+
+double HeightOctaves::combinedHeight(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY,
+                                     VertexFilter filter) const {
+    const int k = combinedLevelFor(worldXY - cameraXY);
+    const double texel = combinedTexel(k);
+    const glm::dvec2 origin = combinedOrigin(k, cameraXY);
+    const int n = mDesc.combinedSize;
+    // Texel-centre convention: node (i, j) at origin + ((i, j) + 0.5 - n / 2) * texel. Points beyond the
+    // last level's reach clamp to its border.
+    const glm::dvec2 p =
+        glm::clamp((worldXY - origin) / texel + (n / 2 - 0.5), glm::dvec2(0.0), glm::dvec2(n - 1));
+    const glm::dvec2 p0 = glm::min(glm::floor(p), glm::dvec2(n - 2));
+    const glm::dvec2 a = p - p0;
+    auto node = [&](double i, double j) {
+        const glm::dvec2 world = origin + (glm::dvec2(i, j) + (0.5 - n / 2)) * texel;
+        return filteredHeight(world, time, cameraXY, filter);
+    };
+    const double g00 = node(p0.x, p0.y), g10 = node(p0.x + 1, p0.y);
+    const double g01 = node(p0.x, p0.y + 1), g11 = node(p0.x + 1, p0.y + 1);
+    const double bottom = g00 + (g10 - g00) * a.x;
+    const double top = g01 + (g11 - g01) * a.x;
+    return bottom + (top - bottom) * a.y;
+}
+
+double HeightOctaves::heightSeenFrom(const glm::dvec2& worldXY, double time,
+                                     const glm::dvec2& cameraXY) const {
+    return mDesc.combinedDisplacement ? combinedHeight(worldXY, time, cameraXY, mDesc.vertexFilter)
+                                      : filteredHeight(worldXY, time, cameraXY, mDesc.vertexFilter);
+}
+
+glm::dvec3 HeightOctaves::displacementSeenFrom(const glm::dvec2& worldXY, double time,
+                                               const glm::dvec2& cameraXY) const {
+    return {0.0, 0.0, heightSeenFrom(worldXY, time, cameraXY)};
+}
+
+double HeightOctaves::hardwareBilinearBound() const {
+    double sum = 0.0;
+    for (int i = 0; i < mDesc.displacedOctaves; ++i)
+        sum += mDesc.octaves[static_cast<size_t>(i)].amplitude * 2.0 *
+               std::ldexp(1.0, -HARDWARE_WEIGHT_BITS) * mMaxStep[static_cast<size_t>(i)];
+    return sum;
+}
+
+const char* toString(VertexFilter filter) {
+    switch (filter) {
+    case VertexFilter::Nearest:
+        return "nearest";
+    case VertexFilter::Bilinear:
+        return "bilinear";
+    case VertexFilter::HardwareBilinear:
+        return "hardware-bilinear";
+    case VertexFilter::Packed4Tap:
+        return "packed-4tap";
+    case VertexFilter::Trilinear:
+        return "trilinear";
+    }
+    return "?";
 }
 
 glm::dvec3 HeightOctaves::normalAt(const glm::dvec2& worldXY, double time) const {

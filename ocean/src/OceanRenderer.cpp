@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,20 +27,8 @@
 namespace pacifica::ocean {
 
 OceanComponent makeOcean(const OceanDesc& desc) {
-    const LightingDesc& l = desc.lighting;
-    auto finite = [](double v) { return std::isfinite(v); };
-    if (!finite(l.sunDirection.x) || !finite(l.sunDirection.y) || !finite(l.sunDirection.z) ||
-        glm::length(l.sunDirection) < 1e-9)
-        throw std::invalid_argument("OceanDesc.lighting.sunDirection must be finite and non-zero");
-    if (!finite(l.sunIntensity) || l.sunIntensity < 0.0f)
-        throw std::invalid_argument("OceanDesc.lighting.sunIntensity must be finite and >= 0");
-    if (!finite(l.skyIntensity) || l.skyIntensity < 0.0f)
-        throw std::invalid_argument("OceanDesc.lighting.skyIntensity must be finite and >= 0");
-    if (!finite(l.fogDensity) || l.fogDensity < 0.0f)
-        throw std::invalid_argument("OceanDesc.lighting.fogDensity must be finite and >= 0");
-    if (!finite(l.normalTilt) || l.normalTilt < 0.0f || l.normalTilt > 1.0f)
-        throw std::invalid_argument("OceanDesc.lighting.normalTilt must be in [0, 1]");
-    (void)RadialGrid(desc.grid); // validates the grid description, naming the field
+    validateLighting(desc.lighting); // names the field (ocean/include/ocean/Lighting.h)
+    (void)RadialGrid(desc.grid);     // validates the grid description, naming the field
     OceanComponent c;
     c.desc = desc;
     c.surface = makeSurfaceModel(desc);
@@ -59,7 +48,9 @@ struct OceanRenderer::Gpu {
     std::shared_ptr<const SurfaceModel> surface; // the model these resources were built from
     std::unique_ptr<SurfaceGpu> model;
     std::string programKey;
+    GridKind gridKind = GridKind::Radial;
     RadialGridDesc gridDesc;
+    std::unique_ptr<ProjectedGrid> projected; // when gridKind == Projected
     gl::Buffer vertices, indices;
     gl::VertexArray vao;
     GLsizei indexCount = 0;
@@ -97,25 +88,43 @@ bool sameGrid(const RadialGridDesc& a, const RadialGridDesc& b) {
            a.skirtRadius == b.skirtRadius;
 }
 
-void buildGrid(OceanRenderer::Gpu& gpu, const RadialGridDesc& desc) {
-    const RadialGrid grid(desc);
-    gpu.gridDesc = desc;
-    gpu.vertices = gl::Buffer::create(grid.vertices().size() * sizeof(float), grid.vertices().data());
-    gpu.indices = gl::Buffer::create(grid.indices().size() * sizeof(uint32_t), grid.indices().data());
+bool sameProjected(const ProjectedGridDesc& a, const ProjectedGridDesc& b) {
+    return a.resolutionX == b.resolutionX && a.resolutionY == b.resolutionY &&
+           a.maxDisplacement == b.maxDisplacement && a.guardBand == b.guardBand;
+}
+
+void uploadMesh(OceanRenderer::Gpu& gpu, const std::vector<float>& vertices,
+                const std::vector<uint32_t>& indices) {
+    gpu.vertices = gl::Buffer::create(vertices.size() * sizeof(float), vertices.data());
+    gpu.indices = gl::Buffer::create(indices.size() * sizeof(uint32_t), indices.data());
     gpu.vao = gl::VertexArray::create();
     const GLuint vao = gpu.vao.id();
-    glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, 3 * sizeof(float));
+    glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, 2 * sizeof(float));
     glVertexArrayElementBuffer(vao, gpu.indices.id());
     glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao, 0, 0);
-    gpu.indexCount = static_cast<GLsizei>(grid.indices().size());
-    gpu.vertexCount = static_cast<long long>(grid.vertexCount());
+    gpu.indexCount = static_cast<GLsizei>(indices.size());
+    gpu.vertexCount = static_cast<long long>(vertices.size() / 2);
+}
+
+void buildGrid(OceanRenderer::Gpu& gpu, const OceanDesc& desc) {
+    gpu.gridKind = desc.gridKind;
+    gpu.gridDesc = desc.grid;
+    if (desc.gridKind == GridKind::Projected) {
+        gpu.projected = std::make_unique<ProjectedGrid>(desc.projectedGrid);
+        uploadMesh(gpu, gpu.projected->vertices(), gpu.projected->indices());
+        return;
+    }
+    gpu.projected.reset();
+    const RadialGrid grid(desc.grid);
+    uploadMesh(gpu, grid.vertices(), grid.indices());
 }
 
 /// Per-frame uniforms of the sea's vertex stage: the model's (wrapped in double), the camera-relative
 /// transform, the camera height, the curvature drop.
-void setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
+/// Returns false when the sea is not in view at all (projected grid: nothing of the wave volume on screen).
+bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
                     const OceanFrame& frame) {
     gpu.model->bind(prog, 0, frame.time, frame.camera.origin);
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE,
@@ -126,6 +135,30 @@ void setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
                        static_cast<float>(ocean.desc.grid.rMax * 1.0001));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
                        ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
+    // Horizontal displacement (Gerstner, FFT) can move a vertex from outside the sector into view: widen the
+    // sector near the camera by asin(guard / r) (whole circle within guard), guard = 2 Hs, and the cull test
+    // by the displacement bound.
+    const double hs = ocean.surface->significantWaveHeight();
+    const double horizontalGuard = ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * hs;
+    const ViewSector sector =
+        ocean.desc.viewSector
+            ? computeViewSector(frame.camera, ocean.desc.sectorGuardDeg * std::numbers::pi / 180.0)
+            : ViewSector{};
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "uSector"), static_cast<float>(sector.center),
+                       static_cast<float>(sector.halfWidth), static_cast<float>(horizontalGuard));
+    const double c0 = 1.0 + ocean.desc.cullGuardNdc;
+    const double bound = 2.0 * hs + horizontalGuard;
+    const double scale = std::max(std::abs(frame.camera.proj[0][0]), std::abs(frame.camera.proj[1][1]));
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "uCull"), ocean.desc.cullVertices ? 1.0f : 0.0f,
+                       static_cast<float>(c0), static_cast<float>(bound * (scale + c0)));
+    if (gpu.projected) {
+        const ProjectedGrid::Frame f =
+            gpu.projected->frame(frame.camera, ocean.desc.earthCurvature ? EARTH_RADIUS : 0.0);
+        const auto corners = f.cornerUniforms();
+        glProgramUniform4fv(prog, glGetUniformLocation(prog, "uCorners"), 4, glm::value_ptr(corners[0]));
+        return f.visible;
+    }
+    return true;
 }
 
 } // namespace
@@ -144,8 +177,12 @@ OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& 
         gpu->surface = ocean.surface;
         gpu->programKey = joined(gpu->model->glslFiles());
     }
-    if (!gpu->vao || !sameGrid(gpu->gridDesc, ocean.desc.grid))
-        buildGrid(*gpu, ocean.desc.grid);
+    const bool gridChanged = !gpu->vao || gpu->gridKind != ocean.desc.gridKind ||
+                             (ocean.desc.gridKind == GridKind::Radial
+                                  ? !sameGrid(gpu->gridDesc, ocean.desc.grid)
+                                  : !sameProjected(gpu->projected->desc(), ocean.desc.projectedGrid));
+    if (gridChanged)
+        buildGrid(*gpu, ocean.desc);
     return *gpu;
 }
 
@@ -192,7 +229,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             }
             const GLuint sky = mPrograms->sky.id();
             glUseProgram(sky);
-            mLighting->bind(sky, LIGHTING_FIRST_UNIT, ocean.desc.lighting);
+            mLighting->bind(sky, LIGHTING_FIRST_UNIT, ocean.desc, frame);
             glProgramUniformMatrix4fv(sky, glGetUniformLocation(sky, "uInvViewProj"), 1, GL_FALSE,
                                       glm::value_ptr(invViewProj));
             glDisable(GL_DEPTH_TEST);
@@ -204,18 +241,20 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             mStats.vertices += 3;
         }
 
-        gl::Program& seaProgram = mPrograms->sea[gpu.programKey];
+        const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
+        gl::Program& seaProgram = mPrograms->sea[gpu.programKey + vert];
         if (!seaProgram) {
             const std::vector<std::string> model = gpu.model->glslFiles();
             seaProgram = gl::buildProgram(
-                {{gl::ShaderStage::Vertex, sources(concat(model, {"ocean.vert"}))},
+                {{gl::ShaderStage::Vertex, sources(concat(model, {vert}))},
                  {gl::ShaderStage::Fragment, sources(concat(model, {"sky.glsl", "ocean.frag"}))}},
                 "ocean sea (" + gpu.programKey + ")");
         }
         const GLuint sea = seaProgram.id();
         glUseProgram(sea);
-        setSeaUniforms(sea, ocean, gpu, frame);
-        mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc.lighting);
+        if (!setSeaUniforms(sea, ocean, gpu, frame))
+            return; // no sea in view: the sky pass alone
+        mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
@@ -225,20 +264,22 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         mStats.draws += 1;
         mStats.vertices += gpu.vertexCount;
     });
+    mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }
 
-std::vector<glm::vec3> OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity,
-                                                        const OceanFrame& frame) {
+std::vector<OceanRenderer::DisplacedVertex>
+OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity, const OceanFrame& frame) {
     const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);
     if (!ocean || !ocean->surface)
         throw std::invalid_argument("OceanRenderer::displacedVertices(): entity " + ecs::toString(entity) +
                                     " has no OceanComponent");
     Gpu& gpu = prepare(entity, *ocean);
-    gl::Program& program = mPrograms->seaFeedback[gpu.programKey];
+    const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
+    gl::Program& program = mPrograms->seaFeedback[gpu.programKey + vert];
     if (!program)
-        program = gl::buildProgram(
-            {{gl::ShaderStage::Vertex, sources(concat(gpu.model->glslFiles(), {"ocean.vert"}))}},
-            "ocean sea feedback (" + gpu.programKey + ")", {"vRel"});
+        program =
+            gl::buildProgram({{gl::ShaderStage::Vertex, sources(concat(gpu.model->glslFiles(), {vert}))}},
+                             "ocean sea feedback (" + gpu.programKey + ")", {"vRel", "vGrid"});
     if (!mPrograms->feedbackFbo) {
         mPrograms->feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
         mPrograms->feedbackFbo = gl::Framebuffer::create();
@@ -249,9 +290,10 @@ std::vector<glm::vec3> OceanRenderer::displacedVertices(ecs::Registry& registry,
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
     const GLuint prog = program.id();
     glUseProgram(prog);
-    setSeaUniforms(prog, *ocean, gpu, frame);
+    (void)setSeaUniforms(prog, *ocean, gpu, frame);
     const size_t count = static_cast<size_t>(gpu.vertexCount);
-    gl::Buffer captured = gl::Buffer::create(count * sizeof(glm::vec3), nullptr);
+    static_assert(sizeof(DisplacedVertex) == 5 * sizeof(float), "interleaved vRel, vGrid");
+    gl::Buffer captured = gl::Buffer::create(count * sizeof(DisplacedVertex), nullptr);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
     glEnable(GL_RASTERIZER_DISCARD);
     glBindVertexArray(gpu.vao.id());
@@ -260,8 +302,9 @@ std::vector<glm::vec3> OceanRenderer::displacedVertices(ecs::Registry& registry,
     glEndTransformFeedback();
     glDisable(GL_RASTERIZER_DISCARD);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    std::vector<glm::vec3> out(count);
-    glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), out.data());
+    std::vector<DisplacedVertex> out(count);
+    glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(DisplacedVertex)),
+                            out.data());
     return out;
 }
 

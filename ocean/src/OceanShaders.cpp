@@ -29,7 +29,21 @@ std::string shaderConstantDefines() {
                   MAX_OCTAVES, GRAVITY, WATER_F0, static_cast<double>(DEEP_WATER_COLOR[0]),
                   static_cast<double>(DEEP_WATER_COLOR[1]), static_cast<double>(DEEP_WATER_COLOR[2]),
                   EARTH_RADIUS);
-    return buf;
+    // Shading constants (ocean.frag, sky.glsl).
+    char shading[1024];
+    std::snprintf(shading, sizeof shading,
+                  "#define WATER_IOR %.9g\n#define WATER_EXT_R %.9g\n#define WATER_EXT_G %.9g\n"
+                  "#define WATER_EXT_B %.9g\n#define WATER_SCATTER_DEPTH %.9g\n#define FOAM_ALBEDO %.9g\n"
+                  "#define SUN_DIFFUSE_SCALE %.9g\n#define FOAM_TILE_NEAR %.9g\n#define FOAM_TILE_FAR %.9g\n"
+                  "#define FOAM_FADE_START %.9g\n#define FOAM_FADE_END %.9g\n#define FOG_NOISE_TILE %.9g\n"
+                  "#define FOG_NOISE_TILE_VERTICAL %.9g\n#define ENVIRONMENT_HORIZON_BINS %d\n",
+                  WATER_IOR, static_cast<double>(WATER_EXTINCTION[0]),
+                  static_cast<double>(WATER_EXTINCTION[1]), static_cast<double>(WATER_EXTINCTION[2]),
+                  static_cast<double>(WATER_SCATTER_DEPTH), static_cast<double>(FOAM_ALBEDO),
+                  static_cast<double>(SUN_DIFFUSE_SCALE), FOAM_TILE_NEAR, FOAM_TILE_FAR,
+                  static_cast<double>(FOAM_FADE_START), static_cast<double>(FOAM_FADE_END), FOG_NOISE_TILE,
+                  FOG_NOISE_TILE_VERTICAL, ENVIRONMENT_HORIZON_BINS);
+    return std::string(buf) + shading;
 }
 
 } // namespace pacifica::ocean

@@ -1,6 +1,7 @@
 // RadialGrid: vertex and index generation for the camera-centred radial grid (GPU Gems 2 §18.2.3).
 #include "ocean/RadialGrid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -37,8 +38,8 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
             "RadialGridDesc.skirtRings must be in [1, 256], got " + std::to_string(desc.skirtRings));
     const int skirt = desc.skirtRadius > 0.0 ? desc.skirtRings : 0;
     const int ringCount = desc.rings + skirt;
-    mVertices.reserve(static_cast<size_t>(3 * (1 + ringCount * m)));
-    mVertices.insert(mVertices.end(), {1.0f, 0.0f, 0.0f}); // centre
+    mVertices.reserve(static_cast<size_t>(2 * (1 + ringCount * (m + 1))));
+    mVertices.insert(mVertices.end(), {0.5f, 0.0f}); // centre
     for (int i = 0; i < ringCount; ++i) {
         // Skirt ring s = 1..K at rMax * (skirtRadius / rMax)^(s / K): geometric, ending exactly at
         // skirtRadius.
@@ -46,14 +47,14 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
                          : i == ringCount - 1 ? desc.skirtRadius
                                               : desc.rMax * std::pow(desc.skirtRadius / desc.rMax,
                                                                      double(i - desc.rings + 1) / skirt);
-        for (int j = 0; j < m; ++j) {
-            const double theta = 2.0 * std::numbers::pi * j / m;
-            mVertices.push_back(static_cast<float>(std::cos(theta)));
-            mVertices.push_back(static_cast<float>(std::sin(theta)));
+        // M + 1 columns u = j / M: the sector's two edges are separate vertices (for a full circle they
+        // coincide), so the same mesh serves any view sector.
+        for (int j = 0; j <= m; ++j) {
+            mVertices.push_back(static_cast<float>(double(j) / m));
             mVertices.push_back(static_cast<float>(r));
         }
     }
-    auto ringVertex = [m](int ring, int seg) { return static_cast<uint32_t>(1 + ring * m + (seg % m)); };
+    auto ringVertex = [m](int ring, int col) { return static_cast<uint32_t>(1 + ring * (m + 1) + col); };
     for (int j = 0; j < m; ++j) // centre fan
         mIndices.insert(mIndices.end(), {0u, ringVertex(0, j), ringVertex(0, j + 1)});
     for (int i = 0; i + 1 < ringCount; ++i) {
@@ -63,6 +64,48 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
             mIndices.insert(mIndices.end(), {a, c, d, a, d, b});
         }
     }
+}
+
+ViewSector computeViewSector(const CameraFrame& camera, double guardRad) {
+    // The frustum is the cone of positive combinations of its 4 corner rays; its horizontal projection is the
+    // cone spanned by the projected corners: an arc if they fit in a half-plane, else the whole circle.
+    const glm::dmat4 invViewProj = glm::inverse(glm::dmat4(camera.viewProj));
+    double az[4];
+    int n = 0;
+    const double corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const auto& c : corners) {
+        const glm::dvec4 p = invViewProj * glm::dvec4(c[0], c[1], 0.5, 1.0);
+        const glm::dvec3 dir = glm::dvec3(p) / p.w;
+        const double horizontal = std::hypot(dir.x, dir.y);
+        if (!(horizontal > 1e-9 * glm::length(dir)))
+            return {0.0, std::numbers::pi}; // a corner looks straight up or down: all azimuths
+        az[n++] = std::atan2(dir.y, dir.x);
+    }
+    std::sort(az, az + 4);
+    double gap = az[0] + 2.0 * std::numbers::pi - az[3], gapEnd = az[0];
+    for (int i = 1; i < 4; ++i) {
+        if (az[i] - az[i - 1] > gap) {
+            gap = az[i] - az[i - 1];
+            gapEnd = az[i];
+        }
+    }
+    if (gap <= std::numbers::pi)
+        return {0.0, std::numbers::pi}; // the projected cone is the whole plane (nadir or zenith in view)
+    const double arc = 2.0 * std::numbers::pi - gap; // from gapEnd counter-clockwise
+    const double half = arc / 2.0 + guardRad;
+    if (half >= std::numbers::pi)
+        return {0.0, std::numbers::pi};
+    return {std::remainder(gapEnd + arc / 2.0, 2.0 * std::numbers::pi), half};
+}
+
+glm::dvec2 sectorPosition(double u, double r, const ViewSector& sector, double guardDistance) {
+    // Same formula as ocean.vert: a horizontal displacement of up to g turns a point at radius r by at most
+    // asin(g / r) (by anything when r <= g), so the half-width grows by that much near the camera.
+    const double half = r <= guardDistance
+                            ? std::numbers::pi
+                            : std::min(std::numbers::pi, sector.halfWidth + std::asin(guardDistance / r));
+    const double theta = sector.center + (2.0 * u - 1.0) * half;
+    return {r * std::cos(theta), r * std::sin(theta)};
 }
 
 double RadialGrid::radius(int ring) const {

@@ -1,6 +1,7 @@
 // makeSurfaceModel: the CPU surface model an OceanDesc selects.
 #include "ocean/SurfaceModels.h"
 
+#include "ocean/FftOcean.h"
 #include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"
 
@@ -15,6 +16,8 @@ std::shared_ptr<const SurfaceModel> makeSurfaceModel(const OceanDesc& desc) {
         return std::make_shared<HeightOctaves>(desc.octaves);
     case SurfaceKind::Gerstner:
         return std::make_shared<GerstnerWaves>(desc.gerstner);
+    case SurfaceKind::Fft:
+        return std::make_shared<FftOcean>(desc.fft);
     default:
         break;
     }

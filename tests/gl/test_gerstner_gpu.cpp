@@ -114,12 +114,14 @@ TEST_P(GerstnerGpuCpu, DisplacementAndLightingMatchTheDoubleReference) {
     EXPECT_LT(worstVariance, 1e-8);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    CamerasAndTimes, GerstnerGpuCpu,
-    ::testing::Values(Case{"origin_t0", {0.0, 0.0}, 0.0}, Case{"origin_t1e6", {0.0, 0.0}, 1.0e6 + 0.123},
-                      Case{"far_t0", {1.0e7 + 0.37, -1.0e7 + 0.81}, 0.0},
-                      Case{"far_t1e6", {1.0e7 + 0.37, -1.0e7 + 0.81}, 1.0e6 + 0.123}),
-    [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+INSTANTIATE_TEST_SUITE_P(CamerasAndTimes, GerstnerGpuCpu,
+                         ::testing::Values(Case{"origin_t0", {0.0, 0.0}, 0.0},
+                                           Case{"origin_t1e6", {0.0, 0.0}, 1.0e6 + 0.123},
+                                           Case{"far_t0", {1.0e7 + 0.37, -1.0e7 + 0.81}, 0.0},
+                                           Case{"far_t1e6", {1.0e7 + 0.37, -1.0e7 + 0.81}, 1.0e6 + 0.123}),
+                         [](const ::testing::TestParamInfo<Case>& param) {
+                             return std::string(param.param.name);
+                         });
 
 TEST(GerstnerGpu, SteepnessRequestOfThreeRendersFinite) {
     auto context = gl::createHeadlessContext();

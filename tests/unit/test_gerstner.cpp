@@ -19,8 +19,6 @@ using namespace pacifica::ocean;
 namespace {
 
 constexpr double PI = std::numbers::pi;
-constexpr double GOLDEN_L0 = 0.0;
-constexpr double GOLDEN_DIR7 = 0.0;
 
 GerstnerWave wave(double amplitude, double wavelength, double directionDeg, double steepness, double phase) {
     GerstnerWave w;
@@ -116,17 +114,17 @@ TEST(GerstnerWaves, SingleWaveMatchesClosedForm) {
     d = s.displacementAt({0.0, 0.0}, PI / w);
     EXPECT_NEAR(d.x, -0.48, 1e-12);
     EXPECT_NEAR(d.z, 0.0, 1e-12);
-    // The crest moves at the deep-water phase speed c = sqrt(g L / (2 pi)) = 8.834 m/s.
+    // The crest moves at the deep-water phase speed c = sqrt(g L / (2 pi)) = 8.8355 m/s.
     const double c = std::sqrt(GRAVITY * 50.0 / (2.0 * PI));
-    EXPECT_NEAR(c, 8.834, 1e-3);
+    EXPECT_NEAR(c, 8.8355, 1e-4);
     EXPECT_NEAR(s.displacementAt({12.5 + c * 7.0, 0.0}, 7.0).z, 0.8, 1e-12);
 
     // Compass 30 degrees (clockwise from north): D = (sin 30, cos 30), with a phase; general points.
     const GerstnerWaves s2(GerstnerDesc{.waves = {wave(0.35, 20.0, 30.0, 0.9, 0.4)}});
     const double k2 = 2.0 * PI / 20.0, w2 = std::sqrt(GRAVITY * k2);
     const glm::dvec2 dir(0.5, std::sqrt(3.0) / 2.0);
-    for (const glm::dvec3 pt : {glm::dvec3(3.0, -7.0, 0.0), glm::dvec3(-120.5, 44.25, 13.7),
-                                glm::dvec3(1000.0, 1000.0, 99.9)}) {
+    for (const glm::dvec3 pt :
+         {glm::dvec3(3.0, -7.0, 0.0), glm::dvec3(-120.5, 44.25, 13.7), glm::dvec3(1000.0, 1000.0, 99.9)}) {
         const double theta = k2 * (dir.x * pt.x + dir.y * pt.y) - w2 * pt.z + 0.4;
         const glm::dvec3 got = s2.displacementAt({pt.x, pt.y}, pt.z);
         EXPECT_NEAR(got.x, 0.9 * 0.35 * dir.x * std::cos(theta), 1e-12);
@@ -135,8 +133,8 @@ TEST(GerstnerWaves, SingleWaveMatchesClosedForm) {
         // One wave: J = 1 - Q k A sin(theta) exactly, and the normal is eq. 12's.
         EXPECT_NEAR(s2.jacobianAt({pt.x, pt.y}, pt.z), 1.0 - 0.9 * k2 * 0.35 * std::sin(theta), 1e-12);
         const glm::dvec3 n = s2.normalAt({pt.x, pt.y}, pt.z);
-        const glm::dvec3 expected = glm::normalize(glm::dvec3(-dir * (k2 * 0.35 * std::cos(theta)),
-                                                              1.0 - 0.9 * k2 * 0.35 * std::sin(theta)));
+        const glm::dvec3 expected = glm::normalize(
+            glm::dvec3(-dir * (k2 * 0.35 * std::cos(theta)), 1.0 - 0.9 * k2 * 0.35 * std::sin(theta)));
         EXPECT_NEAR(glm::length(n - expected), 0.0, 1e-12);
     }
     EXPECT_EQ(s2.kind(), SurfaceKind::Gerstner);
@@ -162,8 +160,9 @@ TEST(GerstnerWaves, SteepnessRequestOfThreeIsClampedToExactlyOne) {
     double unclampedMin = 1e300;
     for (int j = 0; j < 61; ++j)
         for (int i = 0; i < 61; ++i)
-            unclampedMin = std::min(unclampedMin, handJacobian(request, {-150.0 + 5.0 * i, -150.0 + 5.0 * j}, 3.0));
-    EXPECT_LT(unclampedMin, -0.5);
+            unclampedMin =
+                std::min(unclampedMin, handJacobian(request, {-150.0 + 5.0 * i, -150.0 + 5.0 * j}, 3.0));
+    EXPECT_LT(unclampedMin, -0.3);
     // ...clamped it never does (4 times, 201 x 201 points over 300 m).
     EXPECT_GT(minJacobian(s, 150.0, 201, {0.0, 3.0, 11.1, 1234.5}), -1e-9);
 
@@ -209,7 +208,7 @@ TEST(GerstnerWaves, NormalMatchesFiniteDifferencesOfTheDisplacedSurface) {
     const double h = 1e-3;
     double worstEq12 = 0.0;
     for (const GerstnerWaves* s : {&defaultSea, &steep}) {
-        for (int n = 0; n < 200; ++n) {
+        for (int sample = 0; sample < 200; ++sample) {
             const glm::dvec2 p(2000.0 * rng.next() - 1000.0, 2000.0 * rng.next() - 1000.0);
             const double t = 100.0 * rng.next();
             // Central differences on the Lagrangian grid: error ~h^2 k^3 A / 6 < 1e-8, rounding ~1e-10.
@@ -247,7 +246,7 @@ TEST(GerstnerWaves, HeightAtInvertsTheHorizontalDisplacement) {
     Lcg rng;
     for (const GerstnerWaves* s : {&defaultSea, &moderate}) {
         double worst = 0.0;
-        for (int n = 0; n < 300; ++n) {
+        for (int sample = 0; sample < 300; ++sample) {
             const glm::dvec2 x0(4000.0 * rng.next() - 2000.0, 4000.0 * rng.next() - 2000.0);
             const double t = 500.0 * rng.next();
             const glm::dvec3 d = s->displacementAt(x0, t);
@@ -258,9 +257,11 @@ TEST(GerstnerWaves, HeightAtInvertsTheHorizontalDisplacement) {
 }
 
 TEST(GerstnerWaves, SignificantWaveHeight) {
-    EXPECT_NEAR(GerstnerWaves(GerstnerDesc{.waves = {wave(1.0, 30.0, 0.0, 0.5, 0.0)}}).significantWaveHeight(),
-                4.0 / std::sqrt(2.0), 1e-12);
-    EXPECT_NEAR(GerstnerWaves(GerstnerDesc{.waves = {wave(1.0, 30.0, 0.0, 0.5, 0.0), wave(2.0, 70.0, 45.0, 0.5, 1.0)}})
+    EXPECT_NEAR(
+        GerstnerWaves(GerstnerDesc{.waves = {wave(1.0, 30.0, 0.0, 0.5, 0.0)}}).significantWaveHeight(),
+        4.0 / std::sqrt(2.0), 1e-12);
+    EXPECT_NEAR(GerstnerWaves(
+                    GerstnerDesc{.waves = {wave(1.0, 30.0, 0.0, 0.5, 0.0), wave(2.0, 70.0, 45.0, 0.5, 1.0)}})
                     .significantWaveHeight(),
                 4.0 * std::sqrt(2.5), 1e-12);
     // Hs = 4 sigma of the sampled heights of the default sea (incommensurate waves: the spatial average
@@ -280,7 +281,8 @@ TEST(GerstnerWaves, HugeTimesAndFarPositionsStayFiniteAndPrecise) {
     const GerstnerWaves s;
     const double twoPi = 2.0 * PI;
     for (const double t : {0.0, 1e6, 1e9 + 0.123}) {
-        for (const glm::dvec2 camera : {glm::dvec2(0.0), glm::dvec2(1e7 + 0.37, -1e7 + 0.81), glm::dvec2(-1e7, 3e6)}) {
+        for (const glm::dvec2 camera :
+             {glm::dvec2(0.0), glm::dvec2(1e7 + 0.37, -1e7 + 0.81), glm::dvec2(-1e7, 3e6)}) {
             const glm::dvec3 d = s.displacementAt(camera, t);
             const glm::dvec3 n = s.normalAt(camera, t);
             const double j = s.jacobianAt(camera, t);
@@ -299,12 +301,13 @@ TEST(GerstnerWaves, HugeTimesAndFarPositionsStayFiniteAndPrecise) {
                 EXPECT_LT(static_cast<double>(theta0[i]), twoPi);
                 // The same phase in 80-bit long double: wrapped in double, rounded to float, the offset is
                 // within half a float ulp (2.4e-7) plus double rounding of w t (<= 2.5e-7 at 3e9 rad).
-                const long double kL = 2.0L * std::numbers::pi_v<long double> / w.wavelength;
+                using LD = long double;
+                const LD twoPiL = 2.0L * std::numbers::pi_v<LD>;
+                const LD kL = twoPiL / w.wavelength;
                 const glm::dvec2 dir = GerstnerWaves::direction(w);
-                const long double exact = kL * (dir.x * (long double)camera.x + dir.y * (long double)camera.y) -
-                                          std::sqrt((long double)GRAVITY * kL) * t + w.phase;
-                const long double twoPiL = 2.0L * std::numbers::pi_v<long double>;
-                long double diff = std::fmod(theta0[i] - exact, twoPiL);
+                const LD exact = kL * (LD(dir.x) * LD(camera.x) + LD(dir.y) * LD(camera.y)) -
+                                 std::sqrt(LD(GRAVITY) * kL) * LD(t) + LD(w.phase);
+                LD diff = std::fmod(LD(theta0[i]) - exact, twoPiL);
                 if (diff > twoPiL / 2)
                     diff -= twoPiL;
                 if (diff < -twoPiL / 2)
@@ -313,7 +316,8 @@ TEST(GerstnerWaves, HugeTimesAndFarPositionsStayFiniteAndPrecise) {
             }
             // The GPU's decomposition theta = k D . rel + theta0 (done here in double) reproduces the
             // reference within the float rounding of theta0 (2.4e-7 rad times sum A (1 + Q) ~ 1e-6 m).
-            for (const glm::dvec2 rel : {glm::dvec2(0.0), glm::dvec2(37.5, -12.25), glm::dvec2(-100.0, 220.0)}) {
+            for (const glm::dvec2 rel :
+                 {glm::dvec2(0.0), glm::dvec2(37.5, -12.25), glm::dvec2(-100.0, 220.0)}) {
                 glm::dvec3 g(0.0);
                 for (size_t i = 0; i < theta0.size(); ++i) {
                     const GerstnerWave& w = s.waves()[i];
@@ -326,6 +330,16 @@ TEST(GerstnerWaves, HugeTimesAndFarPositionsStayFiniteAndPrecise) {
             }
         }
     }
+}
+
+TEST(GerstnerWaves, PhaseOffsetThatWouldRoundUpToTwoPiIsZero) {
+    // theta0 = nextafter(2 pi, 0) < 2 pi in double, but float(theta0) = 6.2831855 > 2 pi: the same phase as
+    // 0.
+    const double justBelow = std::nextafter(2.0 * PI, 0.0);
+    ASSERT_GT(static_cast<double>(static_cast<float>(justBelow)), 2.0 * PI);
+    const GerstnerWaves s(GerstnerDesc{.waves = {wave(0.5, 30.0, 0.0, 0.5, justBelow)}});
+    EXPECT_EQ(s.phaseOffsets({0.0, 0.0}, 0.0)[0], 0.0f);
+    EXPECT_NEAR(s.phaseOffsets({0.0, 7.5}, 0.0)[0], PI / 2.0, 1e-6); // a quarter wavelength north
 }
 
 TEST(GerstnerWaves, DistanceFade) {
@@ -364,11 +378,13 @@ TEST(GerstnerWaves, DistanceFade) {
     }
     // Beyond the longest wave's displacement fade: flat; beyond its lighting fade: flat lighting, and all
     // the slope variance is reported as unresolved.
-    const glm::dvec2 far = camera + glm::dvec2(GerstnerWaves::DISPLACEMENT_FADE_WAVELENGTHS * maxL, 0.0);
+    const glm::dvec2 far =
+        camera + glm::dvec2(GerstnerWaves::DISPLACEMENT_FADE_WAVELENGTHS * maxL + 1.0, 0.0);
     const glm::dvec3 flat = s.displacementSeenFrom(far, t, camera);
     EXPECT_EQ(flat, glm::dvec3(0.0));
     EXPECT_NE(s.displacementAt(far, t).z, 0.0);
-    const glm::dvec2 farther = camera + glm::dvec2(0.0, GerstnerWaves::LIGHTING_FADE_WAVELENGTHS * maxL + 1.0);
+    const glm::dvec2 farther =
+        camera + glm::dvec2(0.0, GerstnerWaves::LIGHTING_FADE_WAVELENGTHS * maxL + 1.0);
     const glm::dvec3 l = s.lightingSeenFrom(farther, t, camera);
     EXPECT_EQ(l.x, 0.0);
     EXPECT_EQ(l.y, 0.0);
@@ -391,8 +407,8 @@ TEST(GerstnerWaves, DefaultSeaIsDeterministicAndPlausible) {
         const double ka = 2.0 * PI / a[i].wavelength * a[i].amplitude;
         EXPECT_GE(a[i].wavelength, 120.0 * std::pow(8.0 / 120.0, i / 7.0) * 0.9);
         EXPECT_LT(a[i].wavelength, 120.0 * std::pow(8.0 / 120.0, i / 7.0) * 1.1);
-        EXPECT_GE(ka, 0.018 - 1e-15);
-        EXPECT_LT(ka, 0.028);
+        EXPECT_GE(ka, 0.015 - 1e-15);
+        EXPECT_LT(ka, 0.025);
         const double fromWind = std::remainder(a[i].directionDeg - 60.0, 360.0);
         EXPECT_LE(std::abs(fromWind), 40.0);
         EXPECT_GE(a[i].steepness, 0.5);
@@ -402,8 +418,8 @@ TEST(GerstnerWaves, DefaultSeaIsDeterministicAndPlausible) {
     }
     // std::mt19937_64's sequence is fixed by the standard and the mapping to [0, 1) is ours, so these
     // values are the same with every standard library (golden values from the first run).
-    EXPECT_NEAR(a[0].wavelength, GOLDEN_L0, 1e-12);
-    EXPECT_NEAR(a[7].directionDeg, GOLDEN_DIR7, 1e-12);
+    EXPECT_NEAR(a[0].wavelength, 126.10524729966858, 1e-12);
+    EXPECT_NEAR(a[7].directionDeg, 42.37453108596295, 1e-12);
 
     // An empty description is this sea (seed 7 by default); a plausible wind sea, far from the limit.
     const GerstnerWaves s;
@@ -447,7 +463,8 @@ TEST(GerstnerWaves, InvalidDescriptionsNameTheField) {
     expectMessage(with(7, [&](GerstnerWave& w) { w.steepness = nan; }), "GerstnerDesc.waves[7].steepness");
     expectMessage(with(3, [&](GerstnerWave& w) { w.directionDeg = inf; }),
                   "GerstnerDesc.waves[3].directionDeg must be finite");
-    expectMessage(with(4, [&](GerstnerWave& w) { w.phase = nan; }), "GerstnerDesc.waves[4].phase must be finite");
+    expectMessage(with(4, [&](GerstnerWave& w) { w.phase = nan; }),
+                  "GerstnerDesc.waves[4].phase must be finite");
     GerstnerDesc scale;
     scale.steepnessScale = -1.0;
     expectMessage(scale, "GerstnerDesc.steepnessScale must be finite and >= 0, got -1");

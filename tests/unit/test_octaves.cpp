@@ -1,10 +1,15 @@
 // Unit tests of the height-map octave surface (GPU Gems 2 §18.2.1): tiling in space and time, unit-RMS
-// maps, analytic slopes, camera-relative parameters far from the origin and at huge times.
+// maps, analytic slopes, camera-relative parameters far from the origin and at huge times; every vertex
+// filter at texel centres and between them, the Trilinear snap band, the combined path's interpolation bound.
 #include "ocean/HeightOctaves.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
 
 using namespace pacifica::ocean;
 
@@ -123,4 +128,253 @@ TEST(HeightOctaves, InvalidDescriptionsNameTheField) {
     d = smallDesc();
     d.displacedOctaves = 9;
     EXPECT_THROW(HeightOctaves{d}, std::invalid_argument);
+}
+
+// --- Vertex filters (GPU Gems 2 §18.2.4, listings 18-2 and 18-3) and the combined path (§18.2.5) ---
+
+namespace {
+
+constexpr VertexFilter ALL_FILTERS[] = {VertexFilter::Nearest, VertexFilter::Bilinear,
+                                        VertexFilter::HardwareBilinear, VertexFilter::Packed4Tap,
+                                        VertexFilter::Trilinear};
+
+/// Largest |second difference| of octave i's level-0 heights along u or v, over all frames.
+double maxSecondDifference(const HeightOctaves& s, int octave) {
+    const int n = s.desc().mapSize;
+    double worst = 0.0;
+    for (int f = 0; f < s.desc().frames; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const double h = s.heightMip(octave, 0, f, x + 1, y);
+                const double hv = s.heightMip(octave, 0, f, x, y + 1);
+                worst = std::max(worst, std::abs(s.heightMip(octave, 0, f, x + 2, y) - 2.0 * h +
+                                                 s.heightMip(octave, 0, f, x, y)));
+                worst = std::max(worst, std::abs(s.heightMip(octave, 0, f, x, y + 2) - 2.0 * hv +
+                                                 s.heightMip(octave, 0, f, x, y)));
+            }
+    return worst;
+}
+
+} // namespace
+
+TEST(HeightOctavesFilters, TexelCentresGiveTheTexelValueExactly) {
+    const HeightOctaves& s = surface();
+    const int n = s.desc().mapSize;
+    for (VertexFilter filter : {VertexFilter::Nearest, VertexFilter::Bilinear, VertexFilter::HardwareBilinear,
+                                VertexFilter::Packed4Tap, VertexFilter::Trilinear}) {
+        for (int k = 0; k < 40; ++k) {
+            const int o = k % s.desc().displacedOctaves, f = (k * 5) % s.desc().frames;
+            const int x = (k * 37) % n, y = (k * 11 + 3) % n;
+            // Texel centre (x + 0.5) / n, whole tiles away, on a slice (integer frame position); LOD 0.
+            const glm::dvec2 u((x + 0.5) / n - 3.0, (y + 0.5) / n + 5.0);
+            EXPECT_EQ(s.sampleHeight(o, filter, u, f, 0.0), double(s.heightMip(o, 0, f, x, y)))
+                << toString(filter) << " octave " << o << " texel " << x << "," << y;
+        }
+    }
+    // Nearest: anywhere inside the texel's square, the texel itself.
+    EXPECT_EQ(s.sampleHeight(0, VertexFilter::Nearest, {(7 + 0.01) / n, (9 + 0.99) / n}, 2.0),
+              double(s.heightMip(0, 0, 2, 7, 9)));
+}
+
+TEST(HeightOctavesFilters, PackedTexelsHoldTheTwoByTwoFootprintWrapped) {
+    const HeightOctaves& s = surface();
+    const int n = s.desc().mapSize;
+    const glm::vec4 t = s.packedTexel(1, 0, 3, n - 1, n - 1);
+    EXPECT_EQ(t.x, s.heightMip(1, 0, 3, n - 1, n - 1));
+    EXPECT_EQ(t.y, s.heightMip(1, 0, 3, 0, n - 1));
+    EXPECT_EQ(t.z, s.heightMip(1, 0, 3, n - 1, 0));
+    EXPECT_EQ(t.w, s.heightMip(1, 0, 3, 0, 0));
+    // Mip level 1 is the 2x2 box average of level 0, rounded to half (relative 2^-11).
+    const double avg = 0.25 * (s.heightMip(1, 0, 3, 4, 6) + s.heightMip(1, 0, 3, 5, 6) +
+                               s.heightMip(1, 0, 3, 4, 7) + s.heightMip(1, 0, 3, 5, 7));
+    EXPECT_NEAR(s.heightMip(1, 1, 3, 2, 3), avg, std::abs(avg) * std::ldexp(1.0, -11) + 1e-7);
+    EXPECT_EQ(s.mipLevels(), 7); // 64 -> 1
+}
+
+TEST(HeightOctavesFilters, BilinearModesAgreeWithinTheWeightQuantisation) {
+    const HeightOctaves& s = surface();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> uni(-2.0, 2.0), fr(0.0, 16.0);
+    const double quantum = std::ldexp(1.0, -HeightOctaves::HARDWARE_WEIGHT_BITS);
+    for (int o = 0; o < s.desc().displacedOctaves; ++o) {
+        // Per unit-RMS map: 2 axes x 2^-8 texel of weight error x the largest texel step.
+        const double bound = 2.0 * quantum * s.maxTexelStep(o);
+        double worstHw = 0.0;
+        for (int k = 0; k < 2000; ++k) {
+            const glm::dvec2 u(uni(rng), uni(rng));
+            const double f = fr(rng);
+            const double bil = s.sampleHeight(o, VertexFilter::Bilinear, u, f);
+            // Listing 18-2 packs losslessly: the identical value.
+            EXPECT_EQ(s.sampleHeight(o, VertexFilter::Packed4Tap, u, f), bil);
+            EXPECT_EQ(s.sampleHeight(o, VertexFilter::Trilinear, u, f, 0.0), bil);
+            worstHw =
+                std::max(worstHw, std::abs(s.sampleHeight(o, VertexFilter::HardwareBilinear, u, f) - bil));
+        }
+        EXPECT_LE(worstHw, bound) << "octave " << o;
+        EXPECT_GT(worstHw, 0.05 * bound) << "octave " << o << ": quantisation not applied?";
+    }
+    // A specific value: sub-texel fraction 0.3 + 2^-10 rounds to 77/256 along x (y at a texel centre).
+    const int n = s.desc().mapSize;
+    const double ax = 0.3 + std::ldexp(1.0, -10);
+    const glm::dvec2 u((10 + 0.5 + ax) / n, (20 + 0.5) / n);
+    const double h0 = s.heightMip(0, 0, 0, 10, 20), h1 = s.heightMip(0, 0, 0, 11, 20);
+    EXPECT_NEAR(s.sampleHeight(0, VertexFilter::HardwareBilinear, u, 0.0), h0 + (h1 - h0) * (77.0 / 256.0),
+                1e-12);
+    EXPECT_NEAR(s.sampleHeight(0, VertexFilter::Bilinear, u, 0.0), h0 + (h1 - h0) * ax, 1e-12);
+    EXPECT_NEAR(s.hardwareBilinearBound(),
+                2.0 * quantum *
+                    (0.55 * s.maxTexelStep(0) + 0.40 * s.maxTexelStep(1) + 0.13 * s.maxTexelStep(2)),
+                1e-12);
+}
+
+TEST(HeightOctavesFilters, TrilinearSnapsOutsideTheBandAndBlendsInside) {
+    const HeightOctaves& s = surface();
+    const int n = s.desc().mapSize;
+    const int o = 1, f = 4, x = 20, y = 42; // x, y even: level-1 position p1 = x / 2 - 0.25 (fraction 0.75)
+    const glm::dvec2 u((x + 0.5) / n, (y + 0.5) / n);
+    const double level0 = s.heightMip(o, 0, f, x, y);
+    auto h1 = [&](int i, int j) { return double(s.heightMip(o, 1, f, i, j)); };
+    const int i1 = x / 2 - 1, j1 = y / 2 - 1;
+    const double bottom = h1(i1, j1) + (h1(i1 + 1, j1) - h1(i1, j1)) * 0.75;
+    const double top = h1(i1, j1 + 1) + (h1(i1 + 1, j1 + 1) - h1(i1, j1 + 1)) * 0.75;
+    const double level1 = bottom + (top - bottom) * 0.75;
+    ASSERT_GT(std::abs(level1 - level0), 1e-3); // the two levels differ here: the blend is visible
+    auto tri = [&](double lod) { return s.sampleHeight(o, VertexFilter::Trilinear, u, f, lod); };
+    EXPECT_EQ(tri(0.0), level0);
+    EXPECT_EQ(tri(0.29), level0);         // below the band: level 0 alone (one fetch)
+    EXPECT_NEAR(tri(0.3), level0, 1e-12); // band edge: weight 0
+    EXPECT_NEAR(tri(0.4), level0 + (level1 - level0) * 0.25, 1e-12);
+    EXPECT_NEAR(tri(0.5), 0.5 * (level0 + level1), 1e-12);
+    EXPECT_NEAR(tri(0.7), level1, 1e-12);                 // band edge: weight 1
+    EXPECT_EQ(tri(0.71), level1);                         // above the band: level 1 alone
+    EXPECT_EQ(tri(1.2), level1);                          // level 1 below its own band
+    EXPECT_EQ(tri(99.0), tri(double(s.mipLevels() - 1))); // clamped to the 1x1 level
+    // LOD from distance: lambda = log2(d * B * size / trilinearLodTexels) = log2(d / tileSize) here
+    // (size 64 = trilinearLodTexels 64).
+    const double tile = s.desc().octaves[o].tileSize;
+    EXPECT_EQ(s.trilinearLod(o, 0.5 * tile), 0.0);
+    EXPECT_NEAR(s.trilinearLod(o, 4.0 * tile), 2.0, 1e-12);
+    EXPECT_NEAR(s.trilinearLod(o, 1.5 * tile), std::log2(1.5), 1e-12);
+    EXPECT_EQ(s.trilinearLod(o, 1e9), double(s.mipLevels() - 1));
+}
+
+TEST(HeightOctavesFilters, PerVertexPathAndCpuQueriesUseTheSelectedFilter) {
+    for (VertexFilter filter : ALL_FILTERS) {
+        HeightOctavesDesc d = smallDesc();
+        d.vertexFilter = filter;
+        const HeightOctaves s(d);
+        const glm::dvec2 cam(1e7 + 0.3, -1e7 + 0.7), p = cam + glm::dvec2(800.0, -1300.0);
+        const double t = 1e6 + 0.125;
+        EXPECT_EQ(s.heightSeenFrom(p, t, cam), s.filteredHeight(p, t, cam, filter)) << toString(filter);
+        // heightAt: seen from right above the point (Trilinear: LOD 0, i.e. Bilinear).
+        const VertexFilter nearFilter = filter == VertexFilter::Trilinear ? VertexFilter::Bilinear : filter;
+        EXPECT_EQ(s.heightAt(p, t), s.filteredHeight(p, t, p, nearFilter)) << toString(filter);
+        EXPECT_EQ(s.displacementSeenFrom(p, t, cam).z, s.heightSeenFrom(p, t, cam));
+        // Any filter stays within the max displacement (convex combinations of texels).
+        EXPECT_LE(std::abs(s.heightSeenFrom(p, t, cam)), s.maxDisplacement());
+    }
+}
+
+TEST(HeightOctavesFilters, CombinedLevelsReachTheGridAndSnapToTheirTexel) {
+    const HeightOctaves& s = surface(); // combinedSize 256, combinedTexel 0.25 m, combinedRadius 40 km
+    EXPECT_EQ(s.combinedLevels(), 12);  // reach 126 * 0.25 * 2^11 = 64.5 km >= 40 km > 32.3 km
+    EXPECT_DOUBLE_EQ(s.combinedReach(0), 31.5);
+    EXPECT_DOUBLE_EQ(s.combinedTexel(11), 512.0);
+    EXPECT_EQ(s.combinedLevelFor({31.5, -31.5}), 0);
+    EXPECT_EQ(s.combinedLevelFor({31.6, 0.0}), 1);
+    EXPECT_EQ(s.combinedLevelFor({0.0, -40000.0}), 11);
+    EXPECT_EQ(s.combinedLevelFor({1e6, 0.0}), 11); // beyond every reach: the last level
+    const glm::dvec2 o = s.combinedOrigin(3, {1e7 + 0.3, -1e7 - 0.7});
+    EXPECT_EQ(o, glm::dvec2(1e7, -1e7 - 2.0)); // floor(camera / 2 m) * 2 m
+}
+
+TEST(HeightOctavesFilters, CombinedPathMatchesThePerVertexPathWithinTheInterpolationBound) {
+    // The combined texture interpolates g = filteredHeight bilinearly from nodes Delta apart. Bilinear =
+    // I_x I_y, so I g - g = I_x (I_y g - g) + (I_x g - g) and |I g - g| <= E_x + E_y, each the error of 1D
+    // linear interpolation along a line: over a segment of length Delta that is at most
+    // Delta / 4 * (range of the slope on it). g = sum_i A_i G_i(B_i x) (convex in time) with G_i bilinear
+    // in texels of w_i = tileSize_i / mapSize metres: along a line its slope changes only at the at most
+    // ceil(Delta / w_i) texel edges crossed, each time by at most S_i / w_i (S_i = the largest second
+    // difference of the map). So |combined - perVertex| <= sum_i Delta / 2 * A_i * ceil(Delta / w_i) * S_i /
+    // w_i (and never more than 2 * maxDisplacement).
+    const HeightOctaves& s = surface();
+    std::vector<double> secondDiff;
+    for (int i = 0; i < s.desc().displacedOctaves; ++i)
+        secondDiff.push_back(maxSecondDifference(s, i));
+    auto bound = [&](double delta) {
+        double e = 0.0;
+        for (int i = 0; i < s.desc().displacedOctaves; ++i) {
+            const OctaveDesc& o = s.desc().octaves[static_cast<size_t>(i)];
+            const double w = o.tileSize / s.desc().mapSize;
+            e += delta / 2.0 * o.amplitude * std::ceil(delta / w) * secondDiff[static_cast<size_t>(i)] / w;
+        }
+        return std::min(e, 2.0 * s.maxDisplacement());
+    };
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> logR(std::log(0.1), std::log(40000.0)),
+        angle(0.0, 6.283185307179586);
+    for (const glm::dvec2 cam : {glm::dvec2(0.0, 0.0), glm::dvec2(1e7 + 0.3, -1e7 + 0.7)}) {
+        for (double t : {0.0, 1e6 + 0.125}) {
+            double worstRatio = 0.0, worstNear = 0.0;
+            for (int k = 0; k < 3000; ++k) {
+                const double r = std::exp(logR(rng)), a = angle(rng);
+                const glm::dvec2 p = cam + r * glm::dvec2(std::cos(a), std::sin(a));
+                const int level = s.combinedLevelFor(p - cam);
+                const double err = std::abs(s.combinedHeight(p, t, cam, VertexFilter::Bilinear) -
+                                            s.filteredHeight(p, t, cam, VertexFilter::Bilinear));
+                const double b = bound(s.combinedTexel(level));
+                ASSERT_LE(err, b + 1e-12) << "r " << r << " level " << level;
+                worstRatio = std::max(worstRatio, err / b);
+                if (level == 0)
+                    worstNear = std::max(worstNear, err);
+            }
+            std::printf("combined vs per-vertex (bilinear): level-0 max error %.3g m (bound %.3g m), "
+                        "max error / bound %.3f\n",
+                        worstNear, bound(s.combinedTexel(0)), worstRatio);
+            EXPECT_GT(worstNear, 0.0); // the combined path is a different approximation: it must show
+        }
+    }
+    // At a node the combined value is the node's per-vertex value (weights 0).
+    const glm::dvec2 cam(1e7 + 0.3, -1e7 + 0.7);
+    const int level = 4;
+    const double texel = s.combinedTexel(level);
+    const glm::dvec2 node =
+        s.combinedOrigin(level, cam) + (glm::dvec2(250.0, 10.0) + (0.5 - s.desc().combinedSize / 2)) * texel;
+    ASSERT_EQ(s.combinedLevelFor(node - cam), level);
+    EXPECT_NEAR(s.combinedHeight(node, 7.0, cam, VertexFilter::Trilinear),
+                s.filteredHeight(node, 7.0, cam, VertexFilter::Trilinear), 1e-9);
+    // CPU queries in combined mode: seen from right above the point.
+    HeightOctavesDesc d = smallDesc();
+    d.combinedDisplacement = true;
+    const HeightOctaves combined(d);
+    EXPECT_EQ(combined.heightAt(node, 7.0), combined.combinedHeight(node, 7.0, node, VertexFilter::Bilinear));
+    EXPECT_EQ(combined.heightSeenFrom(node, 7.0, cam),
+              combined.combinedHeight(node, 7.0, cam, VertexFilter::Bilinear));
+}
+
+TEST(HeightOctavesFilters, InvalidFilterFieldsNameTheField) {
+    auto message = [](const HeightOctavesDesc& d) {
+        try {
+            HeightOctaves bad(d);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    HeightOctavesDesc d = smallDesc();
+    d.trilinearLodTexels = 0.0;
+    EXPECT_NE(message(d).find("trilinearLodTexels"), std::string::npos) << message(d);
+    d = smallDesc();
+    d.combinedSize = 100;
+    EXPECT_NE(message(d).find("combinedSize"), std::string::npos) << message(d);
+    d = smallDesc();
+    d.combinedTexel = -1.0;
+    EXPECT_NE(message(d).find("combinedTexel"), std::string::npos) << message(d);
+    d = smallDesc();
+    d.combinedRadius = 1e12; // would need more than 16 levels
+    EXPECT_NE(message(d).find("combinedRadius"), std::string::npos) << message(d);
+    d = smallDesc();
+    d.vertexFilter = static_cast<VertexFilter>(17);
+    EXPECT_NE(message(d).find("vertexFilter"), std::string::npos) << message(d);
+    EXPECT_STREQ(toString(VertexFilter::Packed4Tap), "packed-4tap");
 }

@@ -137,6 +137,26 @@ void OutputTransaction::writeJsonAtomic(const fs::path& path, const nlohmann::js
     fs::rename(tmp, path);
 }
 
+/// --env: reads an HDR lat-long image and validates it into an EnvironmentMap (alpha dropped). Errors name
+/// the file: "FILE: pixel (x,y) is NaN", "FILE: expected 3 (RGB) or 4 (RGBA) channels, got 1".
+std::shared_ptr<const ocean::EnvironmentMap> loadEnvironment(const fs::path& file) {
+    const capture::Image image = capture::readImage(file); // CaptureError "FILE: ..." if missing/garbled
+    if (image.channels != 3 && image.channels != 4)
+        throw std::runtime_error(file.string() + ": expected 3 (RGB) or 4 (RGBA) channels, got " +
+                                 std::to_string(image.channels));
+    const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+    std::vector<float> rgb(pixels * 3);
+    for (size_t p = 0; p < pixels; ++p)
+        for (size_t c = 0; c < 3; ++c)
+            rgb[p * 3 + c] = image.pixels[p * static_cast<size_t>(image.channels) + c];
+    try {
+        return std::make_shared<const ocean::EnvironmentMap>(
+            ocean::makeEnvironmentMap(image.width, image.height, std::move(rgb)));
+    } catch (const ocean::EnvironmentMapError& e) {
+        throw std::runtime_error(file.string() + ": " + e.problem());
+    }
+}
+
 } // namespace
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -180,6 +200,21 @@ void runReplay(const ReplayOptions& o) {
     if (!std::isfinite(end) || end < start || end > flight.endTime())
         throw UsageError("--end " + std::to_string(end) + " must be within [--start, " +
                          std::to_string(flight.endTime()) + "]");
+    ocean::OceanDesc oceanDesc = o.ocean;
+    nlohmann::json environmentJson = nullptr; // summary.json: null = the procedural sky
+    if (o.environment) {
+        oceanDesc.lighting.environment = loadEnvironment(*o.environment);
+        const glm::dvec3 sun = ocean::environmentBrightestDirection(*oceanDesc.lighting.environment);
+        if (sun.z > 0.0) // a sun below the horizon would leave the sea unlit: keep the default then
+            oceanDesc.lighting.sunDirection = sun;
+        environmentJson = {{"file", o.environment->string()},
+                           {"width", oceanDesc.lighting.environment->width},
+                           {"height", oceanDesc.lighting.environment->height},
+                           {"sun_direction",
+                            {oceanDesc.lighting.sunDirection.x, oceanDesc.lighting.sunDirection.y,
+                             oceanDesc.lighting.sunDirection.z}}};
+    }
+    const std::string environmentName = o.environment ? o.environment->filename().string() : "procedural";
     color::ColorPipeline colour = color::ColorPipeline::fromEnvironmentOr(o.ocioConfig);
     colour.select(o.display, o.view);
     std::unique_ptr<gl::GlContext> context = gl::createHeadlessContext();
@@ -187,7 +222,7 @@ void runReplay(const ReplayOptions& o) {
     // 2. Scene: one ocean entity; the GL resources.
     ecs::Registry registry;
     const ecs::Entity oceanEntity = registry.create();
-    registry.emplace<ocean::OceanComponent>(oceanEntity, ocean::makeOcean(o.ocean));
+    registry.emplace<ocean::OceanComponent>(oceanEntity, ocean::makeOcean(oceanDesc));
     ocean::OceanRenderer renderer;
     gl::FrameTargets targets(o.width, o.height);
     color::Tonemapper tonemapper(colour);
@@ -231,11 +266,10 @@ void runReplay(const ReplayOptions& o) {
                             {"camera_x_m", pose.position.x},     {"camera_y_m", pose.position.y},
                             {"camera_z_m", pose.position.z},     {"camera_heading_deg", pose.headingDeg},
                             {"camera_pitch_deg", pose.pitchDeg}, {"camera_roll_deg", pose.rollDeg}};
-            meta.strings = {{"ocio_config", colour.configDescription()},
-                            {"ocio_display", colour.selectedDisplay()},
-                            {"ocio_view", colour.selectedView()},
-                            {"gl_renderer", context->info().renderer},
-                            {"flight", o.flight.filename().string()}};
+            meta.strings = {
+                {"ocio_config", colour.configDescription()}, {"ocio_display", colour.selectedDisplay()},
+                {"ocio_view", colour.selectedView()},        {"gl_renderer", context->info().renderer},
+                {"flight", o.flight.filename().string()},    {"environment", environmentName}};
             hash = capture::writeExrHalf(out.staged(exrName), o.width, o.height, 4, scene.data(), meta);
             capture::writePng8(out.staged(pngName), o.width, o.height, 4, display.data());
         } else {
@@ -277,6 +311,7 @@ void runReplay(const ReplayOptions& o) {
     summary["ocio"] = {{"config", colour.configDescription()},
                        {"display", colour.selectedDisplay()},
                        {"view", colour.selectedView()}};
+    summary["environment"] = environmentJson;
     summary["size"] = {o.width, o.height};
     summary["fps"] = o.fps;
     summary["start_s"] = start;

@@ -33,6 +33,10 @@ struct ReplayOptions {
     bool progress = true;    ///< progress line when stderr is a TTY
     float fovYDeg = 60.0f;
     ocean::OceanDesc ocean; ///< the ocean to render (surface model, grid, lighting)
+    /// --env: HDR lat-long environment (EXR, 3 or 4 channels) for the sky and reflections; it replaces
+    /// ocean.lighting.environment and points the sun at the map's brightest region. Read and validated
+    /// before anything is written: a missing, unreadable or NaN/Inf/negative file is an error naming it.
+    std::optional<std::filesystem::path> environment;
 };
 
 /// Parses "WxH" (e.g. "640x360"); throws UsageError naming --size.

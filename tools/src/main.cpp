@@ -1,6 +1,6 @@
 // pacifica: the command-line tool. Subcommands:
 //   replay FLIGHT --out DIR [--fps N] [--size WxH] [--start S --end S] [--display D --view V]
-//          [--ocio-config FILE] [--no-images]
+//          [--ocio-config FILE] [--no-images] [--env FILE]
 // Any failure prints "pacifica: error: ..." naming the file/line/option and exits non-zero, leaving no
 // partial output behind.
 #include "OceanOptions.h"
@@ -35,6 +35,10 @@ int main(int argc, char** argv) {
     rp->add_flag("--no-images", noImages, "render and read back but write no images (benchmarking)");
     rp->add_flag("--no-progress", noProgress, "no progress line");
     rp->add_option("--fov", replay.fovYDeg, "vertical field of view, degrees")->default_val(60.0f);
+    std::string environment;
+    CLI::Option* envOpt =
+        rp->add_option("--env", environment,
+                       "HDR lat-long environment EXR for the sky and reflections (default: procedural)");
     pacifica::tools::OceanOptions oceanOptions;
     pacifica::tools::addOceanOptions(*rp, oceanOptions);
 
@@ -63,6 +67,8 @@ int main(int argc, char** argv) {
                 replay.end = end;
             if (ocioOpt->count())
                 replay.ocioConfig = ocioConfig;
+            if (envOpt->count())
+                replay.environment = environment;
             replay.writeImages = !noImages;
             replay.ocean = pacifica::tools::toOceanDesc(oceanOptions);
             replay.progress = !noProgress;

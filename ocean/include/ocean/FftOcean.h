@@ -2,10 +2,11 @@
 // Fourier amplitudes h0(k) evolved with the dispersion relation and transformed to heights, slopes and
 // horizontal ("choppy", seed 002 "direct displacement") displacements by inverse FFT on the GPU.
 //
-//   h(x, t)  = sum_k htilde(k, t) e^{i k.x},   htilde(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t} (eq.
-//   26) D(x, t)  = sum_k -i (k / |k|) htilde(k, t) e^{i k.x} (eq. 29) P        = (x + lambda D_x, y + lambda
-//   D_y, h)                                                       (eq. 30) h0(k)    = (xi_r + i xi_i)
-//   sqrt(P(k) / 2)   (eq. 25) with the Phillips (eq. 40) or JONSWAP spectrum
+//   h(x, t) = sum_k htilde(k, t) e^{i k.x}                                                   (eq. 26)
+//   htilde(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}
+//   D(x, t) = sum_k -i (k / |k|) htilde(k, t) e^{i k.x}                                       (eq. 29)
+//   P = (x + lambda D_x, y + lambda D_y, h)                                                   (eq. 30)
+//   h0(k) = (xi_r + i xi_i) sqrt(P(k) / 2)   (eq. 25) with the Phillips (eq. 40) or JONSWAP spectrum
 //
 // The wave vectors lie on the lattice k = 2 pi (n, m) / L (n, m in [-N/2, N/2)), so the field tiles with
 // period L. This class is the double-precision CPU reference: it evaluates the same spectral components by
@@ -13,8 +14,7 @@
 //
 // STEP BY STEP
 //   1. FftDesc d; d.size = 256; d.tileSize = 500.0; d.windSpeed = 12.0; d.fetch = 200e3;   // or defaults
-//   2. auto sea = std::make_shared<const FftOcean>(d);        // validates, draws h0(k) (deterministic per
-//   seed)
+//   2. auto sea = std::make_shared<const FftOcean>(d);   // validates, draws h0(k) (deterministic per seed)
 //   3. CPU queries: sea->displacementAt(xy, t), normalAt, jacobianAt, heightAt (any t: time loops with T)
 //   4. GPU: FftGpu gpu(sea) (ocean/src/gpu/FftGpu.h); per frame gpu.update(t, camera); gpu.bind(program, ...)
 //
@@ -25,9 +25,12 @@
 //     the lattice, so with them the sum would not be real between grid points, and i k (slopes, eq. 29) is
 //     ambiguous there. With them zeroed, htilde(-k) = conj(htilde(k)) holds for every lattice k, the field
 //     is real everywhere and the CPU sum and the GPU FFT hold exactly the same components.
-//   - Time loops with period T = loopPeriod (Tessendorf §3.3): w(k) = q(k) w0, w0 = 2 pi / T, with the
-//     integer q(k) = max(1, round(sqrt(g |k|) / w0)). So e^{i w t} depends only on wrap(t, T), which is
-//     taken in double before anything else; the phase is q * wrap(t, T) / T turns, reduced mod 1.
+//   - Time loops with period T = loopPeriod (Tessendorf 2001, "looping in time"): w(k) = q(k) w0 with
+//     w0 = 2 pi / T and the integer q(k) = max(1, round(sqrt(g |k|) / w0)). So e^{i w t} depends only on
+//     wrap(t, T), which is taken in double before anything else; the phase is q * wrap(t, T) / T turns,
+//     reduced mod 1.
+//   - P(k) in eq. 25 is F(k) dk^2 / 2 with F = directionalSpectrum() and dk = 2 pi / L, so that the tile's
+//     expected height variance is sum_k F(k) dk^2 ~ integral F d^2k (derivation in FftOcean.cpp).
 //   - amplitudeScale multiplies every h0 (so the variance by amplitudeScale^2).
 #pragma once
 
@@ -51,7 +54,8 @@ struct FftDesc {
     double choppiness = 1.0;     ///< lambda (eq. 30); the surface must not fold at the chosen value
     double amplitudeScale = 1.0; ///< multiplies the spectrum's amplitude (a look knob)
     uint32_t seed = 3;
-    double loopPeriod = 200.0; ///< T: seconds after which the animation repeats exactly (Tessendorf §3.3)
+    double loopPeriod =
+        200.0; ///< T: seconds after which the animation repeats exactly (Tessendorf: looping in time)
 };
 
 /// Directional wavenumber spectrum F(k) of `desc` (without amplitudeScale): the height variance per unit
@@ -71,9 +75,15 @@ public:
     explicit FftOcean(const FftDesc& desc = {});
 
     SurfaceKind kind() const override { return SurfaceKind::Fft; }
-    /// Direct sum over all N^2 components at the point: O(N^2) (about 0.3 ms for N = 256), for tests and
-    /// sparse CPU queries; the GPU evaluates the whole tile by FFT.
+    /// Direct sum over all N^2 components at the point: O(N^2) — about 1 ms for N = 256 on one core (2N +
+    /// q_max sin/cos, then N^2 complex multiply-adds) — for tests and sparse CPU queries; the GPU evaluates
+    /// the whole tile by FFT. Every query throws std::invalid_argument for a non-finite point or time.
     glm::dvec3 displacementAt(const glm::dvec2& xy, double t) const override;
+    /// What the GPU renders: the displacement maps hold the field at the N x N grid points x = (i, j) L / N,
+    /// sampled bilinearly; this evaluates the direct sum at the 4 surrounding grid points and interpolates
+    /// the same way (4 direct sums: O(4 N^2)). displacementAt() is the continuous reference.
+    glm::dvec3 displacementSeenFrom(const glm::dvec2& xy, double t,
+                                    const glm::dvec2& cameraXY) const override;
     /// Normal of the displaced surface: normalize(dP/dx x dP/dy) (eq. 30), O(N^2). It points down where the
     /// surface has folded (jacobianAt < 0).
     glm::dvec3 normalAt(const glm::dvec2& xy, double t) const override;

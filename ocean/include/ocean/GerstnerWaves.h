@@ -104,7 +104,8 @@ public:
     /// What the GPU draws for a camera at cameraXY: displacementAt() with every amplitude A_i multiplied by
     /// f(|xy - cameraXY|, DISPLACEMENT_FADE_WAVELENGTHS * L_i). Equal to displacementAt() within half the
     /// shortest wave's fade distance of the camera.
-    glm::dvec3 displacementSeenFrom(const glm::dvec2& xy, double t, const glm::dvec2& cameraXY) const;
+    glm::dvec3 displacementSeenFrom(const glm::dvec2& xy, double t,
+                                    const glm::dvec2& cameraXY) const override;
     /// The CPU twin of the GLSL modelLighting() for a camera at cameraXY: (dH/dx, dH/dy, variance) — the
     /// Eulerian slope of the surface at the image of grid point xy with every A_i multiplied by
     /// f_i = f(|xy - cameraXY|, LIGHTING_FADE_WAVELENGTHS * L_i) (the fade's own gradient is neglected: it

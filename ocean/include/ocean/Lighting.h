@@ -1,17 +1,161 @@
-// Lighting: how the sea and the sky are lit and fogged (scene-linear HDR). The shading itself lives in
-// ocean/shaders/ocean.frag and sky.glsl; ocean/src/gpu/LightingGpu.cpp sets these values as uniforms.
+// Lighting: how the sea and the sky are lit, fogged and foamed (scene-linear HDR). The shading itself lives
+// in ocean/shaders/sky.glsl (sky, environment map, fog, water body: shared by the sky and sea programs) and
+// ocean/shaders/ocean.frag (the sea); ocean/src/gpu/LightingGpu.cpp sets these values as uniforms and owns
+// the lighting textures. The formulas that decide how much fog and foam there is are defined here once in
+// C++ (fogOpticalDepth, foamAlpha) and repeated expression for expression in GLSL, so the CPU tests check the
+// shader's maths (docs/ARCHITECTURE.md, "Shading").
+//
+// STEP BY STEP (lighting an ocean)
+//   1. OceanDesc desc; desc.lighting.sunDirection = {...};           // everything has working defaults
+//   2. Optional HDR sky: load a lat-long image yourself (the ocean library reads no image files), then
+//        desc.lighting.environment = std::make_shared<const EnvironmentMap>(
+//            makeEnvironmentMap(width, height, std::move(rgb)));     // throws EnvironmentMapError on NaN/Inf
+//      and, for a matching sun, desc.lighting.sunDirection = environmentBrightestDirection(*map).
+//   3. Fog: fogDensity (1/m at sea level) thinning with altitude over fogHeightFalloff metres; foam:
+//      foamHeightStart/foamHeightFull (GPU Gems 2 §18.3) and foamJacobianThreshold (folding waves).
+//   4. validateLighting(desc.lighting) names a bad field; the renderer uploads each texture once.
 #pragma once
+
+#include "ocean/OceanConstants.h"
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 namespace pacifica::ocean {
+
+/// A scene-linear HDR environment in the latitude-longitude (equirectangular) layout, used for the sky
+/// behind the sea and for its reflections.
+///
+/// Layout and orientation (world ENU: x east, y north, z up):
+///   - `rgb` holds width * height * 3 floats, rows top-down, pixels left to right.
+///   - v (row) is elevation: the top edge is +90 degrees (zenith), the middle row the horizon, the bottom
+///     edge -90 degrees: elevation = pi * (0.5 - v) with v = (row + 0.5) / height.
+///   - u (column) is heading, clockwise from north seen from above, like Pose::headingDeg:
+///     heading = 2 pi * (u - 0.5) with u = (column + 0.5) / width. So the CENTRE column looks north (+y),
+///     u = 0.75 looks east (+x), and u = 0 (the left edge, the wrap-around seam) looks south (-y).
+///   This is OpenEXR's lat-long convention (ImfEnvmap.h) with its +z axis (the image centre) turned to
+///   north: reading a panorama from left to right turns the viewer to the right.
+struct EnvironmentMap {
+    int width = 0;
+    int height = 0;
+    std::vector<float> rgb; ///< scene-linear Rec.709, finite and >= 0 (makeEnvironmentMap checks)
+    float intensity = 1.0f; ///< scale applied to every pixel when rendering
+};
+
+/// makeEnvironmentMap() rejected the data. what() is "makeEnvironmentMap(): pixel (x,y) is NaN" (or
+/// "... is infinite", "... is negative (-0.5)", or a size mismatch); problem() is the part after "(): ",
+/// so a tool can print "FILE: pixel (x,y) is NaN". x, y are the column and row (top row 0), or -1.
+class EnvironmentMapError : public std::invalid_argument {
+public:
+    EnvironmentMapError(const std::string& problem, int x = -1, int y = -1)
+        : std::invalid_argument("makeEnvironmentMap(): " + problem), mProblem(problem), mX(x), mY(y) {}
+    const std::string& problem() const { return mProblem; }
+    int x() const { return mX; }
+    int y() const { return mY; }
+
+private:
+    std::string mProblem;
+    int mX, mY;
+};
+
+/// Validates and wraps lat-long RGB data (see EnvironmentMap for the layout). Throws EnvironmentMapError
+/// naming the first bad pixel in row-major order (NaN, infinite or negative: data is rejected, never
+/// silently clamped, so a broken file is noticed), or a size that does not match width * height * 3, or
+/// width/height outside [1, 16384].
+EnvironmentMap makeEnvironmentMap(int width, int height, std::vector<float> rgb);
+
+/// World direction (unit, ENU) of the lat-long coordinate (u, v) in [0,1]^2 (EnvironmentMap convention).
+glm::dvec3 environmentDirection(double u, double v);
+/// Inverse of environmentDirection(): (u, v) of a world direction (u in [0,1), v in [0,1]).
+glm::dvec2 environmentUv(const glm::dvec3& direction);
+/// Direction of the brightest region of the map: the luminance- and solid-angle-weighted mean direction of
+/// the pixels at least half as bright as the brightest one, for pointing LightingDesc::sunDirection at the
+/// sun the map shows. (0, 0, 1) for an all-black map.
+glm::dvec3 environmentBrightestDirection(const EnvironmentMap& map);
+
+/// Cosine-weighted irradiance of a horizontal surface from the map's upper hemisphere (before
+/// EnvironmentMap::intensity), with the sun taken out: every pixel's luminance is capped at 16x the
+/// median luminance of the upper hemisphere, so a photographed sun (the Kerner map's reaches 1678) does
+/// not count twice — the renderer adds the sun itself (LightingDesc::sunDirection/sunIntensity).
+glm::vec3 environmentIrradiance(const EnvironmentMap& map);
+/// The fog colour of an environment-lit scene per azimuth: ENVIRONMENT_HORIZON_BINS bins of heading (bin i
+/// centred on u = (i + 0.5) / bins), each the mean of the band 0..20 degrees above the horizon, with the
+/// same sun cap as environmentIrradiance() and a circular (1,4,6,4,1)/16 smoothing across bins. The fogged
+/// sea and sky then meet the horizon in the map's own haze colour without the sun flaring the fog.
+std::vector<glm::vec3> environmentHorizonBand(const EnvironmentMap& map);
 
 struct LightingDesc {
     glm::dvec3 sunDirection{0.35, -0.55, 0.30}; ///< towards the sun, world ENU (normalised on use)
-    float sunIntensity = 40.0f;         ///< scene-linear radiance scale of the sun's specular highlight
-    float skyIntensity = 1.0f;          ///< scale of the procedural sky radiance
-    float fogDensity = 1.0f / 60000.0f; ///< 1/m
-    float normalTilt = 0.15f;           ///< §18.2.6: tilt of the lighting normal toward the viewer
+    float sunIntensity = 40.0f; ///< scene-linear radiance scale of the sun's specular highlight
+    float skyIntensity = 1.0f;  ///< scale of the procedural sky radiance
+    /// Fog extinction at sea level, 1/m (seed 003: f = e^(-rho d n)). 1/10000 m ~ 39 km meteorological
+    /// visibility (Koschmieder: V = 3.912 / rho) at sea level: a light marine haze. The procedural sky is
+    /// the sky above it (sky.glsl); a photographed sky already holds some haze, to which this adds.
+    float fogDensity = 1.0f / 10000.0f;
+    float normalTilt = 0.15f; ///< §18.2.6: tilt of the lighting normal toward the viewer
+
+    /// HDR lat-long sky for the background and the sea's reflections; null = the procedural sky. Shared
+    /// and immutable: the renderer uploads each map once (mipmapped) and keeps it while it is in use.
+    std::shared_ptr<const EnvironmentMap> environment;
+    /// false: the map lights the sea (reflections, foam) but the sky pass still draws the procedural sky.
+    bool environmentBackground = true;
+
+    /// Scale height H of the fog, metres: rho(z) = fogDensity * e^(-z / H), so the vertical optical depth
+    /// of the whole layer is fogDensity * H (0.06 here: from 15 km the sea shows through 94 % of it
+    /// straight down). 0 = the old uniform distance fog applied to the sea only (the sky stays clear).
+    float fogHeightFalloff = 600.0f;
+    /// Amplitude of the 3D noise modulating the density (0 = smooth fog, 1 = density varies 0..2x).
+    float fogNoise = 0.2f;
+    /// Horizontal wind carrying the fog noise, m/s (east, north).
+    glm::dvec2 fogWind{3.0, 4.0};
+    /// Colour the fog scatters (scene-linear). Empty: the sky's own radiance at the horizon in the view's
+    /// azimuth (procedural or environment), so the fogged horizon meets the sky without a seam. A host that
+    /// draws its own sky (OceanDesc::drawSky = false) sets it to match that sky's horizon.
+    std::optional<glm::vec3> fogColor;
+
+    /// GPU Gems 2 §18.3 foam: alpha = (H - H0) / (Hmax - H0), clamped to [0, 1], H the displaced height
+    /// above mean sea level, metres.
+    float foamHeightStart = 1.6f; ///< H0
+    float foamHeightFull = 3.2f;  ///< Hmax (> H0)
+    /// Foam where the horizontal displacement folds the surface: alpha = (J0 - J) / J0 for Jacobian J < J0
+    /// (Tessendorf 2001 §4.4); only models that provide modelFoamInputs() report J (others: J = 1).
+    float foamJacobianThreshold = 0.3f;
+    float foamIntensity = 1.0f; ///< scales the foam coverage; 0 disables foam
 };
+
+/// Throws std::invalid_argument naming the first bad field ("OceanDesc.lighting.fogDensity must be ...").
+void validateLighting(const LightingDesc& lighting);
+
+/// Optical depth of the fog along a straight segment of length `distance` (metres) from altitude z0 to z1
+/// (metres above mean sea level), for rho(z) = rho0 e^(-z/H) (rho0 = fogDensity, H = fogHeightFalloff):
+///
+///   tau = integral_0^d rho0 e^(-z(s)/H) ds = rho0 H (e^(-z0/H) - e^(-z1/H)) / ((z1 - z0) / d)
+///
+/// (z linear in s), and the horizontal limit z1 -> z0 is rho0 e^(-z0/H) d. Evaluated in the equivalent
+/// form rho0 d e^(-min(z0,z1)/H) (1 - e^(-delta)) / delta, delta = |z1 - z0| / H, whose factors all lie in
+/// [0, 1], so it neither overflows nor cancels (15 km above a 10 m scale height included). H = 0 gives the
+/// uniform rho0 d. The noise factor n of seed 003 multiplies this in the shader. ocean.frag/sky.glsl use
+/// the same expression (fogOpticalDepth in sky.glsl).
+double fogOpticalDepth(double z0, double z1, double distance, const LightingDesc& lighting);
+
+/// GPU Gems 2 §18.3: clamp((height - H0) / (Hmax - H0), 0, 1); a step at H0 when Hmax <= H0. The shader's
+/// foamAlpha() in ocean.frag is the same expression.
+double foamAlpha(double height, const LightingDesc& lighting);
+/// Folding foam: clamp((J0 - J) / J0, 0, 1) (0 when J0 <= 0).
+double foamAlphaJacobian(double jacobian, const LightingDesc& lighting);
+
+/// The tileable fog density noise: size^3 values in [0, 1] (x fastest), mean ~0.5, a sum of 3 octaves of
+/// periodic gradient (Perlin) noise blurred once with the binomial (1,2,1) kernel, wrapping at the edges
+/// (seed 003: noise octaves + Gaussian blur, "a mod operator to wrap the sampling space").
+std::vector<float> makeFogNoise(int size, uint32_t seed = 7);
+/// The tileable foam pattern: size^2 values in [0, 1], a bubbly cellular (Worley) texture: bright cell
+/// walls and speckle over two scales, wrapping at the edges.
+std::vector<float> makeFoamPattern(int size, uint32_t seed = 11);
 
 } // namespace pacifica::ocean

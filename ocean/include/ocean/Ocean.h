@@ -9,7 +9,8 @@
 //        renderer.render(registry, {camera, simTime, hostFbo, width, height});
 //      It draws sky + sea into the host's framebuffer (scene-linear HDR, e.g. RGBA16F with a depth
 //      attachment; reverse-Z: it clears depth to 0 and tests GL_GREATER) and restores the host's GL state
-//      (gl::StateGuard), except the texture bindings of units 0..(octave count - 1), which it leaves changed.
+//      (gl::StateGuard), except texture bindings: units 0..(model units - 1) and 12..14 (lighting) are left
+//      changed, and image unit 0 when the octave combine pass runs.
 //   5. CPU queries (physics, buoyancy, cameras): component.surface->heightAt({x, y}, simTime) matches what
 //      the GPU drew to float precision.
 // Entities without an OceanComponent cost nothing; removing the component frees its GPU resources on the
@@ -18,9 +19,11 @@
 
 #include "engine/Ecs.h"
 #include "engine/Space.h"
+#include "ocean/FftOcean.h"
 #include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"
 #include "ocean/Lighting.h"
+#include "ocean/ProjectedGrid.h"
 #include "ocean/RadialGrid.h"
 #include "ocean/SurfaceModel.h"
 
@@ -32,16 +35,29 @@
 
 namespace pacifica::ocean {
 
+enum class GridKind { Radial, Projected };
+
 struct OceanDesc {
     SurfaceKind model = SurfaceKind::Octaves; ///< which surface model displaces and lights the sea
     HeightOctavesDesc octaves;                ///< used when model == Octaves
     GerstnerDesc gerstner;                    ///< used when model == Gerstner
+    FftDesc fft;                              ///< used when model == Fft
+    GridKind gridKind =
+        GridKind::Radial; ///< camera-centred radial grid (§18.2.3) or projected grid (Johanson)
     RadialGridDesc grid;
+    ProjectedGridDesc projectedGrid;
     LightingDesc lighting;
     bool drawSky = true; ///< false when the host draws its own sky
     /// Drop the sea by curvatureDrop(d) with distance from the camera, so the horizon is where a spherical
     /// Earth puts it (OceanConstants.h). CPU height queries stay in the local (flat) frame.
     bool earthCurvature = true;
+    /// Spread the radial grid over the camera's view sector (+ sectorGuardDeg each side) instead of 360°.
+    bool viewSector = true;
+    double sectorGuardDeg = 4.0;
+    /// §18.2.5: skip the displacement of vertices outside the frustum widened by cullGuardNdc (fraction of
+    /// the half screen) plus the surface's displacement bound.
+    bool cullVertices = true;
+    double cullGuardNdc = 0.1;
 };
 
 /// The component: a description plus the CPU surface model built from it (shared, immutable). CPU queries
@@ -85,8 +101,12 @@ public:
     /// (transform feedback, nothing drawn), in RadialGrid vertex order. For tests and accuracy reports that
     /// compare the GPU with the CPU's double-precision queries. Throws std::invalid_argument if the entity
     /// has no OceanComponent.
-    std::vector<glm::vec3> displacedVertices(ecs::Registry& registry, ecs::Entity ocean,
-                                             const OceanFrame& frame);
+    struct DisplacedVertex {
+        glm::vec3 position; ///< camera-relative displaced position (vRel)
+        glm::vec2 grid;     ///< camera-relative undisplaced grid point (vGrid)
+    };
+    std::vector<DisplacedVertex> displacedVertices(ecs::Registry& registry, ecs::Entity ocean,
+                                                   const OceanFrame& frame);
     const OceanStats& lastStats() const { return mStats; }
 
     struct Gpu;      ///< implementation detail: per-ocean GPU resources

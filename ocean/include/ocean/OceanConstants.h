@@ -14,6 +14,32 @@ inline constexpr float FOG_DENSITY = 1.0f / 60000.0f; ///< 1/m, exponential dist
 inline constexpr int MAX_OCTAVES = 8;
 inline constexpr double EARTH_RADIUS = 6371000.0; ///< m, mean radius (IUGG) for the curvature drop
 
+// Shading (ocean.frag, sky.glsl; docs/ARCHITECTURE.md "Shading").
+inline constexpr double WATER_IOR = 1.33; ///< refractive index of sea water (Snell's law for the view ray)
+/// Extinction of clear ocean water along the refracted view ray, 1/m (R, G, B): pure-water absorption
+/// (Pope & Fry 1997: ~0.3 at 600 nm, 0.06 at 550 nm, 0.01 at 450 nm) plus particle scattering.
+inline constexpr float WATER_EXTINCTION[3] = {0.35f, 0.075f, 0.045f};
+/// Depth of the sunlit layer whose in-scattering the eye sees, metres: a view ray refracted to angle
+/// theta_t crosses it over WATER_SCATTER_DEPTH / cos(theta_t) (seed 004 "dull colour": view dependence).
+inline constexpr float WATER_SCATTER_DEPTH = 8.0f;
+/// Irradiance of the sun on diffuse surfaces (foam) per unit of LightingDesc::sunIntensity, which is
+/// calibrated for the specular glitter: 0.2 puts the default sun at ~6x the procedural sky's irradiance, the
+/// clear-day ratio of direct to diffuse light, so sunlit foam is bright without losing its texture.
+inline constexpr float SUN_DIFFUSE_SCALE = 0.2f;
+inline constexpr float FOAM_ALBEDO = 0.8f;        ///< diffuse reflectance of whitecap foam
+inline constexpr int FOAM_PATTERN_SIZE = 256;     ///< texels per side of the foam texture (mipmapped)
+inline constexpr double FOAM_TILE_NEAR = 7.3;     ///< metres per repeat of the fine foam layer
+inline constexpr double FOAM_TILE_FAR = 23.9;     ///< metres per repeat of the coarse layer (incommensurate)
+inline constexpr double FOAM_DRIFT_SPEED = 0.4;   ///< m/s the two foam layers drift apart (animation)
+inline constexpr int FOG_NOISE_SIZE = 32;         ///< texels per side of the 3D fog noise (mipmapped)
+inline constexpr double FOG_NOISE_TILE = 12000.0; ///< metres per horizontal repeat of the fog noise
+inline constexpr double FOG_NOISE_TILE_VERTICAL = 1500.0; ///< metres per vertical repeat of the fog noise
+/// Height foam fades out between these distances (metres): beyond them the radial grid's vertices are too
+/// far apart to resolve wave crests, so a single high vertex would paint a triangle-sized white patch.
+inline constexpr float FOAM_FADE_START = 1500.0f;
+inline constexpr float FOAM_FADE_END = 5000.0f;
+inline constexpr int ENVIRONMENT_HORIZON_BINS = 64; ///< azimuth bins of environmentHorizonBand() (Lighting.h)
+
 /// How far the sea surface at horizontal distance d from the camera lies below the camera's tangent plane
 /// on a spherical Earth: d^2 / (2 R) (the small-angle sagitta; error < 1e-4 relative up to 100 km). The
 /// vertex shader applies the same drop, so from 15 km the horizon sits 3.9 degrees below eye level.

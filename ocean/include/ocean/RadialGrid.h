@@ -6,8 +6,14 @@
 // The grid gives distance-based tessellation for free. Two additions to the seed: a centre vertex at r = 0
 // (so looking straight down from 0.5 m shows no 10 cm hole) and undisplaced skirt rings far beyond r_max
 // so the sea reaches the horizon at any altitude. Radii are computed in double and stored as float; the
-// grid is drawn camera-relative, so float precision at 40 km is ~4 mm.
+// grid is drawn camera-relative, so float precision at 40 km is ~4 mm. The angular coordinate is a fraction u
+// of the view sector (computeViewSector): all M segments are spent where the camera looks, and no vertex
+// lies behind the camera unless the frustum sees every azimuth (looking down at the nadir).
 #pragma once
+
+#include "engine/Space.h"
+
+#include <glm/glm.hpp>
 
 #include <cstdint>
 #include <stdexcept>
@@ -25,6 +31,21 @@ struct RadialGridDesc {
                          ///< drop (d^2 / 2R, interpolated linearly per triangle) follows the sphere
 };
 
+/// The horizontal directions a camera can see: azimuths center +- halfWidth (radians, atan2(y, x) of the
+/// camera-relative position). halfWidth = pi is the whole circle.
+struct ViewSector {
+    double center = 0.0;
+    double halfWidth = 3.14159265358979323846;
+};
+
+/// The sector of the camera's frustum projected onto the horizontal plane, widened by guardRad on each side
+/// (the whole circle when the frustum contains the nadir or the zenith). Issue: "no vertices behind the
+/// camera".
+ViewSector computeViewSector(const CameraFrame& camera, double guardRad);
+
+/// Camera-relative position of grid vertex (u, r) in `sector`, exactly as ocean.vert computes it.
+glm::dvec2 sectorPosition(double u, double r, const ViewSector& sector, double guardDistance);
+
 class RadialGrid {
 public:
     /// Throws std::invalid_argument naming the bad field (e.g. "RadialGridDesc.rings must be >= 2, got 1").
@@ -36,11 +57,12 @@ public:
     /// r_i = a0 + a1 * i^4 in double (§18.2.3).
     double radius(int ring) const;
 
-    /// Interleaved vertex data, 3 floats per vertex: cos(theta), sin(theta), r. Vertex 0 is the centre.
+    /// Interleaved vertex data, 2 floats per vertex: u in [0, 1] across the view sector, r in metres.
+    /// Vertex 0 is the centre; ring i holds vertices 1 + i (M + 1) ... 1 + i (M + 1) + M.
     const std::vector<float>& vertices() const { return mVertices; }
     /// Triangle list indices (counter-clockwise seen from above, +z up).
     const std::vector<uint32_t>& indices() const { return mIndices; }
-    size_t vertexCount() const { return mVertices.size() / 3; }
+    size_t vertexCount() const { return mVertices.size() / 2; }
 
 private:
     RadialGridDesc mDesc;

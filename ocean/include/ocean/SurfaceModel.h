@@ -34,6 +34,13 @@ public:
     virtual double jacobianAt(const glm::dvec2& xy, double t) const = 0;
     /// Significant wave height Hs = 4 * RMS height (for normalising errors), metres.
     virtual double significantWaveHeight() const = 0;
+    /// What the GPU draws for grid point (x, y) seen from a camera at cameraXY: displacementAt() with any
+    /// distance-dependent level-of-detail fade the model applies (Gerstner fades short waves far away).
+    /// The GPU-vs-CPU tests compare against this.
+    virtual glm::dvec3 displacementSeenFrom(const glm::dvec2& xy, double t,
+                                            const glm::dvec2& /*cameraXY*/) const {
+        return displacementAt(xy, t);
+    }
 
     /// Height of the surface above world point (x, y) (Eulerian): solves x0 + d_xy(x0) = (x, y) by
     /// fixed-point iteration (converges while the surface does not fold), then returns dz(x0).

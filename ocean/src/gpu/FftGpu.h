@@ -42,7 +42,8 @@ public:
     /// Recomputes the maps for time t: 4 compute passes (+ 1 upload the first time). Skipped entirely — no
     /// pass, returns zeros — when the time word equals the last update's (same wrapped time, e.g. t and
     /// t + T, or a paused game), since the maps are then bitwise what they would be. The FFT tile does
-    /// not depend on the camera; cameraWorld is unused here (bind() uses it).
+    /// not depend on the camera; cameraWorld is unused here (bind() uses it). Throws std::invalid_argument
+    /// for a non-finite time (wrapPhase).
     SurfaceGpuStats update(double time, const glm::dvec3& cameraWorld) override;
     /// Sets fft.glsl's uniforms (tile offset fract(camera.xy / L) formed in double) and binds the maps of
     /// the last update() to units firstUnit (displacement) and firstUnit + 1 (slopes). Does no GPU work;

@@ -1,19 +1,67 @@
-// LightingGpu (internal): sets the lighting uniforms (sun, sky, fog, normal tilt) of the sky and sea
-// programs and binds the lighting textures from a given unit on.
+// LightingGpu (internal): the lighting of the sky and sea programs — sets the sun, sky, fog and foam
+// uniforms (sky.glsl, ocean.frag) and owns the lighting textures, each uploaded once and bound from a given
+// unit on:
+//   firstUnit + 0: the environment map (LightingDesc::environment), RGB16F lat-long with a full mip chain,
+//                  uploaded once per map (cached by identity while the map is alive)
+//   firstUnit + 1: the foam pattern (makeFoamPattern), R16F, mipmapped, repeating
+//   firstUnit + 2: the fog noise (makeFogNoise), R16F 3D, mipmapped, repeating
+// Sampler uniforms are always pointed at these units, even when unused, because GL forbids samplers of
+// different types on one unit (the surface model binds 2D arrays from unit 0).
 #pragma once
 
+#include "engine/gl/GlObjects.h"
 #include "ocean/Lighting.h"
+#include "ocean/Ocean.h"
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <vector>
 
 namespace pacifica::ocean {
 
 class LightingGpu {
 public:
+    /// Texture units used from firstUnit on.
+    static constexpr int UNITS_USED = 3;
+
     LightingGpu();
     ~LightingGpu();
     LightingGpu(const LightingGpu&) = delete;
     LightingGpu& operator=(const LightingGpu&) = delete;
-    /// Uniforms for `program`; textures (if any) on units [firstUnit, ...).
+
+    /// Uniforms for `program` and the lighting textures on units [firstUnit, firstUnit + UNITS_USED),
+    /// for one frame: the camera's world position and the time place the foam and fog-noise textures in
+    /// the world (offsets wrapped in double), and the camera height and Earth-curvature term reach the sky
+    /// program (the sea's vertex stage declares the same uniforms, so they are shared there).
+    void bind(unsigned program, int firstUnit, const OceanDesc& desc, const OceanFrame& frame);
+
+    /// Transitional form for callers that do not pass the frame yet: as above with the camera at the world
+    /// origin at t = 0 (foam and fog noise then move with the camera), and uCameraHeight/uCurvature left as
+    /// the caller set them (the sky program then fogs as if the camera were at sea level).
     void bind(unsigned program, int firstUnit, const LightingDesc& lighting);
+
+    /// Texture uploads since the previous call (environment maps, foam, fog noise: each once), for the
+    /// renderer's OceanStats::uploads.
+    int uploadsSinceLastCall();
+
+private:
+    struct Environment {
+        std::weak_ptr<const EnvironmentMap> source;
+        const EnvironmentMap* address = nullptr;
+        gl::Texture texture;
+        int levels = 0;
+        glm::vec3 irradiance{0.0f};         ///< environmentIrradiance(), before intensity
+        std::vector<glm::vec3> horizonBand; ///< environmentHorizonBand(): the fog colour per azimuth
+    };
+    const Environment* environmentFor(const std::shared_ptr<const EnvironmentMap>& map);
+    void ensureNoiseTextures();
+    void setUniforms(unsigned program, int firstUnit, const LightingDesc& lighting, double time,
+                     const glm::dvec3& cameraWorld);
+
+    std::vector<Environment> mEnvironments;
+    gl::Texture mFoam, mFogNoise;
+    int mUploads = 0;
 };
 
 } // namespace pacifica::ocean

@@ -1,17 +1,24 @@
-// OctavesGpu: uploads the octave maps and binds the octave uniforms (GPU Gems 2 §18.2.1).
+// OctavesGpu: uploads the octave maps and the vertex filter's texture, runs the combine pass and binds the
+// octave uniforms (GPU Gems 2 §18.2.1, §18.2.4, §18.2.5; see the header).
 #include "gpu/OctavesGpu.h"
 
 #include <epoxy/gl.h>
 
+#include "engine/gl/Shader.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanShaders.h"
 
 #include <glm/gtc/packing.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace pacifica::ocean {
 namespace {
+
+/// Local size of octaves_combine.comp in x and y.
+constexpr int COMBINE_GROUP = 8;
 
 /// Location of `base[i]` (snprintf: GCC 12 warns falsely about string concatenation here).
 GLint arrayLocation(GLuint prog, const char* base, int i) {
@@ -20,9 +27,76 @@ GLint arrayLocation(GLuint prog, const char* base, int i) {
     return glGetUniformLocation(prog, name);
 }
 
+GLint location(GLuint prog, const char* name) {
+    return glGetUniformLocation(prog, name);
+}
+
+/// The vertex filter's texture: one 2D array for all displaced octaves, layer = octave * frames + frame.
+gl::Texture createFilterMaps(const HeightOctaves& s) {
+    const HeightOctavesDesc& d = s.desc();
+    const int layers = d.displacedOctaves * d.frames;
+    if (layers == 0)
+        return {};
+    if (d.vertexFilter == VertexFilter::Nearest || d.vertexFilter == VertexFilter::Bilinear ||
+        d.vertexFilter == VertexFilter::HardwareBilinear) {
+        // Non-mipmapped R16F copy of the heights: texelFetch (Nearest, Bilinear) or texture() with GL_LINEAR
+        // (HardwareBilinear). One sampler for all octaves: see octaves.glsl uFilterMaps.
+        gl::Texture t = gl::Texture::createArray2D(GL_R16F, d.mapSize, d.mapSize, layers, 1);
+        std::vector<uint16_t> half(static_cast<size_t>(layers) * d.mapSize * d.mapSize);
+        size_t k = 0;
+        for (int o = 0; o < d.displacedOctaves; ++o)
+            for (int f = 0; f < d.frames; ++f)
+                for (int y = 0; y < d.mapSize; ++y)
+                    for (int x = 0; x < d.mapSize; ++x)
+                        half[k++] = glm::packHalf1x16(s.heightMip(o, 0, f, x, y));
+        glTextureSubImage3D(t.id(), 0, 0, 0, 0, d.mapSize, d.mapSize, layers, GL_RED, GL_HALF_FLOAT,
+                            half.data());
+        t.setSampling(GL_LINEAR, GL_LINEAR, GL_REPEAT);
+        return t;
+    }
+    // Listing 18-2's packed maps (HeightOctaves::packedTexel, exact in half: the values are half already);
+    // Trilinear needs the whole chain (glGenerateMipmap would average the packed neighbours wrongly).
+    const int levels = d.vertexFilter == VertexFilter::Trilinear ? s.mipLevels() : 1;
+    gl::Texture t = gl::Texture::createArray2D(GL_RGBA16F, d.mapSize, d.mapSize, layers, levels);
+    for (int level = 0; level < levels; ++level) {
+        const int size = d.mapSize >> level;
+        std::vector<uint16_t> half(static_cast<size_t>(layers) * size * size * 4);
+        size_t k = 0;
+        for (int o = 0; o < d.displacedOctaves; ++o)
+            for (int f = 0; f < d.frames; ++f)
+                for (int y = 0; y < size; ++y)
+                    for (int x = 0; x < size; ++x) {
+                        const glm::vec4 p = s.packedTexel(o, level, f, x, y);
+                        for (int c = 0; c < 4; ++c)
+                            half[k++] = glm::packHalf1x16(p[c]);
+                    }
+        glTextureSubImage3D(t.id(), level, 0, 0, 0, size, size, layers, GL_RGBA, GL_HALF_FLOAT, half.data());
+    }
+    t.setSampling(levels > 1 ? GL_NEAREST_MIPMAP_NEAREST : GL_NEAREST, GL_NEAREST, GL_REPEAT);
+    return t;
+}
+
 } // namespace
 
+const char* OctavesGpu::variantFile(VertexFilter filter) {
+    switch (filter) {
+    case VertexFilter::Nearest:
+        return "octaves_variant_nearest.glsl";
+    case VertexFilter::Bilinear:
+        return nullptr;
+    case VertexFilter::HardwareBilinear:
+        return "octaves_variant_hwbilinear.glsl";
+    case VertexFilter::Packed4Tap:
+        return "octaves_variant_packed4tap.glsl";
+    case VertexFilter::Trilinear:
+        return "octaves_variant_trilinear.glsl";
+    }
+    return nullptr;
+}
+
 OctavesGpu::OctavesGpu(std::shared_ptr<const HeightOctaves> surface) : mSurface(std::move(surface)) {
+    if (!mSurface)
+        throw std::invalid_argument("OctavesGpu::OctavesGpu(): surface is null");
     for (const OctaveMap& map : mSurface->maps()) {
         const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(map.size)));
         gl::Texture t = gl::Texture::createArray2D(GL_RGBA16F, map.size, map.size, map.frames, levels);
@@ -36,18 +110,70 @@ OctavesGpu::OctavesGpu(std::shared_ptr<const HeightOctaves> surface) : mSurface(
         t.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
         mMaps.push_back(std::move(t));
     }
+    mFilterMaps = createFilterMaps(*mSurface);
+
+    const HeightOctavesDesc& d = mSurface->desc();
+    if (d.combinedDisplacement) {
+        mCombined = gl::Texture::createArray2D(GL_R32F, d.combinedSize, d.combinedSize,
+                                               mSurface->combinedLevels(), 1);
+        mCombined.setSampling(GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE);
+        std::vector<gl::ShaderSource> sources;
+        sources.push_back({"<ocean constants>", shaderConstantDefines()});
+        if (const char* variant = variantFile(d.vertexFilter))
+            sources.push_back({variant, std::string(shaderText(variant))});
+        sources.push_back({"octaves.glsl", std::string(shaderText("octaves.glsl"))});
+        sources.push_back({"octaves_combine.comp", std::string(shaderText("octaves_combine.comp"))});
+        mCombineProgram = gl::buildProgram({{gl::ShaderStage::Compute, sources}},
+                                           "octaves combine (" + std::string(toString(d.vertexFilter)) + ")");
+        if (arrayLocation(mCombineProgram.id(), "uCombinedOrigin", HeightOctaves::MAX_COMBINED_LEVELS - 1) <
+            0)
+            throw std::logic_error("OctavesGpu::OctavesGpu(): octaves.glsl's OCTAVES_MAX_COMBINED_LEVELS is "
+                                   "smaller than HeightOctaves::MAX_COMBINED_LEVELS " +
+                                   std::to_string(HeightOctaves::MAX_COMBINED_LEVELS));
+    }
 }
 
-SurfaceGpuStats OctavesGpu::update(double, const glm::dvec3&) {
+std::vector<std::string> OctavesGpu::glslFiles() const {
+    const HeightOctavesDesc& d = mSurface->desc();
+    std::vector<std::string> files;
+    if (d.combinedDisplacement)
+        files.emplace_back("octaves_variant_combined.glsl"); // the vertex shader only reads the result
+    else if (const char* variant = variantFile(d.vertexFilter))
+        files.emplace_back(variant);
+    files.emplace_back("octaves.glsl");
+    return files;
+}
+
+int OctavesGpu::unitsUsed() const {
+    const bool extra = mSurface->desc().combinedDisplacement || mFilterMaps;
+    return static_cast<int>(mMaps.size()) + (extra ? 1 : 0);
+}
+
+SurfaceGpuStats OctavesGpu::update(double time, const glm::dvec3& cameraWorld) {
     SurfaceGpuStats s;
-    if (!mUploadReported) { // the maps were uploaded at construction: count them once, on first use
-        s.uploads = static_cast<int>(mMaps.size());
+    if (!mUploadReported) { // the textures were uploaded at construction: count them once, on first use
+        s.uploads = static_cast<int>(mMaps.size()) + (mFilterMaps ? 1 : 0);
         mUploadReported = true;
     }
+    if (!mCombined)
+        return s;
+    // §18.2.5 pass 1: sum the displaced octaves into the combined levels around this camera.
+    gl::StateGuard guard; // restores the program
+    const GLuint prog = mCombineProgram.id();
+    glUseProgram(prog);
+    bindOctaves(prog, 0, time, cameraWorld, true);
+    glBindImageTexture(0, mCombined.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    const GLuint groups =
+        static_cast<GLuint>((mSurface->desc().combinedSize + COMBINE_GROUP - 1) / COMBINE_GROUP);
+    glDispatchCompute(groups, groups, static_cast<GLuint>(mSurface->combinedLevels()));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    s.computePasses = 1;
     return s;
 }
 
-void OctavesGpu::bind(unsigned prog, int firstUnit, double time, const glm::dvec3& cameraWorld) {
+void OctavesGpu::bindOctaves(unsigned prog, int firstUnit, double time, const glm::dvec3& cameraWorld,
+                             bool filterTexture) {
     const std::vector<OctaveFrameParams> params = mSurface->frameParams(glm::dvec2(cameraWorld), time);
     const int n = static_cast<int>(params.size());
     for (int i = 0; i < n; ++i) {
@@ -63,10 +189,40 @@ void OctavesGpu::bind(unsigned prog, int firstUnit, double time, const glm::dvec
     for (int i = n; i < MAX_OCTAVES; ++i)
         glProgramUniform1i(prog, arrayLocation(prog, "uMaps", i), firstUnit);
     const HeightOctavesDesc& d = mSurface->desc();
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uOctaveCount"), n);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uDisplacedCount"), d.displacedOctaves);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uMapSize"), d.mapSize);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "uFrames"), d.frames);
+    glProgramUniform1i(prog, location(prog, "uOctaveCount"), n);
+    glProgramUniform1i(prog, location(prog, "uDisplacedCount"), d.displacedOctaves);
+    glProgramUniform1i(prog, location(prog, "uMapSize"), d.mapSize);
+    glProgramUniform1i(prog, location(prog, "uFrames"), d.frames);
+
+    // The filter's texture and uniforms (absent from programs whose variant does not declare them: -1).
+    if (filterTexture && mFilterMaps)
+        glBindTextureUnit(static_cast<GLuint>(firstUnit + n), mFilterMaps.id());
+    glProgramUniform1i(prog, location(prog, "uFilterMaps"),
+                       filterTexture && mFilterMaps ? firstUnit + n : firstUnit);
+    glProgramUniform1f(prog, location(prog, "uLodTexels"), static_cast<float>(d.trilinearLodTexels));
+    glProgramUniform1i(prog, location(prog, "uMaxLevel"), mSurface->mipLevels() - 1);
+    glProgramUniform2f(prog, location(prog, "uTrilinearBand"),
+                       static_cast<float>(HeightOctaves::TRILINEAR_BAND_LOW),
+                       static_cast<float>(HeightOctaves::TRILINEAR_BAND_HIGH));
+
+    // The combined levels: origins relative to the camera, formed in double (|origin| < texel_k).
+    glProgramUniform1i(prog, location(prog, "uCombinedSize"), d.combinedSize);
+    glProgramUniform1i(prog, location(prog, "uCombinedLevels"), mSurface->combinedLevels());
+    glProgramUniform1f(prog, location(prog, "uCombinedTexel0"), static_cast<float>(d.combinedTexel));
+    const glm::dvec2 camera(cameraWorld);
+    for (int k = 0; k < mSurface->combinedLevels(); ++k) {
+        const glm::vec2 o(mSurface->combinedOrigin(k, camera) - camera);
+        glProgramUniform2f(prog, arrayLocation(prog, "uCombinedOrigin", k), o.x, o.y);
+    }
+}
+
+void OctavesGpu::bind(unsigned prog, int firstUnit, double time, const glm::dvec3& cameraWorld) {
+    const bool combined = static_cast<bool>(mCombined);
+    bindOctaves(prog, firstUnit, time, cameraWorld, !combined);
+    const int unit = firstUnit + static_cast<int>(mMaps.size());
+    if (combined)
+        glBindTextureUnit(static_cast<GLuint>(unit), mCombined.id());
+    glProgramUniform1i(prog, location(prog, "uCombined"), combined ? unit : firstUnit);
 }
 
 } // namespace pacifica::ocean

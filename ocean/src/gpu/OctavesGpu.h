@@ -1,6 +1,14 @@
 // OctavesGpu (internal): the GPU side of HeightOctaves — the octave maps as RGBA16F 2D array textures
-// (one layer per time slice, mipmapped for lighting), uploaded once, and the per-frame uniforms
-// (octave offsets and frame positions wrapped in double). No per-frame GPU work.
+// (one layer per time slice, mipmapped for lighting); the vertex filter's texture, one 2D array for all
+// displaced octaves (an R16F copy of the heights for Nearest, Bilinear and HardwareBilinear, the packed maps
+// of listing 18-2 for Packed4Tap and their mip chain for Trilinear), all uploaded once; and, with
+// combinedDisplacement, the combine compute pass of GPU Gems 2 §18.2.5 run by update() every frame into an
+// R32F array (one layer per combined level).
+//
+// Texture units from bind()'s firstUnit: [0, octaves) the maps; then one more for the filter texture
+// (per-vertex paths) or the combined texture (combined path). update() uses units [0, octaves]
+// and image unit 0, and leaves them bound (texture bindings are not part of the saved state); it restores
+// the program. bind() must follow update() with the same camera: the combined texture is centred on it.
 #pragma once
 
 #include "gpu/SurfaceGpu.h"
@@ -13,14 +21,30 @@ namespace pacifica::ocean {
 class OctavesGpu final : public SurfaceGpu {
 public:
     explicit OctavesGpu(std::shared_ptr<const HeightOctaves> surface);
-    std::vector<std::string> glslFiles() const override { return {"octaves.glsl"}; }
-    SurfaceGpuStats update(double, const glm::dvec3&) override;
+    /// {"octaves.glsl"} for the default Bilinear path; otherwise the variant file that selects the filter
+    /// (or the combined path) first: an absent feature costs no shader work, and each variant has its own
+    /// program.
+    std::vector<std::string> glslFiles() const override;
+    /// Counts the uploads once (first call); runs the combine pass when enabled (1 compute pass).
+    SurfaceGpuStats update(double time, const glm::dvec3& cameraWorld) override;
     void bind(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld) override;
-    int unitsUsed() const override { return static_cast<int>(mMaps.size()); }
+    int unitsUsed() const override;
+
+    /// The octaves_variant_*.glsl file selecting `filter`, or nullptr for Bilinear (octaves.glsl's default).
+    static const char* variantFile(VertexFilter filter);
 
 private:
+    /// Per-octave uniforms, maps at [firstUnit, firstUnit + octaves), the filter texture (if asked and
+    /// present) at firstUnit + octaves, and the filter's and the combined levels' uniforms.
+    void bindOctaves(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld,
+                     bool filterTexture);
+
     std::shared_ptr<const HeightOctaves> mSurface;
     std::vector<gl::Texture> mMaps;
+    gl::Texture mFilterMaps; ///< R16F heights or packed RGBA16F (Packed4Tap, Trilinear); none without
+                             ///< displaced octaves
+    gl::Texture mCombined;   ///< R32F, combinedSize^2 x combinedLevels (combined path only)
+    gl::Program mCombineProgram;
     bool mUploadReported = false;
 };
 

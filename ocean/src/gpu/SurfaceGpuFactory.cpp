@@ -1,6 +1,7 @@
 // makeSurfaceGpu: the GPU twin of a CPU surface model.
 #include "gpu/SurfaceGpuFactory.h"
 
+#include "gpu/FftGpu.h"
 #include "gpu/GerstnerGpu.h"
 #include "gpu/OctavesGpu.h"
 
@@ -15,6 +16,8 @@ std::unique_ptr<SurfaceGpu> makeSurfaceGpu(const std::shared_ptr<const SurfaceMo
         return std::make_unique<OctavesGpu>(std::static_pointer_cast<const HeightOctaves>(model));
     case SurfaceKind::Gerstner:
         return std::make_unique<GerstnerGpu>(std::static_pointer_cast<const GerstnerWaves>(model));
+    case SurfaceKind::Fft:
+        return std::make_unique<FftGpu>(std::static_pointer_cast<const FftOcean>(model));
     default:
         break;
     }

@@ -1,0 +1,394 @@
+// Lighting: the CPU side of the shading — validation of LightingDesc and environment maps, the fog and
+// foam formulas the shaders mirror (fogOpticalDepth, foamAlpha), and the procedural fog-noise and foam
+// textures, generated once and uploaded by LightingGpu. Plain C++: no GL, no image files.
+#include "ocean/Lighting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+
+namespace pacifica::ocean {
+
+namespace {
+
+constexpr double PI = std::numbers::pi;
+
+std::string pixelName(int x, int y) {
+    return "pixel (" + std::to_string(x) + "," + std::to_string(y) + ")";
+}
+
+/// 32-bit integer hash (Wellons' "lowbias32"): decorrelates lattice coordinates for noise and cells.
+uint32_t hash32(uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352dU;
+    x ^= x >> 15;
+    x *= 0x846ca68bU;
+    x ^= x >> 16;
+    return x;
+}
+
+uint32_t hash4(int a, int b, int c, uint32_t seed) {
+    return hash32(static_cast<uint32_t>(a) * 0x9E3779B1U ^
+                  hash32(static_cast<uint32_t>(b) * 0x85EBCA77U ^ hash32(static_cast<uint32_t>(c) ^ seed)));
+}
+
+double unit(uint32_t h) { // [0, 1)
+    return static_cast<double>(h >> 8) / 16777216.0;
+}
+
+int wrapIndex(int i, int n) {
+    const int m = i % n;
+    return m < 0 ? m + n : m;
+}
+
+/// Periodic 3D gradient noise (Perlin 2002 "Improving noise": quintic fade, 12 edge gradients), period
+/// `period` lattice cells on every axis, evaluated at lattice coordinates p.
+double periodicPerlin(const glm::dvec3& p, int period, uint32_t seed) {
+    static constexpr double G[12][3] = {{1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0},
+                                        {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
+                                        {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}};
+    const glm::dvec3 f = glm::floor(p);
+    const glm::dvec3 r = p - f;
+    const glm::dvec3 w = r * r * r * (r * (r * 6.0 - 15.0) + 10.0);
+    const int x0 = static_cast<int>(f.x), y0 = static_cast<int>(f.y), z0 = static_cast<int>(f.z);
+    double corner[8];
+    for (int c = 0; c < 8; ++c) {
+        const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+        const uint32_t h =
+            hash4(wrapIndex(x0 + dx, period), wrapIndex(y0 + dy, period), wrapIndex(z0 + dz, period), seed) %
+            12U;
+        corner[c] = G[h][0] * (r.x - dx) + G[h][1] * (r.y - dy) + G[h][2] * (r.z - dz);
+    }
+    auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
+    const double x00 = lerp(corner[0], corner[1], w.x), x10 = lerp(corner[2], corner[3], w.x);
+    const double x01 = lerp(corner[4], corner[5], w.x), x11 = lerp(corner[6], corner[7], w.x);
+    return lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z);
+}
+
+/// Distances to the nearest and second-nearest feature point of a periodic jittered grid of cells x cells
+/// points over the unit square (Worley 1996), in cell units.
+glm::dvec2 periodicWorley(const glm::dvec2& uv, int cells, uint32_t seed) {
+    const glm::dvec2 p = uv * static_cast<double>(cells);
+    const glm::dvec2 c = glm::floor(p);
+    double f1 = 1e9, f2 = 1e9;
+    for (int j = -2; j <= 2; ++j)
+        for (int i = -2; i <= 2; ++i) {
+            const int cx = static_cast<int>(c.x) + i, cy = static_cast<int>(c.y) + j;
+            const uint32_t h = hash4(wrapIndex(cx, cells), wrapIndex(cy, cells), 0, seed);
+            const glm::dvec2 feature(cx + 0.1 + 0.8 * unit(h), cy + 0.1 + 0.8 * unit(hash32(h)));
+            const double d = glm::length(feature - p);
+            if (d < f1) {
+                f2 = f1;
+                f1 = d;
+            } else if (d < f2) {
+                f2 = d;
+            }
+        }
+    return {f1, f2};
+}
+
+double smoothstep(double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+void normaliseToUnitRange(std::vector<float>& v) {
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    const float a = *lo, span = std::max(*hi - *lo, 1e-12f);
+    for (float& x : v)
+        x = (x - a) / span;
+}
+
+} // namespace
+
+EnvironmentMap makeEnvironmentMap(int width, int height, std::vector<float> rgb) {
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw EnvironmentMapError("size " + std::to_string(width) + "x" + std::to_string(height) +
+                                  " is outside [1, 16384] x [1, 16384]");
+    const size_t expected = static_cast<size_t>(width) * static_cast<size_t>(height) * 3;
+    if (rgb.size() != expected)
+        throw EnvironmentMapError("expected " + std::to_string(expected) +
+                                  " floats (width * height * 3), got " + std::to_string(rgb.size()));
+    for (size_t i = 0; i < rgb.size(); ++i) {
+        const float v = rgb[i];
+        if (std::isfinite(v) && v >= 0.0f)
+            continue;
+        const int pixel = static_cast<int>(i / 3);
+        const int x = pixel % width, y = pixel / width;
+        if (std::isnan(v))
+            throw EnvironmentMapError(pixelName(x, y) + " is NaN", x, y);
+        if (std::isinf(v))
+            throw EnvironmentMapError(pixelName(x, y) + " is infinite", x, y);
+        char value[32];
+        std::snprintf(value, sizeof value, "%g", static_cast<double>(v));
+        throw EnvironmentMapError(pixelName(x, y) + " is negative (" + value + ")", x, y);
+    }
+    EnvironmentMap map;
+    map.width = width;
+    map.height = height;
+    map.rgb = std::move(rgb);
+    return map;
+}
+
+glm::dvec3 environmentDirection(double u, double v) {
+    const double heading = 2.0 * PI * (u - 0.5);
+    const double elevation = PI * (0.5 - v);
+    return {std::sin(heading) * std::cos(elevation), std::cos(heading) * std::cos(elevation),
+            std::sin(elevation)};
+}
+
+glm::dvec2 environmentUv(const glm::dvec3& direction) {
+    const glm::dvec3 d = glm::normalize(direction);
+    double u = std::atan2(d.x, d.y) / (2.0 * PI) + 0.5;
+    if (u >= 1.0)
+        u -= 1.0;
+    return {u, 0.5 - std::asin(std::clamp(d.z, -1.0, 1.0)) / PI};
+}
+
+glm::dvec3 environmentBrightestDirection(const EnvironmentMap& map) {
+    auto luminance = [&](size_t p) {
+        return 0.2126 * map.rgb[p * 3] + 0.7152 * map.rgb[p * 3 + 1] + 0.0722 * map.rgb[p * 3 + 2];
+    };
+    const size_t n = static_cast<size_t>(map.width) * static_cast<size_t>(map.height);
+    double peak = 0.0;
+    for (size_t p = 0; p < n; ++p)
+        peak = std::max(peak, luminance(p));
+    if (peak <= 0.0)
+        return {0.0, 0.0, 1.0};
+    glm::dvec3 sum(0.0);
+    for (size_t p = 0; p < n; ++p) {
+        const double l = luminance(p);
+        if (l < 0.5 * peak)
+            continue;
+        const double u = (static_cast<double>(p % map.width) + 0.5) / map.width;
+        const double v = (static_cast<double>(p / map.width) + 0.5) / map.height;
+        const double solidAngle = std::cos(PI * (0.5 - v)); // lat-long texel area ~ cos(elevation)
+        sum += l * solidAngle * environmentDirection(u, v);
+    }
+    return glm::length(sum) > 0.0 ? glm::normalize(sum) : glm::dvec3(0.0, 0.0, 1.0);
+}
+
+namespace {
+
+double pixelLuminance(const float* p) {
+    return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+}
+
+/// The sun cap: 16x the median luminance of the upper hemisphere (sampled on a sparse grid: exact order
+/// statistics of a million pixels are not needed for a cap).
+double sunCap(const EnvironmentMap& m) {
+    std::vector<double> l;
+    const int rows = std::max(m.height / 2, 1);
+    const int step = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(rows) * m.width / 65536.0)));
+    for (int y = 0; y < rows; y += step)
+        for (int x = 0; x < m.width; x += step)
+            l.push_back(pixelLuminance(&m.rgb[(static_cast<size_t>(y) * m.width + x) * 3]));
+    std::nth_element(l.begin(), l.begin() + static_cast<std::ptrdiff_t>(l.size() / 2), l.end());
+    return std::max(16.0 * l[l.size() / 2], 1e-6);
+}
+
+/// Pixel (x, y) with its luminance capped at `cap` (hue kept).
+glm::dvec3 cappedPixel(const EnvironmentMap& m, int x, int y, double cap) {
+    const float* p = &m.rgb[(static_cast<size_t>(y) * m.width + x) * 3];
+    const double l = pixelLuminance(p);
+    const double k = l > cap ? cap / l : 1.0;
+    return k * glm::dvec3(p[0], p[1], p[2]);
+}
+
+} // namespace
+
+glm::vec3 environmentIrradiance(const EnvironmentMap& m) {
+    // E = sum L sin(e) dOmega over the upper hemisphere; lat-long texel dOmega = (2 pi / w)(pi / h) cos(e).
+    const double cap = sunCap(m);
+    const double dOmega = (2.0 * PI / m.width) * (PI / m.height);
+    glm::dvec3 e(0.0);
+    for (int y = 0; y < m.height; ++y) {
+        const double elevation = PI * (0.5 - (y + 0.5) / m.height);
+        if (elevation <= 0.0)
+            break;
+        const double w = std::sin(elevation) * std::cos(elevation) * dOmega;
+        for (int x = 0; x < m.width; ++x)
+            e += w * cappedPixel(m, x, y, cap);
+    }
+    return glm::vec3(e);
+}
+
+std::vector<glm::vec3> environmentHorizonBand(const EnvironmentMap& m) {
+    const int bins = ENVIRONMENT_HORIZON_BINS;
+    const double cap = sunCap(m);
+    std::vector<glm::dvec3> sum(bins, glm::dvec3(0.0));
+    std::vector<double> weight(bins, 0.0);
+    for (int y = 0; y < m.height; ++y) {
+        const double elevation = PI * (0.5 - (y + 0.5) / m.height);
+        if (elevation < 0.0 || elevation > 20.0 * PI / 180.0)
+            continue;
+        const double w = std::cos(elevation);
+        for (int x = 0; x < m.width; ++x) {
+            const int bin = std::min(bins - 1, static_cast<int>((x + 0.5) / m.width * bins));
+            sum[bin] += w * cappedPixel(m, x, y, cap);
+            weight[bin] += w;
+        }
+    }
+    // A map too small to have a row in the band: use the row nearest the horizon.
+    if (weight[0] == 0.0) {
+        const int y = std::clamp(m.height / 2 - 1, 0, m.height - 1);
+        for (int x = 0; x < m.width; ++x) {
+            const int bin = std::min(bins - 1, static_cast<int>((x + 0.5) / m.width * bins));
+            sum[bin] += cappedPixel(m, x, y, cap);
+            weight[bin] += 1.0;
+        }
+    }
+    std::vector<glm::dvec3> mean(bins);
+    for (int i = 0; i < bins; ++i) // bins without a column (maps narrower than 64): nearest filled bin
+        mean[i] = weight[i] > 0.0 ? sum[i] / weight[i] : glm::dvec3(-1.0);
+    for (int i = 0; i < bins; ++i)
+        for (int d = 1; mean[i].x < 0.0 && d < bins; ++d)
+            if (weight[(i + d) % bins] > 0.0)
+                mean[i] = sum[(i + d) % bins] / weight[(i + d) % bins];
+    std::vector<glm::vec3> out(bins);
+    static constexpr double K[5] = {1.0 / 16, 4.0 / 16, 6.0 / 16, 4.0 / 16, 1.0 / 16};
+    for (int i = 0; i < bins; ++i) {
+        glm::dvec3 c(0.0);
+        for (int k = -2; k <= 2; ++k)
+            c += K[k + 2] * mean[((i + k) % bins + bins) % bins];
+        out[i] = glm::vec3(c);
+    }
+    return out;
+}
+
+void validateLighting(const LightingDesc& l) {
+    auto finite = [](double v) { return std::isfinite(v); };
+    auto fail = [](const std::string& what) { throw std::invalid_argument("OceanDesc.lighting." + what); };
+    if (!finite(l.sunDirection.x) || !finite(l.sunDirection.y) || !finite(l.sunDirection.z) ||
+        glm::length(l.sunDirection) < 1e-9)
+        fail("sunDirection must be finite and non-zero");
+    if (!finite(l.sunIntensity) || l.sunIntensity < 0.0f)
+        fail("sunIntensity must be finite and >= 0, got " + std::to_string(l.sunIntensity));
+    if (!finite(l.skyIntensity) || l.skyIntensity < 0.0f)
+        fail("skyIntensity must be finite and >= 0, got " + std::to_string(l.skyIntensity));
+    if (!finite(l.fogDensity) || l.fogDensity < 0.0f)
+        fail("fogDensity must be finite and >= 0, got " + std::to_string(l.fogDensity));
+    if (!finite(l.normalTilt) || l.normalTilt < 0.0f || l.normalTilt > 1.0f)
+        fail("normalTilt must be in [0, 1], got " + std::to_string(l.normalTilt));
+    if (l.environment) {
+        const EnvironmentMap& e = *l.environment;
+        if (e.width < 1 || e.height < 1 ||
+            e.rgb.size() != static_cast<size_t>(e.width) * static_cast<size_t>(e.height) * 3)
+            fail("environment must come from makeEnvironmentMap() (size and data disagree)");
+        if (!finite(e.intensity) || e.intensity < 0.0f)
+            fail("environment->intensity must be finite and >= 0, got " + std::to_string(e.intensity));
+    }
+    if (!finite(l.fogHeightFalloff) || l.fogHeightFalloff < 0.0f)
+        fail("fogHeightFalloff must be finite and >= 0 (0 = uniform), got " +
+             std::to_string(l.fogHeightFalloff));
+    if (!finite(l.fogNoise) || l.fogNoise < 0.0f || l.fogNoise > 1.0f)
+        fail("fogNoise must be in [0, 1], got " + std::to_string(l.fogNoise));
+    if (!finite(l.fogWind.x) || !finite(l.fogWind.y))
+        fail("fogWind must be finite");
+    if (l.fogColor && (!finite(l.fogColor->r) || !finite(l.fogColor->g) || !finite(l.fogColor->b) ||
+                       l.fogColor->r < 0.0f || l.fogColor->g < 0.0f || l.fogColor->b < 0.0f))
+        fail("fogColor must be finite and >= 0");
+    if (!finite(l.foamHeightStart) || !finite(l.foamHeightFull) || l.foamHeightFull <= l.foamHeightStart)
+        fail("foamHeightFull must be finite and > foamHeightStart, got " + std::to_string(l.foamHeightFull) +
+             " <= " + std::to_string(l.foamHeightStart));
+    if (!finite(l.foamJacobianThreshold))
+        fail("foamJacobianThreshold must be finite");
+    if (!finite(l.foamIntensity) || l.foamIntensity < 0.0f)
+        fail("foamIntensity must be finite and >= 0, got " + std::to_string(l.foamIntensity));
+}
+
+double fogOpticalDepth(double z0, double z1, double distance, const LightingDesc& l) {
+    const double rho0 = l.fogDensity, h = l.fogHeightFalloff;
+    if (h <= 0.0)
+        return rho0 * distance;
+    // rho0 H (e^(-z0/H) - e^(-z1/H)) / ((z1 - z0) / d) = rho0 d e^(-min/H) (1 - e^(-delta)) / delta.
+    const double delta = std::abs(z1 - z0) / h;
+    const double shape = delta < 1e-4 ? 1.0 - delta * (0.5 - delta / 6.0) : -std::expm1(-delta) / delta;
+    return rho0 * distance * std::exp(-std::min(z0, z1) / h) * shape;
+}
+
+double foamAlpha(double height, const LightingDesc& l) {
+    const double h0 = l.foamHeightStart, hmax = l.foamHeightFull;
+    if (hmax <= h0)
+        return height >= h0 ? 1.0 : 0.0;
+    return std::clamp((height - h0) / (hmax - h0), 0.0, 1.0);
+}
+
+double foamAlphaJacobian(double jacobian, const LightingDesc& l) {
+    const double j0 = l.foamJacobianThreshold;
+    if (j0 <= 0.0)
+        return 0.0;
+    return std::clamp((j0 - jacobian) / j0, 0.0, 1.0);
+}
+
+std::vector<float> makeFogNoise(int size, uint32_t seed) {
+    if (size < 4)
+        throw std::invalid_argument("makeFogNoise(): size must be >= 4, got " + std::to_string(size));
+    const size_t n = static_cast<size_t>(size);
+    std::vector<float> v(n * n * n);
+    // Octaves with lattice periods dividing `size` so the sum tiles; weights halve per octave.
+    const int periods[3] = {std::max(size / 8, 1), std::max(size / 4, 2), std::max(size / 2, 4)};
+    const double weights[3] = {1.0, 0.5, 0.25};
+    for (int z = 0; z < size; ++z)
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                double s = 0.0;
+                for (int o = 0; o < 3; ++o) {
+                    const double k = static_cast<double>(periods[o]) / size;
+                    // A fractional shift per octave keeps the octaves' lattice zeros from coinciding.
+                    const glm::dvec3 shift(0.31 + 0.17 * o, 0.53 + 0.11 * o, 0.71 + 0.07 * o);
+                    s += weights[o] * periodicPerlin(glm::dvec3(x, y, z) * k + shift, periods[o],
+                                                     seed + 101U * static_cast<uint32_t>(o));
+                }
+                v[(static_cast<size_t>(z) * n + y) * n + x] = static_cast<float>(s);
+            }
+    // Binomial (1,2,1)/4 blur along each axis, wrapping (seed 003: Pascal-triangle blur, mod-wrapped).
+    std::vector<float> tmp(v.size());
+    const size_t stride[3] = {1, n, n * n};
+    for (int axis = 0; axis < 3; ++axis) {
+        for (size_t i = 0; i < v.size(); ++i) {
+            const size_t coord = (i / stride[axis]) % n;
+            const size_t base = i - coord * stride[axis];
+            const size_t prev = base + ((coord + n - 1) % n) * stride[axis];
+            const size_t next = base + ((coord + 1) % n) * stride[axis];
+            tmp[i] = 0.25f * v[prev] + 0.5f * v[i] + 0.25f * v[next];
+        }
+        v.swap(tmp);
+    }
+    normaliseToUnitRange(v);
+    return v;
+}
+
+std::vector<float> makeFoamPattern(int size, uint32_t seed) {
+    if (size < 8)
+        throw std::invalid_argument("makeFoamPattern(): size must be >= 8, got " + std::to_string(size));
+    std::vector<float> v(static_cast<size_t>(size) * size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const glm::dvec2 uv((x + 0.5) / size, (y + 0.5) / size);
+            // Patchiness: periodic fBm (4 octaves of gradient noise) — where foam is dense and where thin.
+            double patches = 0.0, amplitude = 1.0;
+            for (int o = 0; o < 4; ++o) {
+                const int period = 4 << o;
+                patches += amplitude * periodicPerlin(glm::dvec3(uv * static_cast<double>(period), 0.5 + o),
+                                                      period, seed + 31U * static_cast<uint32_t>(o));
+                amplitude *= 0.55;
+            }
+            patches = std::clamp(0.5 + 0.9 * patches, 0.0, 1.0);
+            // Bubbles: dark centres of cellular (Worley 1996) cells at two scales with bright films between
+            // them; the larger bubbles open holes in the foam.
+            const glm::dvec2 large = periodicWorley(uv, 14, seed + 7U);
+            const glm::dvec2 small = periodicWorley(uv, 40, seed + 8U);
+            const double hole = 1.0 - smoothstep(0.12, 0.42, large.x);
+            const double film =
+                smoothstep(0.15, 0.55, small.x) * 0.6 + 0.4 * (1.0 - smoothstep(0.0, 0.1, small.y - small.x));
+            const double s = patches * (0.3 + 0.7 * film) * (1.0 - 0.75 * hole);
+            v[static_cast<size_t>(y) * size + x] = static_cast<float>(s);
+        }
+    normaliseToUnitRange(v);
+    return v;
+}
+
+} // namespace pacifica::ocean

@@ -1,0 +1,344 @@
+// GL tests of the shading (sky.glsl, sky.frag, ocean.frag, LightingGpu) through the public render path:
+// an ecs::Registry with an OceanComponent drawn by OceanRenderer into FrameTargets, cameras from
+// makeCameraFrame. Checks: the HDR environment map shows in the sky with the documented lat-long
+// orientation (north at the map's centre column) and changes the picture; frames stay finite; the height
+// falloff fog lets the sea show from 15 km while a fog of the same sea-level density without falloff hides
+// it, and at 0.5 m the horizon is the fog colour; foam brightens the sea; each lighting texture is uploaded
+// once and counted. Set PACIFICA_LIGHTING_DUMP=DIR to write every rendered frame as a scene-linear EXR.
+#include "engine/Ecs.h"
+#include "engine/Space.h"
+#include "engine/capture/Capture.h"
+#include "engine/gl/FrameTargets.h"
+#include "engine/gl/GlContext.h"
+#include "engine/gl/Shader.h"
+#include "gpu/LightingGpu.h"
+#include "ocean/Lighting.h"
+#include "ocean/Ocean.h"
+#include "ocean/OceanConstants.h"
+#include "ocean/OceanShaders.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+using namespace pacifica;
+
+namespace {
+
+constexpr int W = 192;
+constexpr int H = 108;
+constexpr float FOV_Y = static_cast<float>(std::numbers::pi / 3.0); // 60 degrees
+
+std::filesystem::path sharedDir() {
+    if (const char* env = std::getenv("PACIFICA_SHARED_DIR"); env && *env)
+        return env;
+    return std::filesystem::path(__FILE__).parent_path() / "../../../shared";
+}
+
+/// The Kerner lat-long map (1024 x 512, RGBA half) as an EnvironmentMap, read once.
+std::shared_ptr<const ocean::EnvironmentMap> kerner() {
+    static const std::shared_ptr<const ocean::EnvironmentMap> map = [] {
+        const capture::Image img = capture::readImage(sharedDir() / "data/hdr/KernerEnvLatLong.exr");
+        std::vector<float> rgb(static_cast<size_t>(img.width) * img.height * 3);
+        for (size_t p = 0; p < rgb.size() / 3; ++p)
+            for (size_t c = 0; c < 3; ++c)
+                rgb[p * 3 + c] = img.pixels[p * static_cast<size_t>(img.channels) + c];
+        return std::make_shared<const ocean::EnvironmentMap>(
+            ocean::makeEnvironmentMap(img.width, img.height, std::move(rgb)));
+    }();
+    return map;
+}
+
+Pose pose(double z, double headingDeg, double pitchDeg) {
+    Pose p;
+    p.position = {1234.5, -678.9, z};
+    p.headingDeg = headingDeg;
+    p.pitchDeg = pitchDeg;
+    return p;
+}
+
+/// One ocean (its own registry and renderer) rendered with a given lighting.
+class Scene {
+public:
+    explicit Scene(const ocean::OceanDesc& desc) : mTargets(W, H) {
+        mEntity = mRegistry.create();
+        mRegistry.emplace<ocean::OceanComponent>(mEntity, ocean::makeOcean(desc));
+    }
+    /// RGBA scene-linear pixels, rows top-down.
+    std::vector<float> render(const ocean::LightingDesc& lighting, const Pose& p, const std::string& name) {
+        ocean::validateLighting(lighting);
+        mRegistry.get<ocean::OceanComponent>(mEntity).desc.lighting = lighting;
+        ocean::OceanFrame frame;
+        frame.camera = makeCameraFrame(p, FOV_Y, static_cast<float>(W) / H, 0.05f);
+        frame.time = 17.25;
+        frame.targetFramebuffer = mTargets.sceneFramebuffer().id();
+        frame.width = W;
+        frame.height = H;
+        mRenderer.render(mRegistry, frame);
+        std::vector<float> rgba;
+        mTargets.readScene(rgba);
+        if (const char* dump = std::getenv("PACIFICA_LIGHTING_DUMP"); dump && *dump)
+            capture::writeExrHalf(std::filesystem::path(dump) / (name + ".exr"), W, H, 4, rgba.data(), {});
+        mLastCamera = frame.camera;
+        return rgba;
+    }
+    const CameraFrame& lastCamera() const { return mLastCamera; }
+
+private:
+    ecs::Registry mRegistry;
+    ecs::Entity mEntity;
+    ocean::OceanRenderer mRenderer;
+    gl::FrameTargets mTargets;
+    CameraFrame mLastCamera;
+};
+
+class LightingGl : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
+    static void TearDownTestSuite() { context.reset(); }
+    static inline std::unique_ptr<gl::GlContext> context;
+};
+
+/// Every value finite and >= 0 (scene-linear radiance).
+void expectFinite(const std::vector<float>& rgba, const std::string& what) {
+    size_t bad = 0;
+    for (float v : rgba)
+        bad += (!std::isfinite(v) || v < 0.0f) ? 1 : 0;
+    EXPECT_EQ(bad, 0u) << what << ": non-finite or negative values";
+}
+
+/// Mean RGB over rows [r0, r1).
+glm::dvec3 meanRows(const std::vector<float>& rgba, int r0, int r1) {
+    glm::dvec3 sum(0.0);
+    for (int y = r0; y < r1; ++y)
+        for (int x = 0; x < W; ++x) {
+            const float* p = &rgba[(static_cast<size_t>(y) * W + x) * 4];
+            sum += glm::dvec3(p[0], p[1], p[2]);
+        }
+    return sum / static_cast<double>((r1 - r0) * W);
+}
+
+double luminance(const glm::dvec3& c) {
+    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+/// Largest per-channel relative difference |a - b| / b.
+double relativeDifference(const glm::dvec3& a, const glm::dvec3& b) {
+    return std::max({std::abs(a.r - b.r) / b.r, std::abs(a.g - b.g) / b.g, std::abs(a.b - b.b) / b.b});
+}
+
+/// World direction of pixel (x, y) (rows top-down), as sky.frag computes it.
+glm::dvec3 pixelDirection(const CameraFrame& cam, int x, int y) {
+    const glm::vec4 ndc((x + 0.5f) / W * 2.0f - 1.0f, 1.0f - (y + 0.5f) / H * 2.0f, 0.5f, 1.0f);
+    const glm::vec4 p = glm::inverse(cam.viewProj) * ndc;
+    return glm::normalize(glm::dvec3(p) / static_cast<double>(p.w));
+}
+
+/// The map at level 0 with GL's bilinear filtering (u repeats, v clamps).
+glm::dvec3 sampleMap(const ocean::EnvironmentMap& m, const glm::dvec3& dir) {
+    const glm::dvec2 uv = ocean::environmentUv(dir);
+    const double fx = uv.x * m.width - 0.5, fy = std::clamp(uv.y * m.height - 0.5, 0.0, m.height - 1.0);
+    const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+    const double ax = fx - x0, ay = fy - y0;
+    auto texel = [&](int x, int y) {
+        x = ((x % m.width) + m.width) % m.width;
+        y = std::clamp(y, 0, m.height - 1);
+        const float* p = &m.rgb[(static_cast<size_t>(y) * m.width + x) * 3];
+        return glm::dvec3(p[0], p[1], p[2]);
+    };
+    return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), ax),
+                    glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), ax), ay);
+}
+
+ocean::LightingDesc noFog() {
+    ocean::LightingDesc l;
+    l.fogDensity = 0.0f;
+    return l;
+}
+
+} // namespace
+
+TEST_F(LightingGl, EnvironmentMapShowsInTheSkyWithTheDocumentedOrientation) {
+    Scene scene({});
+    // Looking toward the map's sun (heading ~73 deg, elevation ~21 deg), a little upward: the upper rows are
+    // sky, trees and the sun.
+    const ocean::EnvironmentMap& map = *kerner();
+    const Pose p = pose(30.0, 60.0, 12.0);
+    ocean::LightingDesc procedural = noFog();
+    ocean::LightingDesc withMap = noFog();
+    withMap.environment = kerner();
+    const std::vector<float> a = scene.render(procedural, p, "env_procedural");
+    const std::vector<float> b = scene.render(withMap, p, "env_kerner");
+    const CameraFrame cam = scene.lastCamera();
+    expectFinite(a, "procedural sky");
+    expectFinite(b, "environment map");
+
+    const int skyRows = H * 2 / 5; // elevations ~ +18..+42 degrees: sky only
+    const double la = luminance(meanRows(a, 0, skyRows)), lb = luminance(meanRows(b, 0, skyRows));
+    EXPECT_GT(std::abs(lb - la), 0.1 * la) << "sky mean: procedural " << la << ", environment " << lb;
+
+    // Without fog the sky pixels are the map at level 0: compare with a CPU bilinear lookup in the
+    // direction of each pixel. A wrong convention (mirrored, rotated, upside down) fails on the textured
+    // map. Tolerance: half-float storage (5e-4) and llvmpipe's 8-bit bilinear weights, which at the sharp
+    // edges of branches and the sun (1678 next to 0.3) move a few pixels far more; so the test is on the
+    // 90th percentile of the per-pixel relative error.
+    std::vector<double> errors;
+    for (int y = 0; y < skyRows; y += 3)
+        for (int x = 0; x < W; x += 3) {
+            const glm::dvec3 expected = sampleMap(map, pixelDirection(cam, x, y));
+            const float* px = &b[(static_cast<size_t>(y) * W + x) * 4];
+            errors.push_back(relativeDifference(glm::dvec3(px[0], px[1], px[2]) + 1e-3, expected + 1e-3));
+        }
+    std::sort(errors.begin(), errors.end());
+    EXPECT_LT(errors[errors.size() * 9 / 10], 0.03) << "median " << errors[errors.size() / 2];
+
+    // The brightest direction of the map is its sun: the pixel looking there is far brighter than the sky.
+    const glm::dvec3 sun = ocean::environmentBrightestDirection(map);
+    const glm::vec4 clip = cam.viewProj * glm::vec4(glm::vec3(sun), 0.0f);
+    const int sx = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * W);
+    const int sy = static_cast<int>((0.5f - clip.y / clip.w * 0.5f) * H);
+    ASSERT_TRUE(sx >= 0 && sx < W && sy >= 0 && sy < H) << sx << "," << sy;
+    EXPECT_GT(b[(static_cast<size_t>(sy) * W + sx) * 4 + 1], 50.0f);
+}
+
+TEST_F(LightingGl, EnvironmentLightsTheSeaAndStaysFiniteFromEveryAltitude) {
+    Scene scene({});
+    ocean::LightingDesc l;
+    l.environment = kerner();
+    l.sunDirection = ocean::environmentBrightestDirection(*kerner());
+    for (const auto& [z, pitch] : {std::pair{0.5, 0.0}, {40.0, -10.0}, {3000.0, -35.0}, {15000.0, -60.0}}) {
+        const std::vector<float> rgba =
+            scene.render(l, pose(z, 40.0, pitch), "env_sea_" + std::to_string(int(z)));
+        expectFinite(rgba, "environment at z = " + std::to_string(z));
+        const double sea = luminance(meanRows(rgba, H * 3 / 4, H));
+        EXPECT_GT(sea, 0.005) << z;
+        EXPECT_LT(sea, 5.0) << z;
+    }
+}
+
+TEST_F(LightingGl, HeightFalloffFogThinsWithAltitude) {
+    // A calm sea (2 % of the default octave heights) so that from 0.5 m the horizon is water kilometres
+    // away, not the crest of the next wave; a dense, shallow sea fog: 1/20 m at sea level (80 m visibility)
+    // with a 6 m scale height, whose whole column is only rho0 H = 0.3 thick.
+    ocean::OceanDesc calm;
+    for (ocean::OctaveDesc& o : calm.octaves.octaves)
+        o.amplitude *= 0.02;
+    Scene scene(calm);
+    ocean::LightingDesc l;
+    l.fogDensity = 1.0f / 20.0f;
+    l.fogHeightFalloff = 6.0f;
+    l.fogNoise = 0.0f;
+    l.fogColor = glm::vec3(0.55f, 0.60f, 0.66f);
+    const glm::dvec3 fog(*l.fogColor);
+
+    // 15 km looking down 30 degrees: the rows below the centre see the sea at 30..60 degrees depression,
+    // through optical depth 0.3 / sin(30 deg) = 0.6 or less: transmittance >= 0.55, so the dark sea shows.
+    const std::vector<float> high = scene.render(l, pose(15000.0, 0.0, -30.0), "fog_15km");
+    expectFinite(high, "fog from 15 km");
+    const glm::dvec3 seaHigh = meanRows(high, H / 2, H);
+    EXPECT_GT(relativeDifference(seaHigh, fog), 0.05)
+        << "sea " << seaHigh.r << " " << seaHigh.g << " " << seaHigh.b;
+    EXPECT_LT(luminance(seaHigh), 0.8 * luminance(fog));
+
+    // The same sea-level density without the falloff (uniform fog): 30 km of it, the sea is pure fog colour.
+    ocean::LightingDesc uniform = l;
+    uniform.fogHeightFalloff = 0.0f;
+    const glm::dvec3 seaUniform =
+        meanRows(scene.render(uniform, pose(15000.0, 0.0, -30.0), "fog_15km_uniform"), H / 2, H);
+    EXPECT_LT(relativeDifference(seaUniform, fog), 0.01);
+
+    // 0.5 m looking at the horizon: the two rows straddling it (0.55 degrees each: the sea from 50 m out, the
+    // sky just above) are the fog colour within a few percent.
+    const std::vector<float> low = scene.render(l, pose(0.5, 0.0, 0.0), "fog_0m5");
+    expectFinite(low, "fog from 0.5 m");
+    const glm::dvec3 horizon = meanRows(low, H / 2 - 1, H / 2 + 1);
+    EXPECT_LT(relativeDifference(horizon, fog), 0.03)
+        << "horizon " << horizon.r << " " << horizon.g << " " << horizon.b;
+}
+
+TEST_F(LightingGl, FoamAboveTheHeightThresholdBrightensTheSea) {
+    Scene scene({});
+    ocean::LightingDesc everywhere = noFog();
+    everywhere.foamHeightStart = -10.0f; // every wave is above H0 (and above Hmax): alpha = 1
+    everywhere.foamHeightFull = -9.0f;
+    ocean::LightingDesc nowhere = noFog();
+    nowhere.foamHeightStart = 10.0f; // no wave reaches H0
+    nowhere.foamHeightFull = 11.0f;
+    const Pose p = pose(20.0, 200.0, -40.0); // sun behind: no glitter in view
+    const std::vector<float> a = scene.render(everywhere, p, "foam_everywhere");
+    const std::vector<float> b = scene.render(nowhere, p, "foam_nowhere");
+    expectFinite(a, "foam everywhere");
+    expectFinite(b, "no foam");
+    // Rows whose sea is within the foam fade-out distance (< 1.5 km: depression > 0.8 deg).
+    const double la = luminance(meanRows(a, H / 3, H)), lb = luminance(meanRows(b, H / 3, H));
+    EXPECT_GT(la, 3.0 * lb) << "foam " << la << " vs water " << lb;
+}
+
+TEST_F(LightingGl, LightingTexturesAreUploadedOnceAndCounted) {
+    const gl::Program program =
+        gl::buildProgram({{gl::ShaderStage::Vertex,
+                           {{"<ocean constants>", ocean::shaderConstantDefines()},
+                            {"sky.vert", std::string(ocean::shaderText("sky.vert"))}}},
+                          {gl::ShaderStage::Fragment,
+                           {{"<ocean constants>", ocean::shaderConstantDefines()},
+                            {"sky.glsl", std::string(ocean::shaderText("sky.glsl"))},
+                            {"sky.frag", std::string(ocean::shaderText("sky.frag"))}}}},
+                         "lighting test sky");
+    ocean::LightingGpu lighting;
+    ocean::OceanDesc desc;
+    ocean::OceanFrame frame;
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 2); // foam pattern + fog noise, once
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 0); // nothing new
+    desc.lighting.environment = kerner();
+    lighting.bind(program.id(), 12, desc, frame);
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 1); // the map, once for two binds
+    auto copy = std::make_shared<const ocean::EnvironmentMap>(*kerner());
+    desc.lighting.environment = copy; // another map object: uploaded again
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 1);
+}
+
+// The optional third function of the surface-model contract: a model that defines MODEL_HAS_FOAM_INPUTS and
+// modelFoamInputs() gets its (height, Jacobian) used by ocean.frag; without the #define the sea program
+// still links and never calls it.
+TEST_F(LightingGl, ModelFoamInputsAreOptionalInTheContract) {
+    const std::string model = R"(
+uniform float uStubJacobian;
+vec3 modelDisplacement(vec2 rel) { return vec3(0.0); }
+vec3 modelLighting(vec2 rel) { return vec3(0.0); }
+)";
+    const std::string foamInputs = R"(
+#define MODEL_HAS_FOAM_INPUTS
+vec2 modelFoamInputs(vec2 rel) { return vec2(0.0, uStubJacobian); }
+)";
+    auto build = [&](const std::string& modelText) {
+        const gl::ShaderSource constants{"<ocean constants>", ocean::shaderConstantDefines()};
+        return gl::buildProgram({{gl::ShaderStage::Vertex,
+                                  {constants,
+                                   {"stub.glsl", modelText},
+                                   {"ocean.vert", std::string(ocean::shaderText("ocean.vert"))}}},
+                                 {gl::ShaderStage::Fragment,
+                                  {constants,
+                                   {"stub.glsl", modelText},
+                                   {"sky.glsl", std::string(ocean::shaderText("sky.glsl"))},
+                                   {"ocean.frag", std::string(ocean::shaderText("ocean.frag"))}}}},
+                                "lighting test stub sea");
+    };
+    const gl::Program with = build(model + foamInputs);
+    const gl::Program without = build(model);
+    // The stub's Jacobian uniform is live only when ocean.frag calls modelFoamInputs().
+    EXPECT_GE(with.uniformLocation("uStubJacobian"), 0);
+    EXPECT_GE(with.uniformLocation("uFoamJacobianThreshold"), 0);
+    EXPECT_EQ(without.uniformLocation("uStubJacobian"), -1) << "modelFoamInputs used without the #define";
+    EXPECT_GE(without.uniformLocation("uFoamHeightStart"), 0);
+}

@@ -1,0 +1,280 @@
+// Unit tests of the shading's CPU side (ocean/include/ocean/Lighting.h), which the shaders mirror: the
+// environment-map validation and lat-long convention, the fog optical depth with height falloff against a
+// numerical integral, the §18.3 foam alpha, LightingDesc validation, and the procedural textures (range,
+// tiling). No GL.
+#include "ocean/Lighting.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+using namespace pacifica::ocean;
+
+namespace {
+
+std::vector<float> grey(int w, int h, float v = 0.5f) {
+    return std::vector<float>(static_cast<size_t>(w) * h * 3, v);
+}
+
+/// Composite Simpson's rule of rho0 e^(-z(s)/H) along the straight segment, z linear in s.
+double integratedDepth(double z0, double z1, double d, const LightingDesc& l, int intervals = 200000) {
+    auto rho = [&](double s) {
+        const double z = z0 + (z1 - z0) * s / d;
+        return l.fogHeightFalloff > 0.0f ? l.fogDensity * std::exp(-z / l.fogHeightFalloff)
+                                         : static_cast<double>(l.fogDensity);
+    };
+    const double h = d / intervals;
+    double sum = rho(0.0) + rho(d);
+    for (int i = 1; i < intervals; ++i)
+        sum += rho(i * h) * (i % 2 ? 4.0 : 2.0);
+    return sum * h / 3.0;
+}
+
+LightingDesc fog(double rho0, double scaleHeight) {
+    LightingDesc l;
+    l.fogDensity = static_cast<float>(rho0);
+    l.fogHeightFalloff = static_cast<float>(scaleHeight);
+    return l;
+}
+
+} // namespace
+
+// ---- environment map ---------------------------------------------------------------------------------
+
+TEST(EnvironmentMap, AcceptsFiniteNonNegativeData) {
+    const EnvironmentMap m = makeEnvironmentMap(8, 4, grey(8, 4));
+    EXPECT_EQ(m.width, 8);
+    EXPECT_EQ(m.height, 4);
+    EXPECT_EQ(m.rgb.size(), 8u * 4u * 3u);
+    EXPECT_EQ(m.intensity, 1.0f);
+}
+
+TEST(EnvironmentMap, NamesTheFirstNanPixel) {
+    std::vector<float> rgb = grey(8, 4);
+    rgb[(2 * 8 + 5) * 3 + 1] = std::numeric_limits<float>::quiet_NaN(); // x = 5, y = 2, green
+    rgb[(3 * 8 + 0) * 3 + 0] = std::numeric_limits<float>::quiet_NaN(); // a later one
+    try {
+        makeEnvironmentMap(8, 4, rgb);
+        FAIL() << "NaN accepted";
+    } catch (const EnvironmentMapError& e) {
+        EXPECT_STREQ(e.what(), "makeEnvironmentMap(): pixel (5,2) is NaN");
+        EXPECT_EQ(e.problem(), "pixel (5,2) is NaN");
+        EXPECT_EQ(e.x(), 5);
+        EXPECT_EQ(e.y(), 2);
+    }
+    // It is a std::invalid_argument for callers that do not know the type.
+    EXPECT_THROW(makeEnvironmentMap(8, 4, rgb), std::invalid_argument);
+}
+
+TEST(EnvironmentMap, RejectsInfinityNegativesAndWrongSizes) {
+    std::vector<float> rgb = grey(4, 2);
+    rgb[3 * 3 + 2] = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(
+        try { makeEnvironmentMap(4, 2, rgb); } catch (const EnvironmentMapError& e) {
+            EXPECT_EQ(e.problem(), "pixel (3,0) is infinite");
+            throw;
+        },
+        EnvironmentMapError);
+    rgb = grey(4, 2);
+    rgb[4 * 3] = -0.5f;
+    EXPECT_THROW(
+        try { makeEnvironmentMap(4, 2, rgb); } catch (const EnvironmentMapError& e) {
+            EXPECT_EQ(e.problem(), "pixel (0,1) is negative (-0.5)");
+            throw;
+        },
+        EnvironmentMapError);
+    EXPECT_THROW(makeEnvironmentMap(4, 2, grey(4, 3)), EnvironmentMapError);
+    EXPECT_THROW(makeEnvironmentMap(0, 2, {}), EnvironmentMapError);
+}
+
+TEST(EnvironmentMap, LatLongConvention) {
+    // Centre column looks north, u = 0.75 east, the seam (u = 0) south; top row up.
+    auto near = [](glm::dvec3 a, glm::dvec3 b) { return glm::length(a - b) < 1e-12; };
+    EXPECT_TRUE(near(environmentDirection(0.5, 0.5), {0, 1, 0}));
+    EXPECT_TRUE(near(environmentDirection(0.75, 0.5), {1, 0, 0}));
+    EXPECT_TRUE(near(environmentDirection(0.25, 0.5), {-1, 0, 0}));
+    EXPECT_TRUE(near(environmentDirection(0.0, 0.5), {0, -1, 0}));
+    EXPECT_NEAR(environmentDirection(0.3, 0.0).z, 1.0, 1e-12);
+    EXPECT_NEAR(environmentDirection(0.3, 1.0).z, -1.0, 1e-12);
+    // Round trip away from the poles.
+    for (double u : {0.01, 0.2, 0.5, 0.77, 0.99})
+        for (double v : {0.05, 0.3, 0.5, 0.9}) {
+            const glm::dvec2 uv = environmentUv(environmentDirection(u, v));
+            EXPECT_NEAR(uv.x, u, 1e-12);
+            EXPECT_NEAR(uv.y, v, 1e-12);
+        }
+}
+
+TEST(EnvironmentMap, BrightestDirectionFindsTheSun) {
+    const int w = 64, h = 32;
+    std::vector<float> rgb = grey(w, h, 0.2f);
+    const int sx = 40, sy = 10; // heading ~45 deg east of north, elevation ~33.75 deg
+    for (int c = 0; c < 3; ++c)
+        rgb[(static_cast<size_t>(sy) * w + sx) * 3 + c] = 1000.0f;
+    const glm::dvec3 d = environmentBrightestDirection(makeEnvironmentMap(w, h, rgb));
+    const glm::dvec3 expected = environmentDirection((sx + 0.5) / w, (sy + 0.5) / h);
+    EXPECT_GT(glm::dot(d, expected), std::cos(1e-9 + 1e-6));
+}
+
+// ---- fog ---------------------------------------------------------------------------------------------
+
+TEST(Fog, OpticalDepthMatchesTheNumericalIntegral) {
+    struct Ray {
+        const char* name;
+        double z0, z1, d;
+    };
+    // Horizontal at 0.5 m to 40 km; a steep climb; from 15 km down to the sea at 30 degrees (30 km); a
+    // shallow descent from 3 km; and the reverse of the 15 km ray (the formula is symmetric).
+    const Ray rays[] = {{"horizontal", 0.5, 0.5, 40000.0},
+                        {"steep", 0.5, 3000.0, 3500.0},
+                        {"15km_down_30deg", 15000.0, 0.0, 30000.0},
+                        {"shallow_descent", 3000.0, 1.0, 60000.0},
+                        {"sea_up_to_15km", 0.0, 15000.0, 30000.0}};
+    for (const LightingDesc& l : {fog(1.0 / 8000.0, 1000.0), fog(1.0 / 20.0, 6.0), fog(1e-4, 80.0)})
+        for (const Ray& r : rays) {
+            const double closed = fogOpticalDepth(r.z0, r.z1, r.d, l);
+            const double numeric = integratedDepth(r.z0, r.z1, r.d, l);
+            EXPECT_NEAR(closed, numeric, 1e-6 * numeric)
+                << r.name << " H=" << l.fogHeightFalloff << " rho0=" << l.fogDensity;
+        }
+}
+
+TEST(Fog, HorizontalLimitAndUniformFog) {
+    const LightingDesc l = fog(1.0 / 8000.0, 1000.0);
+    // z1 -> z0: rho0 e^(-z0/H) d, continuous across the series/closed-form switch.
+    const double limit = l.fogDensity * std::exp(-0.5 / 1000.0) * 40000.0;
+    EXPECT_NEAR(fogOpticalDepth(0.5, 0.5, 40000.0, l), limit, 1e-12 * limit);
+    const double below = fogOpticalDepth(0.5, 0.5 + 0.0999, 40000.0, l); // delta < 1e-4: series
+    const double above = fogOpticalDepth(0.5, 0.5 + 0.1001, 40000.0, l); // delta > 1e-4: expm1
+    EXPECT_NEAR(below, above, 1e-6 * limit);
+    EXPECT_LT(above, below);
+    // H = 0: uniform fog, rho0 d whatever the altitudes.
+    const LightingDesc u = fog(1.0 / 8000.0, 0.0);
+    EXPECT_DOUBLE_EQ(fogOpticalDepth(15000.0, 0.0, 30000.0, u), 30000.0 * u.fogDensity);
+}
+
+TEST(Fog, ThinsWithAltitudeAndNeverOverflows) {
+    // A 6 m-deep sea fog: opaque along the surface, nearly transparent looking down from 15 km.
+    const LightingDesc l = fog(1.0 / 20.0, 6.0);
+    EXPECT_GT(fogOpticalDepth(0.5, 0.5, 200.0, l), 9.0);
+    const double fromAbove = fogOpticalDepth(15000.0, 0.0, 30000.0, l);
+    EXPECT_NEAR(fromAbove, 0.6, 1e-3); // rho0 H / sin(30 deg)
+    // 15 km above a 1 m scale height: e^(-15000) underflows, e^(+15000) would overflow; the result is
+    // finite and equals rho0 H d / |dz| (everything comes from the bottom of the path).
+    const LightingDesc thin = fog(1.0 / 20.0, 1.0);
+    const double t = fogOpticalDepth(15000.0, 0.0, 30000.0, thin);
+    EXPECT_TRUE(std::isfinite(t));
+    EXPECT_NEAR(t, thin.fogDensity * 1.0 * 2.0, 1e-12);
+    EXPECT_EQ(fogOpticalDepth(15000.0, 14000.0, 5000.0, thin), 0.0);
+}
+
+// ---- foam --------------------------------------------------------------------------------------------
+
+TEST(Foam, HeightAlphaRampsFromStartToFull) {
+    LightingDesc l;
+    l.foamHeightStart = 1.0f;
+    l.foamHeightFull = 3.0f;
+    EXPECT_EQ(foamAlpha(1.0, l), 0.0);
+    EXPECT_DOUBLE_EQ(foamAlpha(2.0, l), 0.5);
+    EXPECT_DOUBLE_EQ(foamAlpha(2.5, l), 0.75);
+    EXPECT_EQ(foamAlpha(3.0, l), 1.0);
+    EXPECT_EQ(foamAlpha(10.0, l), 1.0);   // beyond Hmax: clamped
+    EXPECT_EQ(foamAlpha(-5.0, l), 0.0);   // below H0
+    l.foamHeightFull = l.foamHeightStart; // degenerate: a step (validateLighting rejects it)
+    EXPECT_EQ(foamAlpha(0.999, l), 0.0);
+    EXPECT_EQ(foamAlpha(1.0, l), 1.0);
+}
+
+TEST(Foam, JacobianAlphaIsFullWhereTheSurfaceFolds) {
+    LightingDesc l;
+    l.foamJacobianThreshold = 0.4f;
+    EXPECT_EQ(foamAlphaJacobian(1.0, l), 0.0);
+    EXPECT_EQ(foamAlphaJacobian(l.foamJacobianThreshold, l), 0.0); // (the float threshold exactly)
+    EXPECT_DOUBLE_EQ(foamAlphaJacobian(0.5 * l.foamJacobianThreshold, l), 0.5);
+    EXPECT_EQ(foamAlphaJacobian(0.0, l), 1.0);
+    EXPECT_EQ(foamAlphaJacobian(-0.7, l), 1.0);
+    l.foamJacobianThreshold = 0.0f;
+    EXPECT_EQ(foamAlphaJacobian(-1.0, l), 0.0);
+}
+
+// ---- validation --------------------------------------------------------------------------------------
+
+TEST(LightingValidation, NamesTheField) {
+    auto message = [](const LightingDesc& l) {
+        try {
+            validateLighting(l);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("(accepted)");
+    };
+    EXPECT_EQ(message(LightingDesc{}), "(accepted)");
+    LightingDesc l;
+    l.foamHeightFull = l.foamHeightStart - 1.0f;
+    EXPECT_NE(message(l).find("OceanDesc.lighting.foamHeightFull"), std::string::npos) << message(l);
+    l = {};
+    l.fogNoise = 2.0f;
+    EXPECT_NE(message(l).find("OceanDesc.lighting.fogNoise"), std::string::npos) << message(l);
+    l = {};
+    l.fogHeightFalloff = -1.0f;
+    EXPECT_NE(message(l).find("OceanDesc.lighting.fogHeightFalloff"), std::string::npos) << message(l);
+    l = {};
+    l.fogColor = glm::vec3(0.5f, std::nanf(""), 0.5f);
+    EXPECT_NE(message(l).find("OceanDesc.lighting.fogColor"), std::string::npos) << message(l);
+    l = {};
+    auto bad = std::make_shared<EnvironmentMap>();
+    bad->width = 4; // no data: not from makeEnvironmentMap()
+    bad->height = 2;
+    l.environment = bad;
+    EXPECT_NE(message(l).find("OceanDesc.lighting.environment"), std::string::npos) << message(l);
+}
+
+// ---- procedural textures -----------------------------------------------------------------------------
+
+TEST(ProceduralTextures, FogNoiseIsInRangeAndTiles) {
+    const int n = 32;
+    const std::vector<float> v = makeFogNoise(n);
+    ASSERT_EQ(v.size(), static_cast<size_t>(n) * n * n);
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    EXPECT_EQ(*lo, 0.0f);
+    EXPECT_EQ(*hi, 1.0f);
+    const double mean = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+    EXPECT_NEAR(mean, 0.5, 0.1);
+    // Tiling: the step across the wrap (x = n-1 -> 0) is no larger than the largest step inside.
+    auto at = [&](int x, int y, int z) { return v[(static_cast<size_t>(z) * n + y) * n + x]; };
+    double inside = 0.0, across = 0.0;
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y) {
+            for (int x = 0; x + 1 < n; ++x)
+                inside = std::max(inside, double(std::abs(at(x + 1, y, z) - at(x, y, z))));
+            across = std::max(across, double(std::abs(at(0, y, z) - at(n - 1, y, z))));
+            across = std::max(across, double(std::abs(at(y, 0, z) - at(y, n - 1, z))));
+            across = std::max(across, double(std::abs(at(y, z, 0) - at(y, z, n - 1))));
+        }
+    EXPECT_LE(across, inside * 1.25) << "seam at the wrap";
+    EXPECT_LT(inside, 0.2); // smooth (blurred)
+}
+
+TEST(ProceduralTextures, FoamPatternIsInRangeAndTiles) {
+    const int n = 128;
+    const std::vector<float> v = makeFoamPattern(n);
+    ASSERT_EQ(v.size(), static_cast<size_t>(n) * n);
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    EXPECT_EQ(*lo, 0.0f);
+    EXPECT_EQ(*hi, 1.0f);
+    const double mean = std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+    EXPECT_GT(mean, 0.15);
+    EXPECT_LT(mean, 0.7);
+    double inside = 0.0, across = 0.0;
+    for (int y = 0; y < n; ++y) {
+        for (int x = 0; x + 1 < n; ++x)
+            inside = std::max(inside, double(std::abs(v[y * n + x + 1] - v[y * n + x])));
+        across = std::max(across, double(std::abs(v[y * n] - v[y * n + n - 1])));
+        across = std::max(across, double(std::abs(v[y] - v[(n - 1) * n + y])));
+    }
+    EXPECT_LE(across, inside) << "seam at the wrap";
+}
