@@ -2,12 +2,15 @@
 #include "OceanOptions.h"
 
 #include "Replay.h"
+#include "ocean/Presets.h"
 
 #include <CLI/CLI.hpp>
 
 namespace pacifica::tools {
 
 void addOceanOptions(CLI::App& app, OceanOptions& o) {
+    app.add_option("--quality", o.quality, "quality preset: low, medium, high, reference (docs/ACCURACY.md)")
+        ->default_val("high");
     app.add_option("--model", o.model, "surface model: octaves (GPU Gems 2 height maps), gerstner, fft")
         ->default_val("octaves");
     app.add_option("--grid-rings", o.rings, "radial grid rings N (default 256)");
@@ -27,6 +30,11 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
 
 ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     ocean::OceanDesc d;
+    try {
+        d = ocean::oceanPreset(ocean::parseQuality(o.quality));
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--quality: ") + e.what());
+    }
     if (o.model == "octaves")
         d.model = ocean::SurfaceKind::Octaves;
     else if (o.model == "gerstner")

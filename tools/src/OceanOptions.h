@@ -13,6 +13,7 @@ class App;
 namespace pacifica::tools {
 
 struct OceanOptions {
+    std::string quality = "high"; ///< low | medium | high | reference (ocean/Presets.h); other knobs override
     std::string model = "octaves"; ///< octaves | gerstner | fft
     int rings = 0;                 ///< 0 = the default radial grid
     int segments = 0;
