@@ -22,26 +22,14 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import Checks  # noqa: E402  (shared check counter)
+
 RUN_TIMEOUT_S = 120
 HEADER = "time_s,x_m,y_m,z_m,heading_deg,pitch_deg,roll_deg"
 VIEWS = ["ACES 1.0 - SDR Video", "Un-tone-mapped"]  # the embedded config's views of display "sRGB"
 # Small and short, so that a CLI that wrongly accepts a case finishes fast (and the check still fails).
 QUICK = ["--size", "160x90", "--start", "0", "--end", "0"]
-
-
-class Checks:
-    def __init__(self):
-        self.passed = 0
-        self.failed = []
-
-    def check(self, ok, what, detail=""):
-        if ok:
-            self.passed += 1
-            print(f"  ok    {what}")
-        else:
-            self.failed.append(what + (f": {detail}" if detail else ""))
-            print(f"  FAIL  {what}" + (f": {detail}" if detail else ""))
-        return ok
 
 
 def child_env(extra):

@@ -22,6 +22,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import Checks  # noqa: E402  (shared check counter)
+
 SLICE = ["--start", "8", "--end", "26", "--fps", "0.2", "--size", "320x180"]
 EXPECTED_TIMES = [8.0, 13.0, 18.0, 23.0]  # 8 + k / 0.2 while <= 26
 RUN_TIMEOUT_S = 180
@@ -32,21 +35,6 @@ VARIANTS = [  # name, extra environment, must match the reference renderer
     ("lp2", {"LP_NUM_THREADS": "2"}, True),
     ("device", {"PACIFICA_EGL_PLATFORM": "device"}, False),
 ]
-
-
-class Checks:
-    def __init__(self):
-        self.passed = 0
-        self.failed = []
-
-    def check(self, ok, what, detail=""):
-        if ok:
-            self.passed += 1
-            print(f"  ok    {what}")
-        else:
-            self.failed.append(what + (f": {detail}" if detail else ""))
-            print(f"  FAIL  {what}" + (f": {detail}" if detail else ""))
-        return ok
 
 
 def child_env(extra):

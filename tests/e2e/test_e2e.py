@@ -25,6 +25,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import Checks  # noqa: E402  (shared check counter)
+
 DEFAULT_VIEW = "ACES 1.0 - SDR Video"
 UNTONEMAPPED_VIEW = "Un-tone-mapped"
 EMBEDDED_DISPLAY = "sRGB"
@@ -39,19 +42,8 @@ class CaseAborted(Exception):
     pass
 
 
-class Checks:
-    def __init__(self):
-        self.passed = 0
-        self.failed = []
-
-    def check(self, ok, what, detail=""):
-        if ok:
-            self.passed += 1
-            print(f"  ok    {what}")
-        else:
-            self.failed.append(what + (f": {detail}" if detail else ""))
-            print(f"  FAIL  {what}" + (f": {detail}" if detail else ""))
-        return ok
+class E2eChecks(Checks):
+    """The shared counter plus require(): a failed requirement aborts the current case."""
 
     def require(self, ok, what, detail=""):
         if not self.check(ok, what, detail):
@@ -441,7 +433,7 @@ def main():
     ap.add_argument("source_dir")
     ns = ap.parse_args()
 
-    c = Checks()
+    c = E2eChecks()
     tmp = tempfile.mkdtemp(prefix=f"pacifica-e2e-{ns.case}-")
     t0 = time.monotonic()
     print(f"e2e case '{ns.case}': {ns.pacifica_exe} (temp dir {tmp})")
