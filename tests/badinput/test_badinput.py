@@ -228,16 +228,7 @@ def main():
             for mode in ("absent", "existing"):
                 run_case(c, ns.pacifica_exe, tmp, i, case, mode)
         print(f"\n{len(cases)} cases x 2 DIR states")
-    elapsed = time.monotonic() - t0
-    label = "badinput known bugs" if ns.known_bugs else "badinput"
-    print(f"\nSUMMARY {label}: {c.passed} checks passed, {len(c.failed)} failed, {elapsed:.1f} s")
-    if c.failed:
-        for f in c.failed:
-            print(f"  failed: {f}")
-        print(f"  output kept in {tmp}")
-        return 1
-    shutil.rmtree(tmp, ignore_errors=True)
-    return 0
+    return c.finish("badinput known bugs" if ns.known_bugs else "badinput", t0, tmp)
 
 
 if __name__ == "__main__":

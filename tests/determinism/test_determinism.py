@@ -151,15 +151,7 @@ def main():
         c.check(all(n in runs for n in ("run2", "lp1", "lp2")), "run2, lp1 and lp2 were all compared",
                 f"compared {compared}")
 
-    elapsed = time.monotonic() - t0
-    print(f"\nSUMMARY determinism: {c.passed} checks passed, {len(c.failed)} failed, {elapsed:.1f} s")
-    if c.failed:
-        for f in c.failed:
-            print(f"  failed: {f}")
-        print(f"  output kept in {tmp}")
-        return 1
-    shutil.rmtree(tmp, ignore_errors=True)
-    return 0
+    return c.finish("determinism", t0, tmp)
 
 
 if __name__ == "__main__":

@@ -446,15 +446,7 @@ def main():
     except subprocess.TimeoutExpired as e:
         c.failed.append(f"timed out: {e}")
         print(f"  FAIL  timed out: {e}")
-    elapsed = time.monotonic() - t0
-    print(f"\nSUMMARY e2e/{ns.case}: {c.passed} checks passed, {len(c.failed)} failed, {elapsed:.1f} s")
-    if c.failed:
-        for f in c.failed:
-            print(f"  failed: {f}")
-        print(f"  output kept in {tmp}")
-        return 1
-    shutil.rmtree(tmp, ignore_errors=True)
-    return 0
+    return c.finish(f"e2e/{ns.case}", t0, tmp)
 
 
 if __name__ == "__main__":
