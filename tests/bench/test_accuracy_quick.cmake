@@ -1,6 +1,7 @@
 # bench_accuracy_quick: runs `pacifica-accuracy --quick --out OUT_DIR` and checks its CSV: the 5 expected rows
-# (reference + baseline + 3 settings), finite numbers, the octave baseline's vertex error < 0.05 Hs, and that
-# the coarse 64x128 grid's image error is >= the finest 512x1024 grid's.
+# (reference + baseline + 3 settings), finite numbers (the normal-angle columns included), the octave
+# baseline's vertex error < 0.05 Hs and normal error in bounds, that the coarse 64x128 grid's image and normal
+# errors are >= the finest 512x1024 grid's, and that accuracy.png is a real PNG of the plot's size (gnuplot).
 # Usage: cmake -DACCURACY_EXE=... -DOUT_DIR=... -P test_accuracy_quick.cmake
 cmake_minimum_required(VERSION 3.25) # IN_LIST (CMP0057) in script mode
 file(REMOVE_RECURSE "${OUT_DIR}")
@@ -8,7 +9,7 @@ execute_process(COMMAND "${ACCURACY_EXE}" --quick --out "${OUT_DIR}" RESULT_VARI
 if(NOT rc EQUAL 0)
     message(FATAL_ERROR "pacifica-accuracy --quick exited with ${rc}")
 endif()
-foreach(f accuracy.csv accuracy.md)
+foreach(f accuracy.csv accuracy.md accuracy.gp accuracy.dat accuracy.png)
     if(NOT EXISTS "${OUT_DIR}/${f}")
         message(FATAL_ERROR "missing ${OUT_DIR}/${f}")
     endif()
@@ -19,14 +20,15 @@ if(NOT n EQUAL 6)
     message(FATAL_ERROR "expected a header + 5 rows in accuracy.csv, got ${n} lines")
 endif()
 list(GET lines 0 header)
-if(NOT header MATCHES "^knob,value,model,vertex_rms_over_hs,mesh_rms_over_hs,samples,image_rmse,psnr_db,ms_median,")
+if(NOT header MATCHES "^knob,value,model,vertex_rms_over_hs,mesh_rms_over_hs,normal_mean_deg,normal_p95_deg,normal_samples,samples,image_rmse,psnr_db,ms_median,")
     message(FATAL_ERROR "unexpected header: ${header}")
 endif()
 set(num "([-+]?[0-9]*\\.?[0-9]+([eE][-+]?[0-9]+)?)")
 set(seen "")
 list(REMOVE_AT lines 0)
 foreach(line IN LISTS lines)
-    # knob,"value",model,vertex,mesh,samples,rmse,psnr,ms,vertices,clock,"renderer",pareto
+    # knob,"value",model,vertex,mesh,normal_mean,normal_p95,normal_samples,samples,rmse,psnr,ms,vertices,clock,
+    # "renderer",pareto
     if(NOT line MATCHES "^([a-z_]+),\"([^\"]*)\",(.*)$")
         message(FATAL_ERROR "malformed row: ${line}")
     endif()
@@ -34,10 +36,13 @@ foreach(line IN LISTS lines)
     set(value "${CMAKE_MATCH_2}")
     string(REPLACE "," ";" fields "${CMAKE_MATCH_3}")
     list(GET fields 1 vertex)
-    list(GET fields 3 samples)
-    list(GET fields 4 rmse)
-    list(GET fields 5 psnr)
-    foreach(i 1 2 3 4 6 7)
+    list(GET fields 3 nmean)
+    list(GET fields 4 np95)
+    list(GET fields 5 nsamples)
+    list(GET fields 6 samples)
+    list(GET fields 7 rmse)
+    list(GET fields 8 psnr)
+    foreach(i 1 2 3 4 5 6 7 9 10)
         list(GET fields ${i} v)
         if(NOT v MATCHES "^${num}$")
             message(FATAL_ERROR "field ${i} '${v}' is not a finite number: ${line}")
@@ -52,9 +57,16 @@ foreach(line IN LISTS lines)
     if(samples LESS 100)
         message(FATAL_ERROR "too few in-view vertex samples (${samples}): ${line}")
     endif()
+    if(nsamples LESS 100)
+        message(FATAL_ERROR "too few in-view normal samples (${nsamples}): ${line}")
+    endif()
+    if(np95 LESS nmean)
+        message(FATAL_ERROR "normal p95 ${np95} < mean ${nmean}: ${line}")
+    endif()
     list(APPEND seen "${knob}=${value}")
     set(rmse_${knob}_${value} "${rmse}")
     set(vertex_${knob}_${value} "${vertex}")
+    set(nmean_${knob}_${value} "${nmean}")
 endforeach()
 foreach(expected "reference=512x1024 bilinear no-cull all-octaves N=256" "baseline=default" "grid=64x128"
                  "grid=512x1024" "vertex_filter=nearest")
@@ -74,4 +86,32 @@ set(fine "${rmse_grid_512x1024}")
 if(coarse LESS fine)
     message(FATAL_ERROR "coarse grid image_rmse ${coarse} < finest grid's ${fine}")
 endif()
+# Normal angle error of the baseline mesh: > 0.1 deg because the far field's radial spacing exceeds the
+# displaced octaves' short wavelengths (the mesh cannot hold their slopes there; measured 1.8 deg), < 5 deg
+# because the error cannot exceed the slope angles the displaced octaves have (a few degrees: 61 m octave,
+# 0.13 m RMS, up to 8 cycles per tile) unless the stencil picks wrong neighbours (tens of degrees).
+if(NOT nmean_baseline_default GREATER 0.1 OR NOT nmean_baseline_default LESS 5)
+    message(FATAL_ERROR "baseline normal_mean_deg ${nmean_baseline_default} is not in (0.1, 5)")
+endif()
+# A finer mesh resolves more of the slopes (measured 1.89 deg at 64x128, 1.66 deg at 512x1024).
+if(nmean_grid_64x128 LESS nmean_grid_512x1024)
+    message(FATAL_ERROR "coarse grid normal_mean_deg ${nmean_grid_64x128} < finest grid's ${nmean_grid_512x1024}")
+endif()
+# accuracy.png: the PNG signature, an IHDR chunk first, and the size accuracy.gp asks for (1400 x 900).
+file(SIZE "${OUT_DIR}/accuracy.png" pngSize)
+file(READ "${OUT_DIR}/accuracy.png" head LIMIT 24 HEX)
+if(pngSize LESS 1000 OR NOT head MATCHES "^89504e470d0a1a0a0000000d49484452(........)(........)$")
+    message(FATAL_ERROR "accuracy.png (${pngSize} bytes) is not a PNG with an IHDR chunk: ${head}")
+endif()
+math(EXPR pngW "0x${CMAKE_MATCH_1}")
+math(EXPR pngH "0x${CMAKE_MATCH_2}")
+if(NOT pngW EQUAL 1400 OR NOT pngH EQUAL 900)
+    message(FATAL_ERROR "accuracy.png is ${pngW}x${pngH}, expected 1400x900")
+endif()
+# The plot holds the Pareto front: accuracy.dat lists it per model, and the front is labelled.
+file(READ "${OUT_DIR}/accuracy.dat" dat)
+if(NOT dat MATCHES "# octaves: Pareto front; ms image_rmse label\n[0-9.e+-]+ [0-9.e+-]+ \"")
+    message(FATAL_ERROR "accuracy.dat has no octave Pareto point:\n${dat}")
+endif()
+message(STATUS "accuracy quick: normal mean baseline ${nmean_baseline_default} deg; png ${pngW}x${pngH}, ${pngSize} bytes")
 message(STATUS "accuracy quick: baseline vertex ${baseVertex} Hs; image rmse 64x128 ${coarse} >= 512x1024 ${fine}")

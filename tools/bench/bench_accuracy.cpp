@@ -5,13 +5,17 @@
 //     continuous double reference SurfaceModel::displacementAt(), at grid vertices and at the midpoints of
 //     grid edges (where the piecewise-linear mesh interpolates), within the view frustum and rMax, as RMS
 //     height error / Hs of the model's reference setting;
+//   - normal angle error: the rendered mesh's normal at interior grid vertices (central differences of the
+//     four neighbouring transform-feedback vertices) against the continuous displaced surface's normal at
+//     the same grid point (SurfaceModel::normalAt; for octaves the displaced octaves' analytic gradient),
+//     mean and 95th percentile in degrees;
 //   - image error: RMSE of the scene-linear RGB against the model's highest-quality render, and PSNR with
 //     peak 1.0 after clamping both images to [0, 1];
 //   - cost: median GPU time of OceanRenderer::render + glFinish (engine GpuTimer; GL_TIME_ELAPSED on
 //     hardware, wall clock around glFinish on llvmpipe).
 // It links no OpenImageIO (it must run on the H100 machine where only OCIO's libraries can be carried):
-// the outputs are CSV and Markdown; tools/bench/plot_accuracy.py draws the PNG when matplotlib exists.
-// The normal-angle error of the brief's item (b) is not implemented (see docs/ACCURACY.md).
+// the outputs are CSV and Markdown, plus accuracy.png drawn by gnuplot (a separate process, when it is
+// installed: the H100 machine has none, so there the PNG is drawn later from accuracy.gp + accuracy.dat).
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/gl/FrameTargets.h"
@@ -24,6 +28,8 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -38,6 +44,9 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace pacifica;
 
@@ -57,6 +66,8 @@ struct Result {
     double vertexRms = 0.0; // RMS height error at the vertices / Hs
     double meshRms = 0.0;   // RMS height error at grid-edge midpoints / Hs
     size_t samples = 0;
+    double normalMeanDeg = 0.0, normalP95Deg = 0.0; // mesh normal vs the continuous surface's normal
+    size_t normalSamples = 0;
     double imageRmse = 0.0;
     double psnrDb = 0.0;
     double msMedian = 0.0;
@@ -276,6 +287,100 @@ VertexError vertexError(ocean::OceanRenderer& renderer, ecs::Registry& registry,
     return out;
 }
 
+// Interior vertices of the mesh with their four grid neighbours {i, left, right, down, up}, in the vertex
+// order of gridEdges(): along a ring/row (left, right) and across rings/rows (down, up).
+std::vector<std::array<uint32_t, 5>> gridStencils(const ocean::OceanDesc& d, size_t count) {
+    std::vector<std::array<uint32_t, 5>> out;
+    auto rowMajor = [&](size_t first, size_t perRow, size_t rows) {
+        for (size_t r = 1; r + 1 < rows; ++r)
+            for (size_t c = 1; c + 1 < perRow; ++c) {
+                const size_t i = first + r * perRow + c;
+                if (i + perRow < count)
+                    out.push_back({uint32_t(i), uint32_t(i - 1), uint32_t(i + 1), uint32_t(i - perRow),
+                                   uint32_t(i + perRow)});
+            }
+    };
+    if (d.gridKind == ocean::GridKind::Radial) {
+        const size_t perRing = static_cast<size_t>(d.grid.segments) + 1;
+        rowMajor(1, perRing, (count - 1) / perRing);
+    } else {
+        const size_t perRow = static_cast<size_t>(d.projectedGrid.resolutionX);
+        rowMajor(0, perRow, count / perRow);
+    }
+    return out;
+}
+
+struct NormalError {
+    double meanDeg = 0.0, p95Deg = 0.0;
+    size_t samples = 0;
+};
+
+// The normal the rendered mesh has at a vertex: the cross product of the central differences of its four
+// grid neighbours (the displaced positions from transform feedback, curvature drop added back like the
+// height error), which is the normal of the mesh's tangent plane there (second-order accurate in the grid
+// spacing where the mesh resolves the waves). Reference: the continuous displaced surface's unit normal at
+// the same grid point, N = dP/dx x dP/dy for P(g) = g + displacementAt(g): SurfaceModel::normalAt for
+// Gerstner and FFT (exact cross products, GerstnerWaves.cpp/FftOcean.cpp); for octaves normalize(-dH/dx,
+// -dH/dy, 1) of the DISPLACED octaves only (heightAndGradient(p, t, displacedOctaves)), because the
+// octave model's normalAt adds the lighting-only octaves that never move a vertex. Statistics over the
+// same in-view (frustum, r <= rMax) vertices and 3 cameras as the height error; p95 by nth_element.
+NormalError normalError(ocean::OceanRenderer& renderer, ecs::Registry& registry, ecs::Entity e,
+                        const ocean::OceanComponent& ocean, const gl::FrameTargets& targets,
+                        size_t maxSamples) {
+    const auto* octaves = dynamic_cast<const ocean::HeightOctaves*>(ocean.surface.get());
+    std::vector<double> angles;
+    for (const View& view : views()) {
+        const ocean::OceanFrame frame = makeFrame(view.pose, targets, TIME);
+        const auto verts = renderer.displacedVertices(registry, e, frame);
+        const glm::dvec3 cam = view.pose.position;
+        const double rMax = ocean.desc.grid.rMax;
+        auto radius = [&](uint32_t i) {
+            return std::hypot(double(verts[i].grid.x), double(verts[i].grid.y));
+        };
+        auto pos = [&](uint32_t i) {
+            const glm::dvec3 p(verts[i].position);
+            return glm::dvec3(p.x, p.y, p.z + ocean::curvatureDrop(radius(i)));
+        };
+        std::vector<std::array<uint32_t, 5>> inView;
+        for (const auto& st : gridStencils(ocean.desc, verts.size())) {
+            if (std::any_of(st.begin(), st.end(), [&](uint32_t i) { return radius(i) > rMax; }))
+                continue;
+            if (inFrustum(frame.camera.viewProj, verts[st[0]].position))
+                inView.push_back(st);
+        }
+        const size_t stride = std::max<size_t>(1, (inView.size() + maxSamples - 1) / maxSamples);
+        for (size_t k = 0; k < inView.size(); k += stride) {
+            const auto& st = inView[k];
+            glm::dvec3 n = glm::cross(pos(st[2]) - pos(st[1]), pos(st[4]) - pos(st[3]));
+            if (glm::length(n) == 0.0)
+                continue; // coincident neighbours (none in these grids; guards the normalisation)
+            n = glm::normalize(n.z < 0.0 ? -n : n);
+            const glm::dvec2 world = glm::dvec2(cam) + glm::dvec2(verts[st[0]].grid);
+            glm::dvec3 ref;
+            if (octaves) {
+                const glm::dvec3 hg =
+                    octaves->heightAndGradient(world, TIME, ocean.desc.octaves.displacedOctaves);
+                ref = glm::normalize(glm::dvec3(-hg.y, -hg.z, 1.0));
+            } else {
+                ref = ocean.surface->normalAt(world, TIME);
+            }
+            angles.push_back(std::acos(std::clamp(glm::dot(n, ref), -1.0, 1.0)) * 180.0 / std::numbers::pi);
+        }
+    }
+    NormalError out;
+    out.samples = angles.size();
+    if (angles.empty())
+        return out;
+    double sum = 0.0;
+    for (double a : angles)
+        sum += a;
+    out.meanDeg = sum / double(angles.size());
+    const size_t k95 = static_cast<size_t>(std::ceil(0.95 * double(angles.size()))) - 1;
+    std::nth_element(angles.begin(), angles.begin() + static_cast<std::ptrdiff_t>(k95), angles.end());
+    out.p95Deg = angles[k95];
+    return out;
+}
+
 // Scene-linear RGB of the three views, concatenated.
 std::vector<float> renderViews(ocean::OceanRenderer& renderer, ecs::Registry& registry,
                                const gl::FrameTargets& targets) {
@@ -362,6 +467,121 @@ std::string csvQuote(const std::string& s) {
     return out + "\"";
 }
 
+// gnuplot double-quoted string literal: backslash and quote escaped, a newline in s written as \n.
+std::string gpQuote(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '\n')
+            out += "\\n";
+        else if (c == '"' || c == '\\')
+            out += std::string("\\") + c;
+        else
+            out += c;
+    }
+    return out + "\"";
+}
+
+// Writes accuracy.dat (per model: block 2m = every setting with image RMSE > 0 — the references' 0 is off a
+// log axis — and block 2m+1 = its Pareto front by ms, each row "ms rmse label") and accuracy.gp, which draws
+// accuracy.png from it: image RMSE against median ms, log-log, one colour per model, the Pareto points
+// filled, joined and labelled "knob=value". Paths are relative: `cd DIR && gnuplot accuracy.gp` re-draws
+// the plot anywhere (the H100 machine has no gnuplot).
+void writePlotFiles(const std::string& dir, const std::vector<Result>& rs, const std::string& clock,
+                    const std::string& renderer) {
+    std::ofstream dat(dir + "/accuracy.dat");
+    std::ofstream gp(dir + "/accuracy.gp");
+    const std::map<std::string, std::string> colour = {
+        {"octaves", "#1f77b4"}, {"gerstner", "#2ca02c"}, {"fft", "#d62728"}};
+    std::vector<std::string> plots;
+    int block = 0;
+    std::vector<ocean::SurfaceKind> models;
+    for (const Result& r : rs)
+        if (std::find(models.begin(), models.end(), r.setting.desc.model) == models.end())
+            models.push_back(r.setting.desc.model);
+    for (ocean::SurfaceKind m : models) {
+        const std::string name = modelName(m);
+        const std::string rgb = gpQuote(colour.count(name) ? colour.at(name) : "#000000");
+        const std::string lc = "lc rgb " + rgb;
+        std::vector<const Result*> all, front;
+        for (const Result& r : rs)
+            if (r.setting.desc.model == m && r.imageRmse > 0.0 && std::isfinite(r.imageRmse) &&
+                std::isfinite(r.msMedian) && r.msMedian > 0.0) {
+                all.push_back(&r);
+                if (r.pareto)
+                    front.push_back(&r);
+            }
+        std::sort(front.begin(), front.end(),
+                  [](const Result* a, const Result* b) { return a->msMedian < b->msMedian; });
+        for (const auto* points : {&all, &front}) {
+            dat << "# " << name << (points == &all ? ": every setting with image RMSE > 0" : ": Pareto front")
+                << "; ms image_rmse label\n";
+            for (const Result* r : *points)
+                dat << num(r->msMedian) << ' ' << num(r->imageRmse) << " \""
+                    << (r->setting.knob == "baseline" ? std::string("baseline")
+                                                      : r->setting.knob + "=" + r->setting.value)
+                    << "\"\n";
+            dat << "\n\n";
+        }
+        if (!all.empty())
+            plots.push_back("'accuracy.dat' index " + std::to_string(block) +
+                            " using 1:2 with points pt 6 ps 1.3 " + lc + " title " + gpQuote(name));
+        if (!front.empty()) {
+            plots.push_back("'' index " + std::to_string(block + 1) +
+                            " using 1:2 with linespoints pt 7 ps 1.8 lw 1.5 " + lc + " title " +
+                            gpQuote(name + " Pareto front"));
+            plots.push_back("'' index " + std::to_string(block + 1) +
+                            " using 1:2:3 with labels left offset 0.8,0.5 font ',9' textcolor rgb " + rgb +
+                            " notitle");
+        }
+        block += 2;
+    }
+    gp << "# accuracy.gp, written by pacifica-accuracy: draws accuracy.png from accuracy.dat\n"
+       << "# (cd into this directory, then: gnuplot accuracy.gp)\n"
+       << "set terminal pngcairo size 1400,900 font 'DejaVu Sans,11' noenhanced\n"
+       << "set output 'accuracy.png'\n"
+       << "set title "
+       << gpQuote("Pacifica accuracy sweep: image error vs cost - " + renderer + " (" + clock +
+                  ")\nfilled and joined: each model's Pareto front; references (RMSE 0) are "
+                  "off the log axis")
+       << "\n"
+       << "set logscale xy\nset xlabel " << gpQuote("median ms per frame (" + clock + ")") << "\nset ylabel "
+       << gpQuote("image RMSE vs the model's reference (scene-linear RGB)") << "\n"
+       << "set grid xtics ytics mxtics mytics\nset key outside right top\n"
+       << "plot ";
+    for (size_t i = 0; i < plots.size(); ++i)
+        gp << (i ? ", \\\n     " : "") << plots[i];
+    gp << "\n";
+    if (!dat || !gp)
+        throw std::runtime_error("cannot write " + dir + "/accuracy.dat or accuracy.gp");
+}
+
+// Runs `gnuplot accuracy.gp` in dir (fork + chdir + execvp, so no shell quoting is involved). Returns false
+// when gnuplot is not installed; throws when it fails.
+bool runGnuplot(const std::string& dir) {
+    const pid_t pid = fork();
+    if (pid < 0)
+        throw std::runtime_error("cannot start gnuplot: fork failed");
+    if (pid == 0) {
+        if (chdir(dir.c_str()) != 0)
+            _exit(126);
+        execlp("gnuplot", "gnuplot", "accuracy.gp", static_cast<char*>(nullptr));
+        _exit(errno == ENOENT ? 127 : 126);
+    }
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid)
+        throw std::runtime_error("gnuplot: waitpid failed");
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
+        return false;
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::filesystem::remove(dir + "/accuracy.png"); // gnuplot opens it before it fails: no half plot
+        throw std::runtime_error("gnuplot failed on " + dir + "/accuracy.gp (status " +
+                                 std::to_string(status) + ")");
+    }
+    if (!std::filesystem::exists(dir + "/accuracy.png"))
+        throw std::runtime_error("gnuplot wrote no " + dir + "/accuracy.png");
+    return true;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -369,7 +589,7 @@ int main(int argc, char** argv) {
     std::string outDir = "accuracy";
     bool quick = false;
     int width = 320, height = 180, frames = 15;
-    app.add_option("--out", outDir, "output directory (accuracy.csv, accuracy.md)");
+    app.add_option("--out", outDir, "output directory (accuracy.csv, accuracy.md, accuracy.png)");
     app.add_flag("--quick", quick, "tiny sweep for the test: baseline + 3 settings, 160x90, 3 frames");
     app.add_option("--width", width, "render width")->check(CLI::Range(16, 4096));
     app.add_option("--height", height, "render height")->check(CLI::Range(16, 4096));
@@ -389,6 +609,7 @@ int main(int argc, char** argv) {
 
     try {
         std::filesystem::create_directories(outDir);
+        std::filesystem::remove(outDir + "/accuracy.png"); // a stale plot must not pass for this run's
         auto context = gl::createHeadlessContext({.debug = false});
         const gl::ContextInfo info = context->info();
         gl::GpuTimer timer(info);
@@ -430,12 +651,18 @@ int main(int argc, char** argv) {
             r.vertexRms = ve.nodeRms / refHs.at(m);
             r.meshRms = ve.midRms / refHs.at(m);
             r.samples = ve.samples;
+            const NormalError ne = normalError(renderer, registry, ev, uncut, targets, maxSamples / 3);
+            r.normalMeanDeg = ne.meanDeg;
+            r.normalP95Deg = ne.p95Deg;
+            r.normalSamples = ne.samples;
             registry.destroy(ev);
             registry.destroy(e);
             const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::fprintf(stderr, "[%s] %s=%s: vertex %.4g Hs, image rmse %.4g, %.3f ms (%.1f s)\n",
-                         modelName(m), s.knob.c_str(), s.value.c_str(), r.vertexRms, r.imageRmse, r.msMedian,
-                         secs);
+            std::fprintf(
+                stderr,
+                "[%s] %s=%s: vertex %.4g Hs, normal %.3g/%.3g deg, image rmse %.4g, %.3f ms (%.1f s)\n",
+                modelName(m), s.knob.c_str(), s.value.c_str(), r.vertexRms, r.normalMeanDeg, r.normalP95Deg,
+                r.imageRmse, r.msMedian, secs);
             results.push_back(r);
         };
         std::vector<ocean::SurfaceKind> models;
@@ -451,12 +678,12 @@ int main(int argc, char** argv) {
         markPareto(results);
 
         std::ofstream csv(outDir + "/accuracy.csv");
-        csv << "knob,value,model,vertex_rms_over_hs,mesh_rms_over_hs,samples,image_rmse,psnr_db,ms_"
-               "median,"
-               "vertices,clock,renderer,pareto\n";
+        csv << "knob,value,model,vertex_rms_over_hs,mesh_rms_over_hs,normal_mean_deg,normal_p95_deg,normal_"
+               "samples,samples,image_rmse,psnr_db,ms_median,vertices,clock,renderer,pareto\n";
         for (const Result& r : results)
             csv << r.setting.knob << ',' << csvQuote(r.setting.value) << ','
                 << modelName(r.setting.desc.model) << ',' << num(r.vertexRms) << ',' << num(r.meshRms) << ','
+                << num(r.normalMeanDeg) << ',' << num(r.normalP95Deg) << ',' << r.normalSamples << ','
                 << r.samples << ',' << num(r.imageRmse) << ',' << num(r.psnrDb) << ',' << num(r.msMedian)
                 << ',' << r.vertices << ',' << timer.clockName() << ',' << csvQuote(info.renderer) << ','
                 << (r.pareto ? 1 : 0) << '\n';
@@ -472,21 +699,39 @@ int main(int argc, char** argv) {
               "1]\n"
            << "- vertex error: RMS height error at the vertices (mesh: at grid-edge midpoints) / Hs of the "
               "reference, t = "
-           << TIME << " s, in-frustum, r <= rMax, culling off\n- ms: median of " << frames
-           << " frames of render + glFinish\n\n"
-           << "| model | knob | value | vertex rms/Hs | mesh rms/Hs | image RMSE | PSNR dB | ms | vertices | "
-              "pareto |\n|---|---|---|---|---|---|---|---|---|---|\n";
+           << TIME << " s, in-frustum, r <= rMax, culling off\n"
+           << "- normal error: angle between the mesh normal at interior vertices (central differences of "
+              "the "
+              "4 neighbouring vertices) and the continuous displaced surface's normal, degrees (mean, p95)\n"
+           << "- ms: median of " << frames << " frames of render + glFinish\n"
+           << "- plot: accuracy.png (gnuplot, from accuracy.gp + accuracy.dat): image RMSE vs ms, Pareto "
+              "fronts "
+              "marked\n\n"
+           << "| model | knob | value | vertex rms/Hs | mesh rms/Hs | normal mean° | normal p95° | image "
+              "RMSE | "
+              "PSNR dB | ms | vertices | pareto |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
         for (const Result& r : results)
             md << "| " << modelName(r.setting.desc.model) << " | " << r.setting.knob << " | "
                << r.setting.value << " | " << num(r.vertexRms, 3) << " | " << num(r.meshRms, 3) << " | "
-               << num(r.imageRmse, 3) << " | " << num(r.psnrDb, 3) << " | " << num(r.msMedian, 3) << " | "
-               << r.vertices << " | " << (r.pareto ? "**yes**" : "") << " |\n";
+               << num(r.normalMeanDeg, 3) << " | " << num(r.normalP95Deg, 3) << " | " << num(r.imageRmse, 3)
+               << " | " << num(r.psnrDb, 3) << " | " << num(r.msMedian, 3) << " | " << r.vertices << " | "
+               << (r.pareto ? "**yes**" : "") << " |\n";
+        csv.close();
+        md.close();
         if (!csv || !md) {
             std::cerr << "pacifica-accuracy: cannot write to " << outDir << "\n";
             return 1;
         }
-        std::cout << "wrote " << outDir << "/accuracy.csv and accuracy.md (" << results.size()
-                  << " settings, " << info.renderer << ", " << timer.clockName() << ")\n";
+        writePlotFiles(outDir, results, timer.clockName(), info.renderer);
+        const bool plotted = runGnuplot(outDir);
+        std::cout << "wrote " << outDir << "/accuracy.csv, accuracy.md" << (plotted ? ", accuracy.png" : "")
+                  << " (" << results.size() << " settings, " << info.renderer << ", " << timer.clockName()
+                  << ")\n";
+        if (!plotted)
+            std::cerr
+                << "pacifica-accuracy: gnuplot is not installed, so accuracy.png was not drawn: install "
+                   "gnuplot-nox, then run `gnuplot accuracy.gp` in "
+                << outDir << "\n";
     } catch (const gl::ContextError& e) {
         std::cerr << "pacifica-accuracy: no GL context: " << e.what() << "\n";
         return 2;
