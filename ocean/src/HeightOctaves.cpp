@@ -126,7 +126,114 @@ OctaveMap generate(const OctaveDesc& o, const HeightOctavesDesc& d, std::mt19937
     return map;
 }
 
+/// In-place iterative radix-2 FFT (Cooley & Tukey 1965; bit reversal, then log2(n) butterfly passes):
+/// a[k] = sum_x a[x] e^(sign 2 pi i k x / n), unnormalised. n is a power of two.
+void fft(std::vector<std::complex<double>>& a, int sign) {
+    const size_t n = a.size();
+    for (size_t i = 1, j = 0; i < n; ++i) {
+        size_t bit = n >> 1;
+        for (; j & bit; bit >>= 1)
+            j ^= bit;
+        j ^= bit;
+        if (i < j)
+            std::swap(a[i], a[j]);
+    }
+    for (size_t len = 2; len <= n; len <<= 1) {
+        const std::complex<double> w = std::polar(1.0, sign * kTwoPi / static_cast<double>(len));
+        for (size_t i = 0; i < n; i += len) {
+            std::complex<double> wk(1.0, 0.0);
+            for (size_t k = 0; k < len / 2; ++k) {
+                const std::complex<double> even = a[i + k], odd = a[i + k + len / 2] * wk;
+                a[i + k] = even + odd;
+                a[i + k + len / 2] = even - odd;
+                wk *= w;
+            }
+        }
+    }
+}
+
+/// Spectral derivative of one periodic line of n samples over one tile (u in [0, 1)): forward FFT, mode k
+/// (signed, |k| < n/2) times i 2 pi k, the Nyquist mode k = n/2 zeroed, inverse FFT / n (Johnson 2011,
+/// algorithm 1, for the first derivative).
+void spectralDerivative(std::vector<std::complex<double>>& line) {
+    const int n = static_cast<int>(line.size());
+    fft(line, -1);
+    for (int k = 0; k < n; ++k) {
+        const int signedK = k < n / 2 ? k : k - n;
+        line[static_cast<size_t>(k)] *= k == n / 2 ? 0.0 : std::complex<double>(0.0, kTwoPi * signedK);
+    }
+    fft(line, +1);
+    for (auto& v : line)
+        v /= static_cast<double>(n);
+}
+
+float toHalfChecked(double v, const std::string& field, const char* what, int frame, int x, int y) {
+    const float h = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(v)));
+    require(std::isfinite(h), field + ": " + what + " " + std::to_string(v) + " at frame " +
+                                  std::to_string(frame) + ", texel (" + std::to_string(x) + ", " +
+                                  std::to_string(y) + ") exceeds half-float range (65504) of the GPU maps");
+    return h;
+}
+
 } // namespace
+
+OctaveMap makeOctaveMap(const OctaveImage& image, int frames, const std::string& field) {
+    const int s = image.size;
+    require(s >= 16 && s <= 1024 && (s & (s - 1)) == 0,
+            field + ".size must be a power of two in [16, 1024], got " + std::to_string(s));
+    require(image.frames == 1 || image.frames == frames,
+            field + ".frames must be 1 or " + std::to_string(frames) + " (HeightOctavesDesc.frames), got " +
+                std::to_string(image.frames));
+    const size_t texels = static_cast<size_t>(s) * static_cast<size_t>(s);
+    require(image.heights.size() == texels * static_cast<size_t>(image.frames),
+            field + ".heights must hold frames * size * size = " +
+                std::to_string(texels * static_cast<size_t>(image.frames)) + " values, got " +
+                std::to_string(image.heights.size()));
+    for (size_t i = 0; i < image.heights.size(); ++i)
+        require(std::isfinite(image.heights[i]), field + ".heights[" + std::to_string(i) +
+                                                     "] is not finite (frame " + std::to_string(i / texels) +
+                                                     ", texel (" + std::to_string(i % texels % s) + ", " +
+                                                     std::to_string(i % texels / s) + "))");
+    OctaveMap map;
+    map.size = s;
+    map.frames = frames;
+    map.texels.resize(static_cast<size_t>(frames) * texels * 4);
+    std::vector<std::complex<double>> line(static_cast<size_t>(s));
+    for (int f = 0; f < image.frames; ++f) {
+        const float* h = &image.heights[static_cast<size_t>(f) * texels];
+        std::vector<double> du(texels), dv(texels);
+        for (int y = 0; y < s; ++y) { // d/du along each row
+            for (int x = 0; x < s; ++x)
+                line[static_cast<size_t>(x)] = h[static_cast<size_t>(y) * s + x];
+            spectralDerivative(line);
+            for (int x = 0; x < s; ++x)
+                du[static_cast<size_t>(y) * s + x] = line[static_cast<size_t>(x)].real();
+        }
+        for (int x = 0; x < s; ++x) { // d/dv along each column
+            for (int y = 0; y < s; ++y)
+                line[static_cast<size_t>(y)] = h[static_cast<size_t>(y) * s + x];
+            spectralDerivative(line);
+            for (int y = 0; y < s; ++y)
+                dv[static_cast<size_t>(y) * s + x] = line[static_cast<size_t>(y)].real();
+        }
+        float* out = &map.texels[static_cast<size_t>(f) * texels * 4];
+        for (int y = 0; y < s; ++y)
+            for (int x = 0; x < s; ++x) {
+                const size_t i = static_cast<size_t>(y) * s + x;
+                // Rounded to half like a generated map: the CPU samples exactly what RGBA16F holds.
+                out[i * 4 + 0] = toHalfChecked(h[i], field, "height", f, x, y);
+                out[i * 4 + 1] = toHalfChecked(du[i], field, "slope dh/du", f, x, y);
+                out[i * 4 + 2] = toHalfChecked(dv[i], field, "slope dh/dv", f, x, y);
+                out[i * 4 + 3] =
+                    toHalfChecked(du[i] * du[i] + dv[i] * dv[i], field, "squared slope", f, x, y);
+            }
+    }
+    // A still image: every slice is the same.
+    for (int f = image.frames; f < frames; ++f)
+        std::copy_n(map.texels.begin(), texels * 4,
+                    map.texels.begin() + static_cast<std::ptrdiff_t>(f * texels * 4));
+    return map;
+}
 
 HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
     const auto& oct = desc.octaves;
@@ -178,9 +285,34 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
                 std::to_string(desc.combinedSize) + " from combinedTexel " +
                 std::to_string(desc.combinedTexel));
 
+    require(desc.images.empty() || desc.images.size() == oct.size(),
+            "HeightOctavesDesc.images must be empty or hold one entry per octave (" +
+                std::to_string(oct.size()) + "), got " + std::to_string(desc.images.size()));
+    for (size_t i = 0; i < desc.images.size(); ++i)
+        require(desc.images[i].heights.empty() || desc.images[i].size == desc.mapSize,
+                "HeightOctavesDesc.images[" + std::to_string(i) +
+                    "].size must equal HeightOctavesDesc.mapSize (" + std::to_string(desc.mapSize) +
+                    "), got " + std::to_string(desc.images[i].size));
+
     std::mt19937_64 rng(desc.seed);
-    for (const OctaveDesc& o : oct)
-        mMaps.push_back(generate(o, desc, rng));
+    for (size_t i = 0; i < oct.size(); ++i) {
+        if (i < desc.images.size() && !desc.images[i].heights.empty()) {
+            (void)makeWaves(oct[i], desc, rng); // keeps the generated octaves the same as without images
+            const OctaveImage& image = desc.images[i];
+            mMaps.push_back(
+                makeOctaveMap(image, desc.frames, "HeightOctavesDesc.images[" + std::to_string(i) + "]"));
+            double sum = 0.0, sumSq = 0.0;
+            for (float h : image.heights) {
+                sum += h;
+                sumSq += double(h) * h;
+            }
+            const double n = static_cast<double>(image.heights.size());
+            mRms.push_back(std::sqrt(std::max(0.0, sumSq / n - (sum / n) * (sum / n)))); // about the mean
+        } else {
+            mMaps.push_back(generate(oct[i], desc, rng));
+            mRms.push_back(1.0);
+        }
+    }
     // Mip chain of every map's height (listing 18-3 needs the packed maps of two levels): 2x2 box average,
     // rounded to half like the RGBA16F texture the GPU samples.
     for (const OctaveMap& m : mMaps) {
@@ -496,7 +628,7 @@ glm::dvec3 HeightOctaves::displacementAt(const glm::dvec2& worldXY, double time)
 double HeightOctaves::significantWaveHeight() const {
     double sumSq = 0.0;
     for (int i = 0; i < mDesc.displacedOctaves; ++i) {
-        const double a = mDesc.octaves[static_cast<size_t>(i)].amplitude;
+        const double a = mDesc.octaves[static_cast<size_t>(i)].amplitude * mRms[static_cast<size_t>(i)];
         sumSq += a * a;
     }
     return 4.0 * std::sqrt(sumSq);

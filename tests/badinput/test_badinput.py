@@ -24,6 +24,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from checks import Checks  # noqa: E402  (shared check counter)
+from pngwrite import write_gray_png  # noqa: E402  (height-map images)
 
 RUN_TIMEOUT_S = 120
 HEADER = "time_s,x_m,y_m,z_m,heading_deg,pitch_deg,roll_deg"
@@ -90,13 +91,24 @@ def make_cases(inputs, demo):
     six = flight_with_line4(inputs, "six_fields.csv", "1.0,150,0,20,90,0")
     nan = flight_with_line4(inputs, "nan_field.csv", "1.0,150,0,nan,90,0,0")
     word = flight_with_line4(inputs, "word_field.csv", "1.0,abc,0,20,90,0,0")
+    unknown = flight_with_line4(inputs, "unknown_record.csv", "boat,a,1.0,500,0")
+    weak = flight_with_line4(inputs, "zero_strength.csv", "explosion,1.0,500,0,0")
+    lonely = flight_with_line4(inputs, "lonely_ship.csv", "ship,lonely,1.0,500,0")
     missing_ocio = os.path.join(inputs, "no_such_config.ocio")
     garbage_ocio = write(os.path.join(inputs, "garbage.ocio"), "this is not: [an OCIO config\n{{{ at all\n")
+    missing_map = os.path.join(inputs, "no_such_map.png")
+    garbage_map = write(os.path.join(inputs, "garbage_map.png"), "not a PNG at all\n")
+    odd_map = write_gray_png(os.path.join(inputs, "odd_48x48.png"), 48, 48, lambda x, r: x / 47.0, 8)
+    flat_map = write_gray_png(os.path.join(inputs, "flat_32x32.png"), 32, 32, lambda x, r: 0.25, 8)
+    good_map = write_gray_png(os.path.join(inputs, "good_32x32.png"), 32, 32, lambda x, r: (x % 8) / 7.0, 8)
     return [
         ("missing flight file", [missing_flight], QUICK, {}, 1, [missing_flight, "cannot open flight file"], []),
         ("CSV line 4 has 6 fields", [six], QUICK, {}, 1, [f"{six}:4:", "expected 7 fields, got 6"], []),
         ("NaN field", [nan], QUICK, {}, 1, [f"{nan}:4:", "'z_m'"], ["finite", "NaN"]),
         ("non-numeric field", [word], QUICK, {}, 1, [f"{word}:4:", "'x_m'", "not a number", "'abc'"], []),
+        ("unknown record keyword", [unknown], QUICK, {}, 1, [f"{unknown}:4:", "unknown record 'boat'"], []),
+        ("explosion strength 0", [weak], QUICK, {}, 1, [f"{weak}:4:", "'strength'", "must be > 0"], []),
+        ("ship with one sample", [lonely], QUICK, {}, 1, [f"{lonely}:4:", "ship 'lonely'", "at least 2"], []),
         ("unknown OCIO view", [demo], QUICK + ["--view", "No Such View"], {}, 1,
          ["unknown view 'No Such View'", "'sRGB'"] + [f"'{v}'" for v in VIEWS], []),
         ("unknown OCIO display", [demo], QUICK + ["--display", "No Such Display"], {}, 1,
@@ -110,6 +122,29 @@ def make_cases(inputs, demo):
         ("--fps 0", [demo], QUICK + ["--fps", "0"], {}, 2, ["--fps must be in (0, 1000]"], []),
         ("--start after the flight end", [demo], ["--size", "160x90", "--start", "61"], {}, 2,
          ["--start 61", "outside the flight", "60"], []),
+        # Lighting options: each bad value names its option (tools/src/OceanOptions.cpp).
+        ("--sun-elevation 95", [demo], QUICK + ["--sun-elevation", "95"], {}, 2,
+         ["--sun-elevation must be in [-90, 90] degrees, got 95"], []),
+        ("--fog-density -1", [demo], QUICK + ["--fog-density", "-1"], {}, 2,
+         ["--fog-density must be finite and >= 0", "got -1"], []),
+        ("--fog-color 1,2", [demo], QUICK + ["--fog-color", "1,2"], {}, 2, ["--fog-color", "R,G,B", "'1,2'"], []),
+        ("--foam-height-full below --foam-height-start", [demo], QUICK + ["--foam-height-full", "1"], {}, 2,
+         ["--foam-height-full (1 m) must be > --foam-height-start (1.6 m)"], []),
+        ("--sun-elevation with --env", [demo], QUICK + ["--sun-elevation", "30", "--env", missing_map], {}, 2,
+         ["--sun-elevation/--sun-azimuth cannot be combined with --env"], []),
+        # Painted height maps: the message names the file; nothing is written.
+        ("--height-map missing file", [demo], QUICK + ["--height-map", missing_map], {}, 1,
+         [missing_map, "cannot open image"], []),
+        ("--height-map not an image", [demo], QUICK + ["--height-map", garbage_map], {}, 1,
+         [garbage_map, "cannot open image"], []),
+        ("--height-map 48x48", [demo], QUICK + ["--height-map", odd_map], {}, 1,
+         [odd_map, "width must be a power of two in [16, 1024], got 48x48"], []),
+        ("--height-map flat", [demo], QUICK + ["--height-map", flat_map], {}, 1, [flat_map, "is flat"], []),
+        ("--height-map with --model gerstner", [demo], QUICK + ["--height-map", good_map, "--model", "gerstner"],
+         {}, 2, ["--height-map applies to --model octaves only"], []),
+        ("--height-map more files than octaves", [demo],
+         QUICK + ["--quality", "low"] + ["--height-map", good_map] * 9, {}, 2,
+         ["--height-map given 9 times", "octaves"], []),
         # glvnd finds no EGL vendor library, so no EGL platform at all: the same as a machine without drivers.
         ("no headless EGL", [demo], QUICK, {"__EGL_VENDOR_LIBRARY_FILENAMES": "/nonexistent.json"}, 1,
          ["no headless OpenGL", "EGL"], []),

@@ -9,6 +9,9 @@ Cases (chosen with --case, one ctest test each):
                slice with --view "Un-tone-mapped": different PNGs, identical scene-linear EXR pixels.
   studio-ocio  one frame through the ACES studio config (--ocio-config, display "sRGB - Display"): succeeds,
                and summary.json and the EXR header record that config, display and view.
+  ocean-options  one frame with the defaults, then with lighting options (dense red fog: the frame turns red;
+               a low western sun) and painted --height-map PNGs (a still map and a 4-frame strip): each
+               changes the EXR pixels, and the same maps render the same pixels twice.
 
 Usage: test_e2e.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library only)
 Temp dirs are removed on success and kept (path printed) on failure.
@@ -27,6 +30,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 from checks import Checks  # noqa: E402  (shared check counter)
+from pngwrite import write_gray_png  # noqa: E402  (height-map images)
 
 DEFAULT_VIEW = "ACES 1.0 - SDR Video"
 UNTONEMAPPED_VIEW = "Un-tone-mapped"
@@ -199,6 +203,22 @@ def exr_xxh64(directory, names):
             current = line.split(" : ", 1)[0].strip()
             values[current] = []
     return {name: "%016x" % xxh64(struct.pack(f"<{len(v)}e", *v)) for name, v in values.items()}
+
+
+def exr_mean_rgb(directory, name):
+    """Mean scene-linear (R, G, B) of an EXR, from `oiiotool --dumpdata` (RGBA per pixel)."""
+    proc = subprocess.run([oiio_tool("oiiotool"), "--dumpdata", name], cwd=directory, capture_output=True,
+                          text=True, timeout=RUN_TIMEOUT_S)
+    if proc.returncode != 0:
+        raise CaseAborted(f"oiiotool --dumpdata failed (exit {proc.returncode}): {proc.stderr.strip()}")
+    sums, n = [0.0, 0.0, 0.0], 0
+    for line in proc.stdout.splitlines():
+        if line.startswith("    Pixel ("):
+            v = [float(x) for x in line.split(":", 1)[1].split()]
+            for i in range(3):
+                sums[i] += v[i]
+            n += 1
+    return tuple(x / max(n, 1) for x in sums)
 
 
 def read_flight(path):
@@ -423,7 +443,60 @@ def case_studio_ocio(c, exe, source_dir, tmp):
           " (not asserted: the studio config's scene_linear role is ACEScg, the embedded one's linear Rec.709)")
 
 
-CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio}
+def case_ocean_options(c, exe, source_dir, tmp):
+    """Lighting and painted-height-map options of `pacifica replay` change what is rendered: one frame (t = 8 s,
+    the low pass over the sea) with the defaults, then with each option; summary.json's exr_pixel_hash and the
+    EXR's mean colour tell them apart."""
+    flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
+    args = ["--start", "8", "--end", "8", "--size", "160x90"]
+
+    def run(name, extra):
+        # The output format itself is the replay case's subject; here: one frame, its EXR present.
+        out = os.path.join(tmp, name)
+        proc = run_replay(exe, [flight, "--out", out, *args, *extra])
+        c.require(proc.returncode == 0, f"{name}: exits 0", proc.stderr.strip()[-2000:])
+        summary = load_summary(c, out)
+        frames = summary.get("frames", [])
+        c.require(len(frames) == 1 and os.path.isfile(os.path.join(out, frames[0].get("exr", ""))),
+                  f"{name}: summary.json lists one frame whose EXR exists", str(frames)[:500])
+        return out, frames[0]
+
+    print("[default] no ocean options")
+    out_d, frame_d = run("default", [])
+    mean_d = exr_mean_rgb(out_d, frame_d["exr"])
+    print(f"    mean RGB {mean_d}")
+    # The default sky and sea are blue: blue above red on average.
+    c.check(mean_d[2] > mean_d[0], "default frame: mean blue > mean red", str(mean_d))
+
+    print("[fog] --fog-density 0.01 --fog-height-falloff 5000 --fog-color 1,0,0")
+    out_f, frame_f = run("fog", ["--fog-density", "0.01", "--fog-height-falloff", "5000", "--fog-color", "1,0,0"])
+    mean_f = exr_mean_rgb(out_f, frame_f["exr"])
+    print(f"    mean RGB {mean_f}")
+    # rho = 0.01/m: 1/e within 100 m of sea and sky (the sky's column rho H = 50 is opaque), so the frame is
+    # the fog's red in-scatter: red at least 5x green and blue.
+    c.check(mean_f[0] > 5.0 * max(mean_f[1], mean_f[2]), "dense red fog: mean red > 5x green and blue",
+            str(mean_f))
+    c.check(frame_f["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "fog options change the EXR pixels")
+
+    print("[sun] --sun-elevation 5 --sun-azimuth 250")
+    _, frame_s = run("sun", ["--sun-elevation", "5", "--sun-azimuth", "250"])
+    c.check(frame_s["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "sun options change the EXR pixels",
+            frame_s["exr_pixel_hash"])
+
+    print("[height maps] --height-map still.png --height-map strip.png (4 frames)")
+    still = write_gray_png(os.path.join(tmp, "still.png"), 64, 64, lambda x, r: 0.5 + 0.5 * math.cos(
+        2 * math.pi * (3 * (x + 0.5) / 64 + 2 * (r + 0.5) / 64)))
+    strip = write_gray_png(os.path.join(tmp, "strip.png"), 64, 256, lambda x, r: 0.5 + 0.5 * math.cos(
+        2 * math.pi * (2 * (x + 0.5) / 64 + (r % 64 + 0.5) / 64) - 2 * math.pi * (r // 64) / 4))
+    _, frame_h = run("maps", ["--height-map", still, "--height-map", strip])
+    c.check(frame_h["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "painted height maps change the EXR pixels",
+            frame_h["exr_pixel_hash"])
+    _, frame_h2 = run("maps_again", ["--height-map", still, "--height-map", strip])
+    c.check(frame_h2["exr_pixel_hash"] == frame_h["exr_pixel_hash"], "the same maps render the same pixels",
+            f"{frame_h['exr_pixel_hash']} vs {frame_h2['exr_pixel_hash']}")
+
+
+CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options": case_ocean_options}
 
 
 def main():

@@ -1,12 +1,159 @@
 // OceanOptions: command-line ocean knobs -> OceanDesc.
 #include "OceanOptions.h"
 
+#include "HeightMapFile.h"
 #include "Replay.h"
 #include "ocean/Presets.h"
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
 namespace pacifica::tools {
+namespace {
+
+std::string text(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+/// A set option's value, checked to be finite and in [lo, hi] (either may be infinite); the message names
+/// the option: "--fog-noise must be in [0, 1], got 3".
+float checked(const std::optional<double>& v, const char* option, double lo, double hi,
+              const char* unit = "") {
+    if (std::isfinite(*v) && *v >= lo && *v <= hi)
+        return static_cast<float>(*v);
+    const std::string range = std::isinf(lo) && std::isinf(hi) ? "finite"
+                              : std::isinf(hi)                 ? "finite and >= " + text(lo)
+                                                               : "in [" + text(lo) + ", " + text(hi) + "]";
+    throw UsageError(std::string(option) + " must be " + range + unit + ", got " + text(*v));
+}
+
+glm::vec3 parseColor(const std::string& text) {
+    auto bad = [&] {
+        return UsageError("--fog-color: expected R,G,B with finite scene-linear values >= 0 (e.g. "
+                          "0.6,0.7,0.8), got '" +
+                          text + "'");
+    };
+    glm::vec3 c(0.0f);
+    size_t pos = 0;
+    for (int i = 0; i < 3; ++i) {
+        const size_t end = i < 2 ? text.find(',', pos) : text.size();
+        if (end == std::string::npos)
+            throw bad();
+        const std::string field = text.substr(pos, end - pos);
+        try {
+            size_t used = 0;
+            const double v = std::stod(field, &used);
+            if (used != field.size() || !std::isfinite(v) || v < 0.0)
+                throw bad();
+            c[i] = static_cast<float>(v);
+        } catch (const std::logic_error&) { // stod: not a number / out of range
+            throw bad();
+        }
+        pos = end + 1;
+    }
+    return c;
+}
+
+/// --sun-*, --sky-intensity, --fog-*, --foam-*, --normal-tilt onto LightingDesc.
+void applyLighting(const OceanOptions& o, ocean::LightingDesc& l) {
+    constexpr double INF = std::numeric_limits<double>::infinity();
+    if (o.sunElevationDeg || o.sunAzimuthDeg) {
+        // The default direction's angles for whichever of the two is not given.
+        const glm::dvec3 d = glm::normalize(l.sunDirection);
+        const double rad = 180.0 / std::numbers::pi;
+        double el = std::asin(d.z) * rad, az = std::atan2(d.x, d.y) * rad;
+        if (o.sunElevationDeg)
+            el = checked(o.sunElevationDeg, "--sun-elevation", -90.0, 90.0, " degrees");
+        if (o.sunAzimuthDeg) {
+            az = *o.sunAzimuthDeg;
+            if (!std::isfinite(az) || az < 0.0 || az >= 360.0)
+                throw UsageError("--sun-azimuth must be in [0, 360) degrees clockwise from north, got " +
+                                 text(az));
+        }
+        l.sunDirection = sunDirectionFromAngles(el, az);
+    }
+    if (o.sunIntensity)
+        l.sunIntensity = checked(o.sunIntensity, "--sun-intensity", 0.0, INF);
+    if (o.skyIntensity)
+        l.skyIntensity = checked(o.skyIntensity, "--sky-intensity", 0.0, INF);
+    if (o.fogDensity)
+        l.fogDensity = checked(o.fogDensity, "--fog-density", 0.0, INF, " per metre");
+    if (o.fogHeightFalloff)
+        l.fogHeightFalloff = checked(o.fogHeightFalloff, "--fog-height-falloff", 0.0, INF, " metres");
+    if (o.fogNoise)
+        l.fogNoise = checked(o.fogNoise, "--fog-noise", 0.0, 1.0);
+    if (!o.fogColor.empty())
+        l.fogColor = parseColor(o.fogColor);
+    if (o.foamHeightStart)
+        l.foamHeightStart = checked(o.foamHeightStart, "--foam-height-start", -INF, INF, " metres");
+    if (o.foamHeightFull)
+        l.foamHeightFull = checked(o.foamHeightFull, "--foam-height-full", -INF, INF, " metres");
+    if (l.foamHeightFull <= l.foamHeightStart)
+        throw UsageError("--foam-height-full (" + text(l.foamHeightFull) +
+                         " m) must be > --foam-height-start (" + text(l.foamHeightStart) + " m)");
+    if (o.foamJacobian)
+        l.foamJacobianThreshold = checked(o.foamJacobian, "--foam-jacobian", -INF, INF);
+    if (o.foamIntensity)
+        l.foamIntensity = checked(o.foamIntensity, "--foam-intensity", 0.0, INF);
+    if (o.normalTilt)
+        l.normalTilt = checked(o.normalTilt, "--normal-tilt", 0.0, 1.0);
+    try {
+        ocean::validateLighting(l); // the checks above name the options; this is the library's own
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("lighting options: ") + e.what());
+    }
+}
+
+/// --height-map FILE...: one file per octave from octave 0 on; all of one size and frame count (a still
+/// map may join animated ones), which become HeightOctavesDesc.mapSize and .frames.
+void applyHeightMaps(const OceanOptions& o, ocean::OceanDesc& d) {
+    if (o.heightMaps.empty())
+        return;
+    if (d.model != ocean::SurfaceKind::Octaves)
+        throw UsageError("--height-map applies to --model octaves only, got --model " + o.model);
+    auto& oct = d.octaves;
+    if (o.heightMaps.size() > oct.octaves.size())
+        throw UsageError("--height-map given " + std::to_string(o.heightMaps.size()) +
+                         " times; the octave sea of --quality " + o.quality + " has " +
+                         std::to_string(oct.octaves.size()) + " octaves");
+    oct.images.assign(oct.octaves.size(), {});
+    int frames = 0;
+    std::string first;
+    for (size_t i = 0; i < o.heightMaps.size(); ++i) {
+        ocean::OctaveImage img = loadHeightMap(o.heightMaps[i]);
+        if (i == 0) {
+            oct.mapSize = img.size;
+            first = o.heightMaps[i];
+        } else if (img.size != oct.mapSize) {
+            throw UsageError("--height-map: every map must have one size: " + o.heightMaps[i] + " is " +
+                             std::to_string(img.size) + " wide, " + first + " is " +
+                             std::to_string(oct.mapSize));
+        }
+        if (img.frames > 1) {
+            if (frames != 0 && img.frames != frames)
+                throw UsageError("--height-map: animated maps must have one frame count: " + o.heightMaps[i] +
+                                 " has " + std::to_string(img.frames) + ", another has " +
+                                 std::to_string(frames));
+            frames = img.frames;
+        }
+        oct.images[i] = std::move(img);
+    }
+    if (frames > 1)
+        oct.frames = frames; // still maps repeat over any frame count; generated octaves keep theirs
+}
+
+} // namespace
+
+glm::dvec3 sunDirectionFromAngles(double elevationDeg, double azimuthDeg) {
+    const double el = elevationDeg * std::numbers::pi / 180.0, az = azimuthDeg * std::numbers::pi / 180.0;
+    return {std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el)};
+}
 
 void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--quality", o.quality, "quality preset: low, medium, high, reference (docs/ACCURACY.md)")
@@ -26,6 +173,24 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_flag("--no-cull", o.noCull, "displace every vertex (no per-vertex frustum test)");
     app.add_flag("--no-view-sector", o.noViewSector, "tessellate the full circle, not just the view sector");
     app.add_option("--fft-size", o.fftSize, "FFT grid N (power of two, 16..1024)");
+    app.add_option("--height-map", o.heightMaps,
+                   "octaves: painted height map image for the next octave (repeat: octave 0, 1, ...); W x W, "
+                   "or W x (W * frames) for an animated map")
+        ->allow_extra_args(false);
+    app.add_option("--sun-elevation", o.sunElevationDeg, "sun elevation above the horizon, degrees");
+    app.add_option("--sun-azimuth", o.sunAzimuthDeg, "sun azimuth, degrees clockwise from north");
+    app.add_option("--sun-intensity", o.sunIntensity, "scale of the sun's highlight (default 40)");
+    app.add_option("--sky-intensity", o.skyIntensity, "scale of the procedural sky (default 1)");
+    app.add_option("--fog-density", o.fogDensity, "fog extinction at sea level, 1/m (default 1e-4)");
+    app.add_option("--fog-height-falloff", o.fogHeightFalloff,
+                   "fog scale height, m; 0 = uniform (default 600)");
+    app.add_option("--fog-noise", o.fogNoise, "fog density noise amplitude, 0..1 (default 0.2)");
+    app.add_option("--fog-color", o.fogColor, "fog colour R,G,B scene-linear (default: the sky's horizon)");
+    app.add_option("--foam-height-start", o.foamHeightStart, "foam starts at this height, m (default 1.6)");
+    app.add_option("--foam-height-full", o.foamHeightFull, "foam is full at this height, m (default 3.2)");
+    app.add_option("--foam-jacobian", o.foamJacobian, "folding foam below this Jacobian (default 0.3)");
+    app.add_option("--foam-intensity", o.foamIntensity, "foam coverage scale; 0 = no foam (default 1)");
+    app.add_option("--normal-tilt", o.normalTilt, "tilt of the lighting normal toward the viewer, 0..1");
 }
 
 ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
@@ -73,6 +238,8 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
         d.grid.segments = o.segments;
     if (o.steepness >= 0.0)
         d.gerstner.steepnessScale = o.steepness;
+    applyLighting(o, d.lighting);
+    applyHeightMaps(o, d);
     try {
         (void)ocean::RadialGrid(d.grid); // validate here so the message names the option
     } catch (const std::invalid_argument& e) {

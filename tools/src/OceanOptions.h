@@ -4,7 +4,9 @@
 
 #include "ocean/Ocean.h"
 
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -25,13 +27,34 @@ struct OceanOptions {
     bool noCull = false;       ///< disable the per-vertex frustum test (§18.2.5)
     bool noViewSector = false; ///< tessellate the full circle instead of the view sector
     int fftSize = 0;           ///< 0 = default N
+    /// octaves: painted height maps, one file per octave from octave 0 (the swell) on (HeightMapFile.h)
+    std::vector<std::string> heightMaps;
+
+    // Lighting (ocean::LightingDesc); unset = the LightingDesc default.
+    std::optional<double> sunElevationDeg; ///< degrees above the horizon, [-90, 90]
+    std::optional<double> sunAzimuthDeg;   ///< compass degrees clockwise from north, [0, 360)
+    std::optional<double> sunIntensity, skyIntensity;
+    std::optional<double> fogDensity;       ///< 1/m at sea level
+    std::optional<double> fogHeightFalloff; ///< scale height, m (0 = uniform)
+    std::optional<double> fogNoise;         ///< [0, 1]
+    std::string fogColor;                   ///< "R,G,B" scene-linear; empty = the sky's horizon
+    std::optional<double> foamHeightStart, foamHeightFull, foamJacobian, foamIntensity;
+    std::optional<double> normalTilt; ///< [0, 1]
 };
 
 /// Adds --model, --grid, --grid-rings, --grid-segments, --vertex-filter, --combined, --no-cull,
-/// --no-view-sector, --gerstner-steepness, --fft-size to a (sub)command.
+/// --no-view-sector, --gerstner-steepness, --fft-size, --height-map and the lighting options --sun-elevation,
+/// --sun-azimuth, --sun-intensity, --sky-intensity, --fog-density, --fog-height-falloff, --fog-noise,
+/// --fog-color, --foam-height-start, --foam-height-full, --foam-jacobian, --foam-intensity, --normal-tilt
+/// to a (sub)command.
 void addOceanOptions(CLI::App& app, OceanOptions& options);
 
-/// The OceanDesc the options describe. Throws UsageError (Replay.h) naming the option for bad values.
+/// The OceanDesc the options describe; reads the --height-map files. Throws UsageError (Replay.h) naming
+/// the option for bad values, std::runtime_error "FILE: ..." for a height map that cannot be used.
 ocean::OceanDesc toOceanDesc(const OceanOptions& options);
+
+/// Sun direction (towards the sun, world ENU: x east, y north, z up) from elevation above the horizon and
+/// compass azimuth clockwise from north, degrees: (sin az cos el, cos az cos el, sin el).
+glm::dvec3 sunDirectionFromAngles(double elevationDeg, double azimuthDeg);
 
 } // namespace pacifica::tools

@@ -1,6 +1,6 @@
 // pacifica: the command-line tool. Subcommands:
 //   replay FLIGHT --out DIR [--fps N] [--size WxH] [--start S --end S] [--display D --view V]
-//          [--ocio-config FILE] [--no-images] [--env FILE]
+//          [--ocio-config FILE] [--no-images] [--env FILE] [ocean options: tools/src/OceanOptions.h]
 // Any failure prints "pacifica: error: ..." naming the file/line/option and exits non-zero, leaving no
 // partial output behind.
 #include "OceanOptions.h"
@@ -67,8 +67,14 @@ int main(int argc, char** argv) {
                 replay.end = end;
             if (ocioOpt->count())
                 replay.ocioConfig = ocioConfig;
-            if (envOpt->count())
+            if (envOpt->count()) {
+                // Replay points the sun at the map's brightest direction (docs/ARCHITECTURE.md, Shading).
+                if (oceanOptions.sunElevationDeg || oceanOptions.sunAzimuthDeg)
+                    throw pacifica::tools::UsageError("--sun-elevation/--sun-azimuth cannot be combined with "
+                                                      "--env: the sun is the environment map's brightest "
+                                                      "direction");
                 replay.environment = environment;
+            }
             replay.writeImages = !noImages;
             replay.ocean = pacifica::tools::toOceanDesc(oceanOptions);
             replay.progress = !noProgress;

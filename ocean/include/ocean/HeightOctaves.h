@@ -8,7 +8,9 @@
 // dispersion relation w = sqrt(g k) quantised to multiples of 2*pi/T_i so the animation loops (Tessendorf
 // 2001, "Simulating Ocean Water", §3.2 dispersion and the looping-in-time quantisation). Each texel holds
 // (h, dh/du, dh/dv, |grad h|^2) with the derivatives taken analytically, in units of the tile coordinate
-// u = B x; the squared slope lets mipmapped lighting recover the unresolved slope variance.
+// u = B x; the squared slope lets mipmapped lighting recover the unresolved slope variance. A host may
+// supply any octave's map instead (HeightOctavesDesc.images, OctaveImage: an artist's painting); its
+// derivative channels are then spectral derivatives of the painted heights (makeOctaveMap()).
 //
 // Vertex displacement paths (§18.2.4, §18.2.5), chosen by HeightOctavesDesc.vertexFilter and
 // .combinedDisplacement, each defined once here in double and once in ocean/shaders/octaves.glsl in float
@@ -46,10 +48,14 @@
 //   4. OctavesGpu gpu(std::make_shared<const HeightOctaves>(sea));   // ocean/src/gpu/OctavesGpu.h
 //      gpu.update(t, camera) runs the combine pass (combined only); gpu.bind(program, unit, t, camera)
 //   5. sea.filteredHeight(xy, t, cameraXY, filter) / combinedHeight(...): any path, for benchmarks
+//   6. Painted maps: desc.mapSize = 256; desc.images.resize(desc.octaves.size());
+//      desc.images[0] = {.size = 256, .frames = 1, .heights = painted};   // octave 0 painted, others
+//      generated
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -75,6 +81,20 @@ enum class VertexFilter {
 
 /// "nearest", "bilinear", "hardware-bilinear", "packed-4tap", "trilinear".
 const char* toString(VertexFilter filter);
+
+/// A caller-supplied height map for one octave, e.g. painted by an artist and read from an image file by
+/// the host (the ocean library reads no files; `pacifica replay --height-map` does it with capture::
+/// readImage). `frames` slices of size x size heights h, slice-major, row-major: heights[(f * size + y) *
+/// size + x] is texel (x, y) of slice f, centred at tile coordinate u = ((x, y) + 0.5) / size (x east,
+/// y north). The map tiles: column size - 1 continues into column 0, row size - 1 into row 0. The values are
+/// used as they are (H = sum A_i h_i: a unit-RMS map makes the octave's amplitude its RMS height in
+/// metres, like a generated map). One slice is a still map; otherwise the slices span the octave's
+/// loopPeriod like generated frames (slice f at t = f / frames * T, linear in between, looping).
+struct OctaveImage {
+    int size = 0;   ///< texels per side: must equal HeightOctavesDesc.mapSize (one size for every octave)
+    int frames = 1; ///< 1 (still) or HeightOctavesDesc.frames
+    std::vector<float> heights;
+};
 
 struct HeightOctavesDesc {
     // Tile sizes are mutually incommensurate (ratios ~4.1-4.4) so no two octaves repeat together, which is
@@ -113,6 +133,11 @@ struct HeightOctavesDesc {
     /// The combined levels reach at least this far from the camera (Chebyshev distance): keep it >= the
     /// radial grid's rMax (40 km). Levels = the fewest with (combinedSize / 2 - 2) * texel_k >= it.
     double combinedRadius = 40000.0;
+    /// Caller-supplied maps (§18.2.1: "an artist can paint them"). Empty: every octave is generated.
+    /// Otherwise one entry per octave; an entry with no heights keeps that octave generated (the generator
+    /// still draws its waves, so the other octaves stay the same whichever are replaced). The derivative
+    /// channels are computed from the heights (makeOctaveMap()).
+    std::vector<OctaveImage> images;
 };
 
 /// One generated octave: frames * size * size texels of (h, dh/du, dh/dv, |grad h|^2), slice-major,
@@ -125,6 +150,18 @@ struct OctaveMap {
         return &texels[(static_cast<size_t>(frame) * size * size + static_cast<size_t>(y) * size + x) * 4];
     }
 };
+
+/// Builds the GPU/CPU map of a caller-supplied image: `frames` slices (a still image is repeated), each
+/// texel (h, dh/du, dh/dv, |grad h|^2) rounded to half like a generated map. The derivatives are spectral:
+/// the map is taken as the band-limited periodic function through its texels, differentiated exactly
+/// (d/du multiplies Fourier mode k by i 2 pi k; the Nyquist mode's derivative is set to 0 so a real map
+/// has a real derivative: Trefethen, "Spectral Methods in MATLAB", SIAM 2000, ch. 3; S. G. Johnson, "Notes
+/// on FFT-based differentiation", MIT 2011, algorithm 1). A single cosine with whole cycles per tile thus
+/// gets its analytic slope. Throws std::invalid_argument naming `field` (e.g.
+/// "HeightOctavesDesc.images[2]") for a size that is not a power of two in [16, 1024], a frame count other
+/// than 1 or `frames`, a heights array of the wrong length, a non-finite height, or a height, slope or
+/// squared slope beyond half-float range (65504; the GPU stores the maps as RGBA16F).
+OctaveMap makeOctaveMap(const OctaveImage& image, int frames, const std::string& field);
 
 /// Height, slope and the values the GPU needs per octave for one camera position and time.
 struct OctaveFrameParams {
@@ -159,7 +196,7 @@ public:
     glm::dvec3 displacementAt(const glm::dvec2& worldXY, double time) const override;
     /// 1: no horizontal displacement.
     double jacobianAt(const glm::dvec2&, double) const override { return 1.0; }
-    /// 4 * sqrt(sum of A_i^2) over the displaced octaves (each map has unit RMS).
+    /// 4 * sqrt(sum of (A_i * rms(h_i))^2) over the displaced octaves (a generated map has unit RMS).
     double significantWaveHeight() const override;
 
     /// Height of the displaced surface (the first displacedOctaves octaves) at world (x, y), time t, as the
@@ -237,6 +274,7 @@ private:
     /// [displaced octave][level - 1]: frames * s_k * s_k heights, s_k = mapSize >> level.
     std::vector<std::vector<std::vector<float>>> mHeightMips;
     std::vector<double> mMaxStep;
+    std::vector<double> mRms; ///< RMS of each map's heights (1 for generated maps, by construction)
     double mMaxDisplacement = 0.0;
     int mCombinedLevels = 1;
 };
