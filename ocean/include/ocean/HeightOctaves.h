@@ -140,8 +140,8 @@ struct HeightOctavesDesc {
     std::vector<OctaveImage> images;
 };
 
-/// One generated octave: frames * size * size texels of (h, dh/du, dh/dv, |grad h|^2), slice-major,
-/// row-major.
+/// One octave's map (generated, or made from an OctaveImage): frames * size * size texels of (h, dh/du,
+/// dh/dv, |grad h|^2), slice-major, row-major.
 struct OctaveMap {
     int size = 0;
     int frames = 0;
@@ -196,7 +196,8 @@ public:
     glm::dvec3 displacementAt(const glm::dvec2& worldXY, double time) const override;
     /// 1: no horizontal displacement.
     double jacobianAt(const glm::dvec2&, double) const override { return 1.0; }
-    /// 4 * sqrt(sum of (A_i * rms(h_i))^2) over the displaced octaves (a generated map has unit RMS).
+    /// 4 * sqrt(sum of (A_i * rms(h_i))^2) over the displaced octaves, rms about the map's mean (a generated
+    /// map has zero mean and unit RMS).
     double significantWaveHeight() const override;
 
     /// Height of the displaced surface (the first displacedOctaves octaves) at world (x, y), time t, as the
