@@ -110,7 +110,7 @@ if(NOT pngW EQUAL 1400 OR NOT pngH EQUAL 900)
 endif()
 # The plot holds the Pareto front: accuracy.dat lists it per model, and the front is labelled.
 file(READ "${OUT_DIR}/accuracy.dat" dat)
-if(NOT dat MATCHES "# octaves: Pareto front; ms image_rmse label\n[0-9.e+-]+ [0-9.e+-]+ \"")
+if(NOT dat MATCHES "# octaves: Pareto front; ms image_rmse label stagger\n[0-9.e+-]+ [0-9.e+-]+ \"")
     message(FATAL_ERROR "accuracy.dat has no octave Pareto point:\n${dat}")
 endif()
 message(STATUS "accuracy quick: normal mean baseline ${nmean_baseline_default} deg; png ${pngW}x${pngH}, ${pngSize} bytes")

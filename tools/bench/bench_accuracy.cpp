@@ -482,10 +482,10 @@ std::string gpQuote(const std::string& s) {
 }
 
 // Writes accuracy.dat (per model: block 2m = every setting with image RMSE > 0 — the references' 0 is off a
-// log axis — and block 2m+1 = its Pareto front by ms, each row "ms rmse label") and accuracy.gp, which draws
-// accuracy.png from it: image RMSE against median ms, log-log, one colour per model, the Pareto points
-// filled, joined and labelled "knob=value". Paths are relative: `cd DIR && gnuplot accuracy.gp` re-draws
-// the plot anywhere (the H100 machine has no gnuplot).
+// log axis — and block 2m+1 = its Pareto front by ms, each row "ms rmse label stagger") and accuracy.gp,
+// which draws accuracy.png from it: image RMSE against median ms, log-log, one colour per model, the Pareto
+// points filled, joined and labelled "knob=value". Paths are relative: `cd DIR && gnuplot accuracy.gp`
+// re-draws the plot anywhere (the H100 machine has no gnuplot).
 void writePlotFiles(const std::string& dir, const std::vector<Result>& rs, const std::string& clock,
                     const std::string& renderer) {
     std::ofstream dat(dir + "/accuracy.dat");
@@ -514,12 +514,16 @@ void writePlotFiles(const std::string& dir, const std::vector<Result>& rs, const
                   [](const Result* a, const Result* b) { return a->msMedian < b->msMedian; });
         for (const auto* points : {&all, &front}) {
             dat << "# " << name << (points == &all ? ": every setting with image RMSE > 0" : ": Pareto front")
-                << "; ms image_rmse label\n";
-            for (const Result* r : *points)
+                << "; ms image_rmse label stagger\n";
+            for (size_t k = 0; k < points->size(); ++k) {
+                const Result* r = (*points)[k];
+                // stagger 0, 1, 2 in turn lifts the label by 1.15^(stagger - 1), so neighbours on the
+                // front (often equal RMSE, close ms) do not print over each other.
                 dat << num(r->msMedian) << ' ' << num(r->imageRmse) << " \""
                     << (r->setting.knob == "baseline" ? std::string("baseline")
                                                       : r->setting.knob + "=" + r->setting.value)
-                    << "\"\n";
+                    << "\" " << k % 3 << "\n";
+            }
             dat << "\n\n";
         }
         if (!all.empty())
@@ -529,9 +533,10 @@ void writePlotFiles(const std::string& dir, const std::vector<Result>& rs, const
             plots.push_back("'' index " + std::to_string(block + 1) +
                             " using 1:2 with linespoints pt 7 ps 1.8 lw 1.5 " + lc + " title " +
                             gpQuote(name + " Pareto front"));
-            plots.push_back("'' index " + std::to_string(block + 1) +
-                            " using 1:2:3 with labels left offset 0.8,0.5 font ',9' textcolor rgb " + rgb +
-                            " notitle");
+            plots.push_back(
+                "'' index " + std::to_string(block + 1) +
+                " using 1:($2*1.15**($4-1)):3 with labels left offset 0.8,0 font ',9' textcolor rgb " + rgb +
+                " notitle");
         }
         block += 2;
     }
