@@ -16,6 +16,13 @@ in vec3 vRel;  // camera-relative displaced position (ocean.vert)
 in vec2 vGrid; // camera-relative undisplaced grid point
 out vec4 fragColor;
 
+// Effects (Effects.h): the variant drawing an effect's secondary grid (effects.vert) adds the effect's slope
+// and foam; the base grid's variant with effects present leaves out the discs the effect grids cover.
+// Neither is compiled into a scene without effects.
+#ifdef EFFECT_GRID
+in vec3 vEffect; // (dE/dx, dE/dy, foam)
+#endif
+
 uniform float uNormalTilt;
 uniform float uDisplaceRadius; // ocean.vert's: beyond it the grid is the undisplaced skirt
 
@@ -68,9 +75,16 @@ float foamPattern() {
 }
 
 void main() {
+#ifdef EFFECT_HOLES
+    if (insideEffectGrid(vGrid))
+        discard;
+#endif
     float dist = length(vRel);
     vec3 v = -vRel / max(dist, 1e-6); // towards the eye
     vec3 g = modelLighting(vGrid);
+#ifdef EFFECT_GRID
+    g.xy += vEffect.xy;
+#endif
     vec3 n = normalize(vec3(-g.xy, 1.0));
     // §18.2.6: the surface is lit as if flat under the displacement; tilt toward the viewer so back faces
     // of waves seen at grazing angles do not flash.
@@ -99,6 +113,12 @@ void main() {
     // full coverage is solid foam (the texture is the §18.3 "foam texture", its alpha the coverage).
     float pattern = foamPattern(); // outside any branch: implicit derivatives need uniform control flow
     float foam = clamp((pattern + 1.2 * coverage - 1.0) / 0.3, 0.0, 1.0);
+#ifdef EFFECT_GRID
+    // Effect foam (crown, crests, wake strip) is churned white water: its coverage is the foam itself,
+    // textured by the pattern, and not faded with distance (the effect grid resolves it wherever it is, and
+    // a wake must stay visible from 10 km).
+    foam = max(foam, clamp(vEffect.z * uFoamIntensity * (0.7 + 0.3 * pattern), 0.0, 1.0));
+#endif
     vec3 foamColor =
         FOAM_ALBEDO / PI * (sunLight * (SUN_DIFFUSE_SCALE * max(dot(n, uSunDir), 0.0)) + skyIrradiance());
     vec3 color = mix(water, foamColor, foam);

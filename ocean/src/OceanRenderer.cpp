@@ -7,6 +7,7 @@
 #include "engine/Log.h"
 #include "engine/gl/GlObjects.h"
 #include "engine/gl/Shader.h"
+#include "gpu/EffectsGpu.h"
 #include "gpu/LightingGpu.h"
 #include "gpu/SurfaceGpuFactory.h"
 #include "ocean/OceanConstants.h"
@@ -18,6 +19,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -38,7 +40,9 @@ OceanComponent makeOcean(const OceanDesc& desc) {
 struct OceanRenderer::Programs {
     std::map<std::string, gl::Program> sea;         // per surface model's GLSL set
     std::map<std::string, gl::Program> seaFeedback; // vertex stage only, captures vRel
-    gl::Program sky;                                // built on first use
+    std::map<std::string, gl::Program> effects;     // per model and kinds present: secondary grids
+    std::map<std::string, gl::Program> effectsFeedback;
+    gl::Program sky;           // built on first use
     gl::VertexArray emptyVao;  // the sky's fullscreen triangle needs a bound VAO in core profile
     gl::Texture feedbackColor; // a 1x1 target: drawing needs a complete framebuffer even with discard
     gl::Framebuffer feedbackFbo;
@@ -62,9 +66,22 @@ namespace {
 /// Texture units: the surface model binds from 0, the lighting (environment map, foam) from here.
 constexpr int LIGHTING_FIRST_UNIT = 12;
 
-std::vector<gl::ShaderSource> sources(const std::vector<std::string>& names) {
+std::string effectConstantDefines() {
+    char buf[256];
+    std::snprintf(
+        buf, sizeof buf,
+        "#define EFFECT_HEIGHT_LIMIT %.9g\n#define MAX_WAKE_POINTS %d\n#define EFFECT_MIN_WAVELENGTH %.9g\n",
+        EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH);
+    return buf;
+}
+
+/// The shader sources: constants, then the variant's #defines (feature set), then the files.
+std::vector<gl::ShaderSource> sources(const std::vector<std::string>& names,
+                                      const std::string& defines = {}) {
     std::vector<gl::ShaderSource> out;
     out.push_back({"<ocean constants>", shaderConstantDefines()});
+    if (!defines.empty())
+        out.push_back({"<variant defines>", effectConstantDefines() + defines});
     for (const std::string& n : names)
         out.push_back({n, std::string(shaderText(n))});
     return out;
@@ -161,10 +178,47 @@ bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
     return true;
 }
 
+bool hasEffects(ecs::Registry& registry) {
+    auto explosions = registry.view<Explosion>();
+    auto trails = registry.view<ShipTrail>();
+    return explosions.begin() != explosions.end() || trails.begin() != trails.end();
+}
+
+/// How far above or below its disc an effect grid's surface can reach: the base surface (2 Hs) plus the
+/// saturated effect field.
+double effectHeightBound(const OceanComponent& ocean) {
+    return 2.0 * ocean.surface->significantWaveHeight() + EFFECT_HEIGHT_LIMIT;
+}
+
+void countEffectUploads(const EffectsGpu& fx, OceanStats& stats) {
+    stats.explosions.active = fx.count(EffectKind::Explosion);
+    stats.explosions.drawn = fx.drawn(EffectKind::Explosion);
+    stats.explosions.uploads = fx.uploads(EffectKind::Explosion);
+    stats.wakes.active = fx.count(EffectKind::Wake);
+    stats.wakes.drawn = fx.drawn(EffectKind::Wake);
+    stats.wakes.uploads = fx.uploads(EffectKind::Wake);
+    stats.uploads += stats.explosions.uploads + stats.wakes.uploads;
+}
+
+/// The effect grids' vertex uniforms (effects.vert): the model's, the transform, camera height, curvature.
+void setEffectUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
+                       const OceanFrame& frame) {
+    gpu.model->bind(prog, 0, frame.time, frame.camera.origin);
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE,
+                              glm::value_ptr(frame.camera.viewProj));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uCameraHeight"),
+                       static_cast<float>(frame.camera.origin.z));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uDisplaceRadius"),
+                       static_cast<float>(ocean.desc.grid.rMax * 1.0001));
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
+                       ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
+}
+
 } // namespace
 
 OceanRenderer::OceanRenderer()
-    : mPrograms(std::make_unique<Programs>()), mLighting(std::make_unique<LightingGpu>()) {}
+    : mPrograms(std::make_unique<Programs>()), mLighting(std::make_unique<LightingGpu>()),
+      mEffects(std::make_unique<EffectsGpu>()) {}
 
 OceanRenderer::~OceanRenderer() = default;
 
@@ -184,6 +238,28 @@ OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& 
     if (gridChanged)
         buildGrid(*gpu, ocean.desc);
     return *gpu;
+}
+
+unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback) {
+    const std::string kinds = mEffects->defines();
+    gl::Program& program =
+        (feedback ? mPrograms->effectsFeedback : mPrograms->effects)[gpu.programKey + kinds];
+    if (!program) {
+        ++mStats.programsBuilt;
+        const std::vector<std::string> model = gpu.model->glslFiles();
+        const std::string name = "ocean effect grids (" + gpu.programKey + ")";
+        auto vertex = sources(concat(model, {"effects.glsl", "effects.vert"}), kinds);
+        if (feedback)
+            program =
+                gl::buildProgram({{gl::ShaderStage::Vertex, vertex}}, name + " feedback", {"vRel", "vLocal"});
+        else
+            program = gl::buildProgram(
+                {{gl::ShaderStage::Vertex, vertex},
+                 {gl::ShaderStage::Fragment,
+                  sources(concat(model, {"sky.glsl", "ocean.frag"}), "#define EFFECT_GRID\n")}},
+                name);
+    }
+    return program.id();
 }
 
 void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
@@ -221,6 +297,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
 
         if (ocean.desc.drawSky) {
             if (!mPrograms->sky) {
+                ++mStats.programsBuilt;
                 mPrograms->sky =
                     gl::buildProgram({{gl::ShaderStage::Vertex, sources({"sky.vert"})},
                                       {gl::ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
@@ -241,20 +318,36 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             mStats.vertices += 3;
         }
 
+        // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
+        const bool effects = hasEffects(registry);
+        if (effects) {
+            mEffects->prepare(registry, frame, effectHeightBound(ocean), ocean.desc.effectGrids);
+            countEffectUploads(*mEffects, mStats);
+        }
+        const bool holes = effects && mEffects->any();
+        const std::string fxDefines = holes ? mEffects->defines() : std::string();
+
         const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
-        gl::Program& seaProgram = mPrograms->sea[gpu.programKey + vert];
+        gl::Program& seaProgram = mPrograms->sea[gpu.programKey + vert + fxDefines];
         if (!seaProgram) {
+            ++mStats.programsBuilt;
             const std::vector<std::string> model = gpu.model->glslFiles();
+            std::vector<std::string> frag = model;
+            if (holes)
+                frag.emplace_back("effects.glsl");
             seaProgram = gl::buildProgram(
                 {{gl::ShaderStage::Vertex, sources(concat(model, {vert}))},
-                 {gl::ShaderStage::Fragment, sources(concat(model, {"sky.glsl", "ocean.frag"}))}},
-                "ocean sea (" + gpu.programKey + ")");
+                 {gl::ShaderStage::Fragment, sources(concat(frag, {"sky.glsl", "ocean.frag"}),
+                                                     holes ? fxDefines + "#define EFFECT_HOLES\n" : "")}},
+                "ocean sea (" + gpu.programKey + (holes ? ", effect holes" : "") + ")");
         }
         const GLuint sea = seaProgram.id();
         glUseProgram(sea);
         if (!setSeaUniforms(sea, ocean, gpu, frame))
             return; // no sea in view: the sky pass alone
         mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+        if (holes)
+            mEffects->bind(sea);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
@@ -263,6 +356,27 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         mStats.passes += 1;
         mStats.draws += 1;
         mStats.vertices += gpu.vertexCount;
+
+        // The secondary grids, one instanced draw per kind in view (after the base grid: same depth test).
+        if (!holes)
+            return;
+        const GLuint fx = effectProgram(gpu, false);
+        glUseProgram(fx);
+        setEffectUniforms(fx, ocean, gpu, frame);
+        mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+        mEffects->bind(fx);
+        for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {
+            EffectKindStats& ks = kind == EffectKind::Explosion ? mStats.explosions : mStats.wakes;
+            const long long vertices = mEffects->draw(fx, kind);
+            if (vertices == 0)
+                continue;
+            ks.passes += 1;
+            ks.draws += 1;
+            ks.vertices += vertices;
+            mStats.passes += 1;
+            mStats.draws += 1;
+            mStats.vertices += vertices;
+        }
     });
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }
@@ -304,6 +418,46 @@ OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity, co
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     std::vector<DisplacedVertex> out(count);
     glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(DisplacedVertex)),
+                            out.data());
+    return out;
+}
+
+std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Registry& registry,
+                                                                       ecs::Entity entity,
+                                                                       const OceanFrame& frame,
+                                                                       EffectKind kind) {
+    const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);
+    if (!ocean || !ocean->surface)
+        throw std::invalid_argument("OceanRenderer::effectVertices(): entity " + ecs::toString(entity) +
+                                    " has no OceanComponent");
+    Gpu& gpu = prepare(entity, *ocean);
+    mEffects->prepare(registry, frame, effectHeightBound(*ocean), ocean->desc.effectGrids);
+    if (mEffects->drawn(kind) == 0)
+        return {};
+    if (!mPrograms->feedbackFbo) {
+        mPrograms->feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
+        mPrograms->feedbackFbo = gl::Framebuffer::create();
+        mPrograms->feedbackFbo.attachColor(0, mPrograms->feedbackColor);
+    }
+    gl::StateGuard guard;
+    gpu.model->update(frame.time, frame.camera.origin);
+    const GLuint prog = effectProgram(gpu, true);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
+    glUseProgram(prog);
+    setEffectUniforms(prog, *ocean, gpu, frame);
+    mEffects->bind(prog);
+    const size_t count = static_cast<size_t>(mEffects->gridVertices(kind) * mEffects->drawn(kind));
+    static_assert(sizeof(EffectVertex) == 5 * sizeof(float), "interleaved vRel, vLocal");
+    gl::Buffer captured = gl::Buffer::create(count * sizeof(EffectVertex), nullptr);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBeginTransformFeedback(GL_POINTS);
+    mEffects->draw(prog, kind, GL_POINTS);
+    glEndTransformFeedback();
+    glDisable(GL_RASTERIZER_DISCARD);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    std::vector<EffectVertex> out(count);
+    glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(EffectVertex)),
                             out.data());
     return out;
 }

@@ -12,6 +12,9 @@ Cases (chosen with --case, one ctest test each):
   ocean-options  one frame with the defaults, then with lighting options (dense red fog: the frame turns red;
                a low western sun) and painted --height-map PNGs (a still map and a 4-frame strip): each
                changes the EXR pixels, and the same maps render the same pixels twice.
+  effects      the demo's 3.0 s explosion and two ships: per-frame counters in summary.json show the effect
+               kinds active and drawn; with --no-events every effect counter is 0 and the frame costs exactly
+               the plain ocean's passes, draws and uploads.
 
 Usage: test_e2e.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library only)
 Temp dirs are removed on success and kept (path printed) on failure.
@@ -232,6 +235,8 @@ def read_flight(path):
             fields = [x.strip() for x in line.split(",")]
             if header is None:
                 header = fields
+                continue
+            if fields[0] in ("explosion", "ship"):  # event records (docs/FLIGHT_FORMAT.md), not camera samples
                 continue
             rows[float(fields[0])] = dict(zip(header[1:], map(float, fields[1:])))
     return rows
@@ -496,7 +501,63 @@ def case_ocean_options(c, exe, source_dir, tmp):
             f"{frame_h['exr_pixel_hash']} vs {frame_h2['exr_pixel_hash']}")
 
 
-CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options": case_ocean_options}
+def case_effects(c, exe, source_dir, tmp):
+    """The demo flight's events reach the picture and the per-frame counters (summary.json frames[i].counters):
+    the 3.0 s explosion is flat at t = 3.0 and active and drawn after; both ships' wakes are active; with
+    --no-events every effect counter is 0 and the frame costs exactly the plain ocean's passes, draws and
+    uploads (with events: that plus one pass and draw per kind drawn)."""
+    flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
+    args = ["--start", "3", "--end", "5", "--fps", "2", "--size", "160x90", "--no-images"]
+
+    def run(name, extra):
+        out = os.path.join(tmp, name)
+        proc = run_replay(exe, [flight, "--out", out, *args, *extra])
+        c.require(proc.returncode == 0, f"{name}: exits 0", proc.stderr.strip()[-2000:])
+        summary = load_summary(c, out)
+        frames = summary.get("frames", [])
+        c.require(len(frames) == 5 and all("counters" in f for f in frames),
+                  f"{name}: 5 frames, each with counters", str(frames)[:500])
+        return summary, frames
+
+    print("[events] demo slice 3..5 s with the flight's explosions and ships")
+    s_fx, f_fx = run("events", [])
+    ev = s_fx.get("events", {})
+    c.check(ev.get("applied") is True and ev.get("explosions") == 3 and ev.get("ships") == 2,
+            "summary.events: applied, 3 explosions, 2 ships", str(ev))
+    first = f_fx[0]["counters"]
+    c.check(first["explosions"]["active"] == 0, "t = 3.0 (the blast's own instant): no explosion to draw",
+            str(first["explosions"]))
+    for f in f_fx[1:]:
+        k = f["counters"]
+        print(f"    t={f['time_s']}: explosions {k['explosions']}, wakes {k['wakes']}")
+        c.check(k["explosions"]["active"] == 1 and k["explosions"]["drawn"] == 1 and
+                k["explosions"]["draws"] == 1 and k["explosions"]["vertices"] > 0,
+                f"t={f['time_s']}: the explosion is active and drawn", str(k["explosions"]))
+        c.check(k["wakes"]["active"] == 2, f"t={f['time_s']}: both ships' wakes are active", str(k["wakes"]))
+        c.check(k["programs_built"] == 0 or f["time_s"] == 3.5, f"t={f['time_s']}: no shader built in steady state",
+                str(k["programs_built"]))
+
+    print("[no events] the same slice with --no-events")
+    s_plain, f_plain = run("plain", ["--no-events"])
+    c.check(s_plain.get("events", {}).get("applied") is False, "summary.events.applied is false")
+    for fp, fe in zip(f_plain, f_fx):
+        kp, ke = fp["counters"], fe["counters"]
+        zero = all(kp[kind][field] == 0 for kind in ("explosions", "wakes")
+                   for field in ("active", "drawn", "passes", "draws", "uploads", "vertices"))
+        c.check(zero, f"t={fp['time_s']}: no effect counter is non-zero without events", str(kp))
+        extra_passes = ke["explosions"]["passes"] + ke["wakes"]["passes"]
+        extra_draws = ke["explosions"]["draws"] + ke["wakes"]["draws"]
+        extra_uploads = ke["explosions"]["uploads"] + ke["wakes"]["uploads"]
+        c.check(ke["passes"] == kp["passes"] + extra_passes and ke["draws"] == kp["draws"] + extra_draws and
+                ke["uploads"] == kp["uploads"] + extra_uploads,
+                f"t={fp['time_s']}: effects add exactly their own passes, draws and uploads",
+                f"events {ke} vs plain {kp}")
+        if fe["counters"]["explosions"]["drawn"] or fe["counters"]["wakes"]["drawn"]:
+            c.check(fp["exr_pixel_hash"] != fe["exr_pixel_hash"], f"t={fp['time_s']}: the effects change the pixels")
+
+
+CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options": case_ocean_options,
+         "effects": case_effects}
 
 
 def main():

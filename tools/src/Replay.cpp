@@ -12,6 +12,7 @@
 #include "engine/gl/FrameTargets.h"
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GpuTimer.h"
+#include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 
 #include <nlohmann/json.hpp>
@@ -228,6 +229,43 @@ void runReplay(const ReplayOptions& o) {
     color::Tonemapper tonemapper(colour);
     gl::GpuTimer gpuTimer(context->info());
 
+    // Events (Effects.h): ships are entities whose position follows their track; explosions are spawned
+    // by events when the clock passes them. The ships' wakes are built from their path before the first
+    // frame (0.5 s steps from the earliest ship sample), so a ship that sailed before --start has a wake.
+    ecs::EventQueue events;
+    ocean::EffectsSystem effects(registry, events);
+    std::vector<ecs::Entity> shipEntities;
+    size_t nextExplosion = 0;
+    const std::vector<ExplosionEvent> noExplosions;
+    const std::vector<ShipTrack> noShips;
+    const std::vector<ExplosionEvent>& explosionEvents = o.events ? flight.explosions() : noExplosions;
+    const std::vector<ShipTrack>& shipTracks = o.events ? flight.ships() : noShips;
+    for (const ShipTrack& track : shipTracks) {
+        const ecs::Entity e = registry.create();
+        registry.emplace<ocean::Ship>(e, ocean::Ship{track.positionAt(track.startTime()), 60.0});
+        events.enqueue(ocean::AttachShipTrail{e, ocean::WakeParams{}});
+        shipEntities.push_back(e);
+    }
+    auto advanceEffects = [&](double t, const glm::dvec3& camera) {
+        for (size_t i = 0; i < shipTracks.size(); ++i)
+            registry.get<ocean::Ship>(shipEntities[i]).position = shipTracks[i].positionAt(t);
+        for (; nextExplosion < explosionEvents.size() && explosionEvents[nextExplosion].time <= t;
+             ++nextExplosion) {
+            const ExplosionEvent& x = explosionEvents[nextExplosion];
+            events.enqueue(ocean::SpawnExplosion{{x.x, x.y}, x.time, x.strength});
+        }
+        events.dispatch();
+        effects.update(t, camera);
+    };
+    {
+        double warm = start;
+        for (const ShipTrack& track : shipTracks)
+            warm = std::min(warm, track.startTime());
+        const glm::dvec3 camera = flight.poseAt(start).position;
+        for (double tw = warm; tw < start; tw += 0.5)
+            advanceEffects(tw, camera);
+    }
+
     const long long frameCount = static_cast<long long>(std::floor((end - start) * o.fps + 1e-9)) + 1;
     OutputTransaction out(o.outDir);
     nlohmann::json frames = nlohmann::json::array();
@@ -249,6 +287,7 @@ void runReplay(const ReplayOptions& o) {
         frame.width = o.width;
         frame.height = o.height;
 
+        advanceEffects(t, pose.position);
         gpuTimer.begin();
         renderer.render(registry, frame);
         tonemapper.run(targets.sceneColor(), targets.displayFramebuffer(), o.width, o.height);
@@ -292,6 +331,25 @@ void runReplay(const ReplayOptions& o) {
             fj["png"] = pngName;
         }
         fj["exr_pixel_hash"] = hex64(hash);
+        // What the frame cost and did (OceanStats, EffectCounters): absent effects show zeros.
+        const ocean::OceanStats& st = renderer.lastStats();
+        const ocean::EffectCounters& fx = effects.counters();
+        auto kindJson = [](const ocean::EffectKindStats& ks) {
+            return nlohmann::json{{"active", ks.active}, {"drawn", ks.drawn},     {"passes", ks.passes},
+                                  {"draws", ks.draws},   {"uploads", ks.uploads}, {"vertices", ks.vertices}};
+        };
+        fj["counters"] = {{"passes", st.passes},
+                          {"draws", st.draws},
+                          {"uploads", st.uploads},
+                          {"vertices", st.vertices},
+                          {"programs_built", st.programsBuilt},
+                          {"explosions", kindJson(st.explosions)},
+                          {"wakes", kindJson(st.wakes)},
+                          {"explosions_spawned", fx.spawned},
+                          {"effects_ended", fx.ended},
+                          {"explosions_dropped", fx.droppedExplosions},
+                          {"wakes_dropped", fx.droppedWakes},
+                          {"events_rejected", fx.rejected}};
         frames.push_back(std::move(fj));
         if (tty)
             std::fprintf(stderr, "\rpacifica replay: frame %lld/%lld  t=%.2f s  alt=%.0f m   ", k + 1,
@@ -318,6 +376,10 @@ void runReplay(const ReplayOptions& o) {
     summary["end_s"] = end;
     summary["images_written"] = o.writeImages;
     summary["hash"] = "XXH64 of the scene-linear half-float RGBA pixels, rows top-down";
+    summary["events"] = {{"applied", o.events},
+                         {"explosions", explosionEvents.size()},
+                         {"ships", shipTracks.size()},
+                         {"explosions_dropped_total", effects.counters().totalDroppedExplosions}};
     summary["frames"] = std::move(frames);
     summary["timings"] = {{"gpu_clock", gpuTimer.clockName()},
                           {"gpu_ms_median", median(gpuTimer.samples())},

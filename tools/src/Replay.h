@@ -37,6 +37,9 @@ struct ReplayOptions {
     /// ocean.lighting.environment and points the sun at the map's brightest region. Read and validated
     /// before anything is written: a missing, unreadable or NaN/Inf/negative file is an error naming it.
     std::optional<std::filesystem::path> environment;
+    /// Apply the flight file's events (explosions, ships with their wakes; docs/FLIGHT_FORMAT.md).
+    /// false (--no-events): the plain ocean, for comparisons and benchmarks.
+    bool events = true;
 };
 
 /// Parses "WxH" (e.g. "640x360"); throws UsageError naming --size.

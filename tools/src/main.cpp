@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
     CLI::Option* ocioOpt = rp->add_option("--ocio-config", ocioConfig, "OCIO config file (overrides $OCIO)");
     rp->add_flag("--no-images", noImages, "render and read back but write no images (benchmarking)");
     rp->add_flag("--no-progress", noProgress, "no progress line");
+    bool noEvents = false;
+    rp->add_flag("--no-events", noEvents,
+                 "ignore the flight file's explosions and ships (the plain ocean, for comparisons)");
     rp->add_option("--fov", replay.fovYDeg, "vertical field of view, degrees")->default_val(60.0f);
     std::string environment;
     CLI::Option* envOpt =
@@ -60,6 +63,7 @@ int main(int argc, char** argv) {
         if (rp->parsed()) {
             replay.flight = flight;
             replay.outDir = outDir;
+            replay.events = !noEvents;
             pacifica::tools::parseSize(size, replay.width, replay.height);
             if (startOpt->count())
                 replay.start = start;

@@ -19,6 +19,7 @@
 
 #include "engine/Ecs.h"
 #include "engine/Space.h"
+#include "ocean/Effects.h"
 #include "ocean/FftOcean.h"
 #include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"
@@ -36,6 +37,15 @@
 namespace pacifica::ocean {
 
 enum class GridKind { Radial, Projected };
+
+/// The secondary radial grids of the effects (Effects.h): unit discs with rings at (i / rings)^exponent,
+/// scaled to each effect's radius every frame.
+struct EffectGridDesc {
+    int explosionRings = 48, explosionSegments = 96;
+    double explosionExponent = 1.5;
+    int wakeRings = 96, wakeSegments = 192;
+    double wakeExponent = 2.0;
+};
 
 struct OceanDesc {
     SurfaceKind model = SurfaceKind::Octaves; ///< which surface model displaces and lights the sea
@@ -58,6 +68,7 @@ struct OceanDesc {
     /// the half screen) plus the surface's displacement bound.
     bool cullVertices = true;
     double cullGuardNdc = 0.1;
+    EffectGridDesc effectGrids;
 };
 
 /// The component: a description plus the CPU surface model built from it (shared, immutable). CPU queries
@@ -77,15 +88,29 @@ struct OceanFrame {
     int width = 0, height = 0;
 };
 
-/// What the last render() did: render and compute passes, draw calls, buffer/texture uploads, vertices.
+/// What the last render() did for one kind of effect.
+struct EffectKindStats {
+    int active = 0;         ///< effects of this kind in the frame's buffers (their field is evaluated)
+    int drawn = 0;          ///< of those, grids in view and drawn (instances)
+    int passes = 0;         ///< render passes for this kind (0 or 1)
+    int draws = 0;          ///< draw calls
+    int uploads = 0;        ///< buffer uploads (effect data, grid meshes)
+    long long vertices = 0; ///< secondary-grid vertices processed
+};
+
+/// What the last render() did: render and compute passes, draw calls, buffer/texture uploads, vertices
+/// (totals, effects included), and the effects' share per kind.
 struct OceanStats {
     int passes = 0;
     int draws = 0;
     int uploads = 0;
     long long vertices = 0;
+    int programsBuilt = 0; ///< shader programs compiled this frame (a variant is built on first use only)
+    EffectKindStats explosions, wakes;
 };
 
 class LightingGpu; // implementation detail (ocean/src/gpu/LightingGpu.h)
+class EffectsGpu;  // implementation detail (ocean/src/gpu/EffectsGpu.h)
 
 /// The ocean render system: draws every OceanComponent in a registry.
 class OceanRenderer {
@@ -109,13 +134,26 @@ public:
                                                    const OceanFrame& frame);
     const OceanStats& lastStats() const { return mStats; }
 
+    /// The displaced vertices of every drawn secondary grid of one effect kind (transform feedback, nothing
+    /// drawn), instance after instance, each instance in the grid's vertex order. Effects are gathered from
+    /// the registry at frame.time as render() does. For tests comparing the GPU with oceanHeightAt().
+    struct EffectVertex {
+        glm::vec3 position; ///< camera-relative displaced position (vRel)
+        glm::vec2 local;    ///< the displaced point relative to its effect's centre (vLocal)
+    };
+    std::vector<EffectVertex> effectVertices(ecs::Registry& registry, ecs::Entity ocean,
+                                             const OceanFrame& frame, EffectKind kind);
+
     struct Gpu;      ///< implementation detail: per-ocean GPU resources
     struct Programs; ///< implementation detail: compiled shader programs
 
 private:
     Gpu& prepare(ecs::Entity e, const OceanComponent& ocean);
+    /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once).
+    unsigned effectProgram(Gpu& gpu, bool feedback);
     std::unique_ptr<Programs> mPrograms;
     std::unique_ptr<LightingGpu> mLighting;
+    std::unique_ptr<EffectsGpu> mEffects;
     std::unordered_map<ecs::Entity, std::unique_ptr<Gpu>> mGpu;
     OceanStats mStats;
 };

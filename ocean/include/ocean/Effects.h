@@ -1,0 +1,245 @@
+// Effects: local perturbations of the sea (GPU Gems 2 §18.3) — explosions and ship trails — as ECS
+// components created by events, each drawn on its own secondary radial grid centred at the effect and
+// composited with the base surface, and included in the CPU height queries.
+//
+// STEP BY STEP (a host game)
+//   1. pacifica::ocean::EffectsSystem effects(registry, events);   // subscribes to the spawn events
+//   2. Explosions: events.enqueue(SpawnExplosion{{x, y}, time, strength});
+//      Ships: give the ship entity a Ship component (update Ship::position every frame), then
+//      events.enqueue(AttachShipTrail{shipEntity});
+//   3. Every frame, after events.dispatch(): effects.update(simTime, cameraWorld); then
+//      OceanRenderer::render() draws the active effects (nothing at all when there are none).
+//   4. CPU queries including the effects: oceanHeightAt(registry, oceanEntity, {x, y}, simTime).
+//   5. Subscribe to EffectEnded to learn when an effect faded out.
+//
+// The field of all active effects together is one function E(x, t) of the world point x (summed, then
+// softly saturated at EFFECT_HEIGHT_LIMIT); every secondary grid draws base + E, so overlapping effects
+// meet without seams, and the base grid leaves out the discs the effect grids cover. The GLSL twin is
+// ocean/shaders/effects.glsl; tests compare them (tests/gl/test_effects_gl.cpp).
+#pragma once
+
+#include "engine/Ecs.h"
+#include "engine/Events.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace pacifica::ocean {
+
+/// Soft limit of the summed effect height, metres: E = L tanh(sum / L), so a thousand explosions in one
+/// spot stay a bounded (if violent) sea instead of a kilometre-high spike.
+inline constexpr double EFFECT_HEIGHT_LIMIT = 12.0;
+/// Most history points of one ship trail (the GPU buffer's stride).
+inline constexpr int MAX_WAKE_POINTS = 64;
+/// Kelvin wake half-angle: asin(1/3) = 19.47 degrees (Kelvin 1887; the cusp of the stationary-phase
+/// solution of deep-water ship waves, tan^2 = 1/8).
+inline constexpr double KELVIN_TAN2 = 1.0 / 8.0;
+/// Shortest wave a secondary grid resolves, metres: components of the wake (the divergent waves near the
+/// track have unbounded wave number) fade out between twice this and this wavelength.
+inline constexpr double EFFECT_MIN_WAVELENGTH = 3.0;
+
+// ---- Explosion ------------------------------------------------------------------------------------------
+
+/// The §18.3 ring wave's parameters (the seed names I0, b, k and w): amplitude I0, decay b, wave number k,
+/// frequency w = sqrt(g k) (deep water). Derived from a strength by explosionParams().
+struct ExplosionParams {
+    double amplitude = 2.0;  ///< I0, metres: peak height once grown
+    double wavenumber = 0.2; ///< k, rad/m
+    double decay = 0.06;     ///< b, 1/s: temporal decay e^(-b tau)
+    double rise = 0.6;       ///< s: growth 1 - e^(-tau / rise), so the sea is flat at tau = 0
+    double coreRadius = 8.0; ///< r0, metres: regularises the cylindrical spreading r0 / sqrt(r0^2 + r^2)
+    double foamLife = 20.0;  ///< s: crown foam decays as e^(-tau / foamLife)
+    double foamRise = 0.4;   ///< s: crown foam grows as 1 - e^(-tau / foamRise)
+};
+
+/// Parameters for a strength s (1 = a nominal 500 kg charge): lengths scale with the cube root of the
+/// energy (Hopkinson–Cranz scaling), so amplitude, wavelength and core radius go as s^(1/3).
+/// Throws std::invalid_argument unless s is finite and > 0.
+ExplosionParams explosionParams(double strength);
+
+/// The component of an explosion entity (created by EffectsSystem from SpawnExplosion).
+struct Explosion {
+    glm::dvec2 center{0.0};
+    double startTime = 0.0;
+    double strength = 1.0;
+    ExplosionParams params;
+    double endAmplitude = 0.01; ///< EffectsDesc::endAmplitude when spawned: sets the grid radius and the end
+};
+
+/// What an explosion is at time t (tau = t - startTime): the quantities both the CPU and the GPU evaluate
+/// the ring from. Before the start (tau < 0) everything is 0.
+struct ExplosionState {
+    double tau = 0.0;
+    double amplitude = 0.0;   ///< I0 (1 - e^(-tau/rise)) e^(-b tau), metres
+    double phase = 0.0;       ///< w tau wrapped to [0, 2 pi) (in double)
+    double front = 0.0;       ///< radius the wave train has reached: r0 + c_g tau, c_g = w / (2 k)
+    double frontWidth = 0.0;  ///< half a wavelength: pi / k
+    double radius = 0.0;      ///< the secondary grid's radius: where the field has been tapered to 0
+    double foam = 0.0;        ///< crown foam strength in [0, 1]: (1 - e^(-tau/foamRise)) e^(-tau/foamLife)
+    double crownRadius = 0.0; ///< the crown foam's e-folding radius, metres
+};
+ExplosionState explosionState(const Explosion& e, double t);
+
+/// The ring wave of one explosion at offset q from its centre (metres), GPU Gems 2 §18.3 made regular:
+///   h = A(tau) * r0 / sqrt(r0^2 + r^2) * W(r) * cos(k rho - w tau) * T(r),
+/// rho = sqrt(r^2 + r0^2) - r0 (smooth at r = 0), W = 1 - smoothstep(front - width, front + width, r)
+/// (no wave ahead of the group front), T = 1 - smoothstep(0.8 R, R, r) (zero at the grid's rim).
+/// The seed's printed formula is missing from our copy; this form keeps its symbols (I0, b, k, w) and its
+/// 1/r spreading, regularised so nothing is singular at r = 0 or tau = 0. Returns (h, dh/dx, dh/dy).
+/// All radial factors are functions of s = sqrt(r^2 + r0^2) (so the field is smooth at r = 0).
+glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q);
+/// Crown foam coverage in [0, 1] at offset q: foam * exp(-(r / crownRadius)^2), plus the §18.3 height
+/// threshold on the ring's crests (alpha = (h - H0) / (Hmax - H0), H0 = 0.35 I0, Hmax = 0.8 I0).
+double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q, double h);
+
+// ---- Ship trail (Kelvin wake) ---------------------------------------------------------------------------
+
+/// A ship the host moves: its position on the sea, updated every frame.
+struct Ship {
+    glm::dvec2 position{0.0};
+    double length = 60.0; ///< metres (sets the wake's amplitude and the turbulent strip's width)
+};
+
+struct WakeParams {
+    double amplitude = 0.5;    ///< metres at the stern for a 60 m ship at 10 m/s (scales with L and U^2)
+    double waveLife = 90.0;    ///< s: wake waves decay as e^(-age / waveLife)
+    double foamLife = 150.0;   ///< s: the turbulent strip's foam decays as e^(-age / foamLife)
+    double maxLength = 3000.0; ///< metres of path kept
+    double minSpeed = 0.5;     ///< m/s: below it the ship makes no waves
+};
+
+/// One recorded point of the ship's path: where it was, when, and the arc length back to the newest point.
+struct WakePoint {
+    glm::dvec2 position{0.0};
+    double time = 0.0;
+    double speed = 0.0; ///< m/s over the segment from the next-older point
+};
+
+/// The ship-trail source attached to a ship entity (AttachShipTrail). history[0] is the newest point.
+struct ShipTrail {
+    WakeParams params;
+    std::vector<WakePoint> history;
+    bool active = false; ///< drawn and queried this frame (EffectsSystem::update)
+};
+
+/// What a trail is at time t: the points relative to the ship, their arc length, age, and the amplitude
+/// and wave number each point's speed gave it (a ship that stops leaves its wake to decay).
+struct WakeState {
+    std::vector<glm::dvec2> offsets; ///< point - ship position, newest (the ship) first
+    std::vector<double> sigma;       ///< arc length from the ship along the path
+    std::vector<double> age;         ///< t - point time
+    std::vector<double> amplitude;   ///< stern wave amplitude when the point was laid, metres
+    std::vector<double> k0;          ///< g / U^2 at that point, rad/m (transverse wave number)
+    glm::dvec2 ship{0.0};
+    double length = 60.0; ///< ship length, metres (amplitude falls as 1 / sqrt(1 + x / L))
+    double beam = 0.0;    ///< half-width of the turbulent strip at the stern, metres
+    double waveLife = 0.0, foamLife = 0.0;
+    double radius = 0.0; ///< the secondary grid's radius (0: nothing to draw)
+    double peak = 0.0;   ///< largest wave amplitude anywhere in the wake, metres
+};
+WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t);
+
+/// Where a point lies relative to the path: arc length behind the ship, signed lateral offset, age of the
+/// path there, and the path's travel direction there. behind < 0 means ahead of the ship.
+struct WakeCoords {
+    double behind = 0.0, lateral = 0.0, age = 0.0;
+    double amplitude = 0.0, k0 = 0.0; ///< interpolated from the path points
+    glm::dvec2 direction{1.0, 0.0};
+};
+/// q is relative to the ship. Closest point on the history polyline (ahead of the ship: the first
+/// segment's line extended).
+WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q);
+/// Kelvin pattern (stationary phase, deep water; e.g. Lighthill, "Waves in Fluids" §3.10): at x behind
+/// and y beside the track, tan a = |y| / x <= 1/sqrt(8), the wave directions T = tan(theta) solve
+/// 2 tan(a) T^2 - T + tan(a) = 0 (transverse and divergent), wave number k0 (1 + T^2), phase
+/// k0 sqrt(1 + T^2) (x + |y| T). Amplitude A e^(-age/waveLife) / sqrt(1 + x / L); the divergent
+/// system at 0.6 of the transverse. c gives the path's amplitude, k0 and age there. Returns h.
+double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral);
+/// (h, dh/dx, dh/dy) of the wake at q (relative to the ship).
+glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q);
+/// Wake foam in [0, 1]: the turbulent strip behind the stern, exp(-(y / w)^2), w = beam (1 + x / 400 m),
+/// times its growth/decay over the path's age.
+double wakeFoam(const WakeState& s, const WakeCoords& c);
+
+// ---- Events ---------------------------------------------------------------------------------------------
+
+struct SpawnExplosion {
+    glm::dvec2 position{0.0};
+    double time = 0.0;
+    double strength = 1.0;
+};
+struct AttachShipTrail {
+    ecs::Entity ship;
+    WakeParams params;
+};
+enum class EffectKind { Explosion, Wake };
+const char* toString(EffectKind kind);
+/// An effect faded under EffectsDesc::endAmplitude (explosion entity destroyed; trail went quiet), or was
+/// dropped by a cap (dropped = true).
+struct EffectEnded {
+    EffectKind kind = EffectKind::Explosion;
+    ecs::Entity entity;
+    double time = 0.0;
+    bool dropped = false;
+};
+
+// ---- The system -----------------------------------------------------------------------------------------
+
+struct EffectsDesc {
+    int maxExplosions = 64;     ///< cap; policy: drop the least visible (see EffectsSystem)
+    int maxWakes = 8;           ///< cap on trails drawn per frame; the least visible are skipped
+    double endAmplitude = 0.01; ///< metres: an effect whose peak height falls below ends
+};
+
+/// Per-frame counters: what the effects cost and did. Render counters are filled by OceanRenderer
+/// (OceanStats::effects), the rest by EffectsSystem::update().
+struct EffectCounters {
+    int activeExplosions = 0, activeWakes = 0;
+    int spawned = 0;                             ///< explosions created this frame
+    int ended = 0;                               ///< effects that faded out this frame
+    int droppedExplosions = 0, droppedWakes = 0; ///< dropped by the caps this frame
+    long long totalDroppedExplosions = 0;        ///< since the system started
+    int rejected = 0;                            ///< spawn events with bad data (NaN, strength <= 0)
+};
+
+/// Turns events into effect components, records ship paths, ends faded effects and applies the caps.
+/// Cap policy: when a spawn would exceed maxExplosions, the least visible explosion (of the active ones and
+/// the new one) is dropped: visibility = amplitude * radius / max(distance to camera, radius). Trails
+/// beyond maxWakes are not drawn that frame (least visible first) and count as dropped. Bad spawn data
+/// never throws: it is counted as rejected and logged.
+class EffectsSystem {
+public:
+    EffectsSystem(ecs::Registry& registry, ecs::EventQueue& events, EffectsDesc desc = {});
+    ~EffectsSystem();
+    EffectsSystem(const EffectsSystem&) = delete;
+    EffectsSystem& operator=(const EffectsSystem&) = delete;
+
+    /// Once per frame after events.dispatch(): applies the queued spawns, records ship positions, ends
+    /// faded effects (EffectEnded events), applies the caps.
+    void update(double time, const glm::dvec3& cameraWorld);
+    const EffectCounters& counters() const { return mCounters; }
+    const EffectsDesc& desc() const { return mDesc; }
+
+private:
+    ecs::Registry& mRegistry;
+    ecs::EventQueue& mEvents;
+    EffectsDesc mDesc;
+    std::vector<SpawnExplosion> mPendingExplosions;
+    std::vector<AttachShipTrail> mPendingTrails;
+    ecs::EventQueue::SubscriptionId mSubExplosion = 0, mSubTrail = 0;
+    EffectCounters mCounters;
+    long long mTotalDropped = 0;
+};
+
+/// Sum of every active effect at world point xy, time t: (height, dh/dx, dh/dy), saturated as the GPU
+/// does. Zero with no effects.
+glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t);
+/// Foam coverage of the effects at xy (max over effects), as the GPU computes it per vertex.
+double effectsFoamAt(ecs::Registry& registry, const glm::dvec2& xy, double t);
+/// Height of the sea at world point xy: the ocean's surface (SurfaceModel::heightAt) plus the effects.
+/// Throws std::invalid_argument if the entity has no OceanComponent.
+double oceanHeightAt(ecs::Registry& registry, ecs::Entity ocean, const glm::dvec2& xy, double t);
+
+} // namespace pacifica::ocean

@@ -1,0 +1,213 @@
+// effects.glsl: the GLSL twin of ocean/src/Effects.cpp — the field of every active explosion and ship
+// trail (GPU Gems 2 §18.3 local perturbations), summed and softly saturated. Compiled in only when the scene
+// has effects (EFFECTS_EXPLOSIONS / EFFECTS_WAKES name the kinds present); constants come from the C++ side
+// as #defines (EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH).
+// Coordinates are camera-relative metres; the grid being drawn passes its own effect-local offset too, so
+// its own effect is evaluated without the float rounding of a camera-relative difference (40 km away).
+
+// Per explosion (ocean/src/gpu/EffectsGpu.cpp packs them from explosionState()):
+//   a = (centre - camera: x, y; grid radius R; amplitude A(tau))
+//   b = (k; phase w tau wrapped; r0; front radius)
+//   c = (front half-width; crown foam; crown radius; I0)
+struct ExplosionGpu {
+    vec4 a, b, c;
+};
+// Per wake: a = (ship - camera: x, y; grid radius; point count), b = (length L, beam, wave life, foam life).
+// Its points at [wake * MAX_WAKE_POINTS * 2 ...]: (offset from ship x, y; sigma; age), (amplitude, k0, 0, 0).
+struct WakeGpu {
+    vec4 a, b;
+};
+layout(std430, binding = 4) readonly buffer EffectExplosions { ExplosionGpu uExplosions[]; };
+layout(std430, binding = 5) readonly buffer EffectWakes { WakeGpu uWakes[]; };
+layout(std430, binding = 6) readonly buffer EffectWakePoints { vec4 uWakePoints[]; };
+uniform int uExplosionCount;
+uniform int uWakeCount;
+
+const float EFFECT_TWO_PI = 6.28318530717958647;
+
+float effectSmoothstepDerivative(float e0, float e1, float x) {
+    float t = (x - e0) / (e1 - e0);
+    if (t <= 0.0 || t >= 1.0)
+        return 0.0;
+    return 6.0 * t * (1.0 - t) / (e1 - e0);
+}
+
+// (h, dh/dx, dh/dy) of explosion i at offset q from its centre: explosionWave() in Effects.cpp.
+vec3 explosionWave(int i, vec2 q) {
+    ExplosionGpu e = uExplosions[i];
+    float R = e.a.z, amplitude = e.a.w, k = e.b.x, phase = e.b.y, r0 = e.b.z, front = e.b.w;
+    float width = e.c.x;
+    if (R <= 0.0)
+        return vec3(0.0);
+    float s = sqrt(dot(q, q) + r0 * r0);
+    float rim = sqrt(R * R + r0 * r0);
+    if (s >= rim)
+        return vec3(0.0);
+    float spread = r0 / s;
+    float arg = k * (s - r0) - phase;
+    float c = cos(arg);
+    float w = 1.0 - smoothstep(front - width, front + width, s);
+    float taper = 1.0 - smoothstep(0.8 * rim, rim, s);
+    float h = amplitude * spread * w * c * taper;
+    float dSpread = -r0 / (s * s);
+    float dc = -k * sin(arg);
+    float dw = -effectSmoothstepDerivative(front - width, front + width, s);
+    float dTaper = -effectSmoothstepDerivative(0.8 * rim, rim, s);
+    float dh = amplitude * (dSpread * w * c * taper + spread * dw * c * taper + spread * w * dc * taper +
+                            spread * w * c * dTaper);
+    return vec3(h, dh * q / s);
+}
+
+float explosionFoam(int i, vec2 q, float h) {
+    ExplosionGpu e = uExplosions[i];
+    if (e.a.z <= 0.0 || dot(q, q) >= e.a.z * e.a.z)
+        return 0.0;
+    float crown = e.c.y * exp(-dot(q, q) / (e.c.z * e.c.z));
+    float h0 = 0.35 * e.c.w, hMax = 0.8 * e.c.w; // GPU Gems 2 §18.3: (H - H0) / (Hmax - H0)
+    float crest = clamp((h - h0) / (hMax - h0), 0.0, 1.0);
+    return clamp(max(crown, crest), 0.0, 1.0);
+}
+
+// Path coordinates of q (relative to the ship) for wake i: wakeCoords() in Effects.cpp.
+struct WakeCoords {
+    float behind, lateral, age, amplitude, k0;
+    vec2 direction;
+};
+
+WakeCoords wakeCoords(int i, vec2 q) {
+    WakeCoords best = WakeCoords(0.0, 0.0, 0.0, 0.0, 0.0, vec2(1.0, 0.0));
+    float bestDist2 = 3.4e38;
+    int n = int(uWakes[i].a.w);
+    int base = i * MAX_WAKE_POINTS * 2;
+    for (int j = 0; j + 1 < n; ++j) {
+        vec4 pa = uWakePoints[base + 2 * j], pb = uWakePoints[base + 2 * j + 2];
+        vec2 ab = pb.xy - pa.xy;
+        float len2 = dot(ab, ab);
+        float u = len2 > 0.0 ? dot(q - pa.xy, ab) / len2 : 0.0;
+        float uc = j == 0 ? min(u, 1.0) : clamp(u, 0.0, 1.0);
+        vec2 c = pa.xy + uc * ab;
+        float d2 = dot(q - c, q - c);
+        if (d2 < bestDist2 * (1.0 - 1e-4)) { // Effects.cpp wakeCoords(): the newer segment wins ties
+            bestDist2 = d2;
+            float len = sqrt(len2);
+            vec2 dir = len > 0.0 ? -ab / len : vec2(1.0, 0.0);
+            float w = clamp(uc, 0.0, 1.0);
+            vec4 qa = uWakePoints[base + 2 * j + 1], qb = uWakePoints[base + 2 * j + 3];
+            vec2 r = q - c;
+            best = WakeCoords(pa.z + uc * len, dir.x * r.y - dir.y * r.x, mix(pa.w, pb.w, w), mix(qa.x, qb.x, w),
+                              mix(qa.y, qb.y, w), dir);
+        }
+    }
+    return best;
+}
+
+float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
+    float x = behind;
+    int n = int(uWakes[i].a.w);
+    if (!(x > 0.0) || c.amplitude <= 0.0 || n < 2)
+        return 0.0;
+    float y = abs(lateral);
+    float ta = y / x;
+    float u = 8.0 * ta * ta;
+    if (u >= 1.0)
+        return 0.0;
+    float kMax = EFFECT_TWO_PI / EFFECT_MIN_WAVELENGTH;
+    float sd = sqrt(1.0 - u);
+    float roots[2] = float[2](2.0 * ta / (1.0 + sd), min((1.0 + sd) / (4.0 * max(ta, 1e-6)), 1000.0));
+    float weights[2] = float[2](1.0, 0.6);
+    float sum = 0.0;
+    for (int j = 0; j < 2; ++j) {
+        float tt = roots[j];
+        float k = c.k0 * (1.0 + tt * tt);
+        float fade = 1.0 - smoothstep(0.5 * kMax, kMax, k);
+        if (fade <= 0.0)
+            continue;
+        float phase = c.k0 * sqrt(1.0 + tt * tt) * (x + y * tt);
+        sum += weights[j] * fade * cos(phase);
+    }
+    float lambda0 = EFFECT_TWO_PI / c.k0;
+    float start = smoothstep(0.0, 0.5 * lambda0, x);
+    float cusp = 1.0 - smoothstep(0.8, 1.0, u);
+    float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
+    float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, x);
+    vec4 b = uWakes[i].b;
+    float a = c.amplitude * exp(-c.age / b.z) / sqrt(1.0 + x / b.x);
+    return a * start * cusp * end * sum;
+}
+
+// (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship).
+vec4 wakeWave(int i, vec2 q) {
+    float R = uWakes[i].a.z;
+    if (R <= 0.0 || dot(q, q) >= R * R)
+        return vec4(0.0);
+    WakeCoords c = wakeCoords(i, q);
+    float h = kelvinHeight(i, c, c.behind, c.lateral);
+    const float e = 0.1;
+    float dx = (kelvinHeight(i, c, c.behind + e, c.lateral) - kelvinHeight(i, c, c.behind - e, c.lateral)) / (2.0 * e);
+    float dy = (kelvinHeight(i, c, c.behind, c.lateral + e) - kelvinHeight(i, c, c.behind, c.lateral - e)) / (2.0 * e);
+    vec2 left = vec2(-c.direction.y, c.direction.x);
+    vec2 g = -dx * c.direction + dy * left;
+    // wakeFoam(): the turbulent strip behind the stern.
+    vec4 b = uWakes[i].b;
+    int n = int(uWakes[i].a.w);
+    float foam = 0.0;
+    if (n >= 2 && c.amplitude > 0.0) {
+        float width = b.y * (1.0 + max(c.behind, 0.0) / 400.0);
+        float strip = exp(-(c.lateral * c.lateral) / (width * width));
+        float start = smoothstep(-b.y, 0.0, c.behind);
+        float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
+        float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);
+        foam = clamp(min(1.0, c.amplitude / 0.2) * exp(-c.age / b.w) * strip * start * end, 0.0, 1.0);
+    }
+    return vec4(h, g, foam);
+}
+
+// The field of all effects at a camera-relative point qCam: (E, dE/dx, dE/dy, foam), E = L tanh(sum / L).
+// selfKind/selfIndex name the effect whose grid is drawn (-1: none); qSelf is the point relative to it.
+vec4 effectField(vec2 qCam, vec2 qSelf, int selfKind, int selfIndex) {
+    vec3 sum = vec3(0.0);
+    float foam = 0.0;
+#ifdef EFFECTS_EXPLOSIONS
+    for (int i = 0; i < uExplosionCount; ++i) {
+        vec2 q = (selfKind == 0 && i == selfIndex) ? qSelf : qCam - uExplosions[i].a.xy;
+        float R = uExplosions[i].a.z;
+        if (dot(q, q) >= R * R)
+            continue;
+        vec3 w = explosionWave(i, q);
+        sum += w;
+        foam = max(foam, explosionFoam(i, q, w.x));
+    }
+#endif
+#ifdef EFFECTS_WAKES
+    for (int i = 0; i < uWakeCount; ++i) {
+        vec2 q = (selfKind == 1 && i == selfIndex) ? qSelf : qCam - uWakes[i].a.xy;
+        vec4 w = wakeWave(i, q);
+        sum += w.xyz;
+        foam = max(foam, w.w);
+    }
+#endif
+    float th = tanh(sum.x / EFFECT_HEIGHT_LIMIT);
+    return vec4(EFFECT_HEIGHT_LIMIT * th, sum.yz * (1.0 - th * th), foam);
+}
+
+// True where an effect's grid draws the sea instead of the base grid: inside 0.98 of any effect's radius
+// (the rims overlap by 2% so no crack opens between the grids).
+bool insideEffectGrid(vec2 rel) {
+#ifdef EFFECTS_EXPLOSIONS
+    for (int i = 0; i < uExplosionCount; ++i) {
+        vec2 q = rel - uExplosions[i].a.xy;
+        float R = 0.98 * uExplosions[i].a.z;
+        if (dot(q, q) < R * R)
+            return true;
+    }
+#endif
+#ifdef EFFECTS_WAKES
+    for (int i = 0; i < uWakeCount; ++i) {
+        vec2 q = rel - uWakes[i].a.xy;
+        float R = 0.98 * uWakes[i].a.z;
+        if (dot(q, q) < R * R)
+            return true;
+    }
+#endif
+    return false;
+}

@@ -1,0 +1,527 @@
+// Effects: the CPU (double) side of explosions and ship trails — the analytic fields, the per-frame states
+// the GPU is given, and the system that turns events into components. The GLSL twin is
+// ocean/shaders/effects.glsl; keep them in step (tests/gl/test_effects_gl.cpp compares them).
+#include "ocean/Effects.h"
+
+#include "engine/Log.h"
+#include "ocean/Ocean.h"
+#include "ocean/OceanConstants.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace pacifica::ocean {
+
+namespace {
+
+constexpr double TWO_PI = 2.0 * std::numbers::pi;
+
+double smoothstep(double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+/// d/dx smoothstep(e0, e1, x).
+double smoothstepDerivative(double e0, double e1, double x) {
+    const double t = (x - e0) / (e1 - e0);
+    if (t <= 0.0 || t >= 1.0)
+        return 0.0;
+    return 6.0 * t * (1.0 - t) / (e1 - e0);
+}
+
+bool finite(const glm::dvec2& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
+
+/// Amplitude and foam strength a ship at speed u lays down (WakeParams::amplitude is for 60 m at 10 m/s;
+/// wave resistance theory puts the wave height ~ L Fr^2 ~ U^2 at a given length).
+double sternAmplitude(const WakeParams& p, double length, double u) {
+    if (u < p.minSpeed)
+        return 0.0;
+    const double scale = length / 60.0;
+    return std::min(p.amplitude * scale * (u / 10.0) * (u / 10.0), 4.0 * p.amplitude * scale);
+}
+
+double wakeFoamStrength(double amplitude) {
+    return std::min(1.0, amplitude / 0.2);
+}
+
+/// The time of the largest amplitude of (1 - e^(-tau/rise)) e^(-b tau): rise ln(1 + 1 / (b rise)).
+double explosionPeakTime(const ExplosionParams& p) {
+    return p.rise * std::log1p(1.0 / std::max(p.decay * p.rise, 1e-9));
+}
+
+} // namespace
+
+const char* toString(EffectKind kind) {
+    return kind == EffectKind::Explosion ? "explosion" : "wake";
+}
+
+ExplosionParams explosionParams(double strength) {
+    if (!std::isfinite(strength) || strength <= 0.0)
+        throw std::invalid_argument("explosion strength must be finite and > 0, got " +
+                                    std::to_string(strength));
+    const double c = std::cbrt(strength);
+    ExplosionParams p;
+    p.amplitude = 2.0 * c;
+    p.wavenumber = 0.2 / c; // 31 m wavelength for the nominal charge
+    p.coreRadius = 8.0 * c;
+    p.foamLife = 20.0 * std::sqrt(c);
+    return p;
+}
+
+ExplosionState explosionState(const Explosion& e, double t) {
+    ExplosionState s;
+    const ExplosionParams& p = e.params;
+    s.tau = t - e.startTime;
+    if (!(s.tau > 0.0))
+        return s; // not yet (or NaN time): flat, nothing to draw
+    const double growth = -std::expm1(-s.tau / p.rise);
+    s.amplitude = p.amplitude * growth * std::exp(-p.decay * s.tau);
+    const double omega = std::sqrt(GRAVITY * p.wavenumber); // deep water: w^2 = g k
+    s.phase = std::fmod(omega * s.tau, TWO_PI);
+    const double groupSpeed = omega / (2.0 * p.wavenumber);
+    s.front = p.coreRadius + groupSpeed * s.tau;
+    s.frontWidth = std::numbers::pi / p.wavenumber;
+    s.foam = -std::expm1(-s.tau / p.foamRise) * std::exp(-s.tau / p.foamLife);
+    s.crownRadius = p.coreRadius + 0.5 * groupSpeed * std::min(s.tau, p.foamLife);
+    // Where the spreading r0 / s brings the amplitude under the end threshold: s = r0 A / end.
+    const double spread = p.coreRadius * s.amplitude / std::max(e.endAmplitude, 1e-6);
+    double radius = std::min(s.front + s.frontWidth, spread);
+    if (s.foam > 0.01)
+        radius = std::max(radius, 2.5 * s.crownRadius);
+    s.radius = std::max(radius, 2.0 * p.coreRadius);
+    return s;
+}
+
+glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q) {
+    if (s.radius <= 0.0)
+        return glm::dvec3(0.0);
+    const double r0 = p.coreRadius;
+    const double sr = std::sqrt(glm::dot(q, q) + r0 * r0); // s = sqrt(r^2 + r0^2) >= r0
+    const double rim = std::sqrt(s.radius * s.radius + r0 * r0);
+    if (sr >= rim)
+        return glm::dvec3(0.0);
+    const double spread = r0 / sr;
+    const double arg = p.wavenumber * (sr - r0) - s.phase;
+    const double c = std::cos(arg);
+    const double w = 1.0 - smoothstep(s.front - s.frontWidth, s.front + s.frontWidth, sr);
+    const double taper = 1.0 - smoothstep(0.8 * rim, rim, sr);
+    const double h = s.amplitude * spread * w * c * taper;
+    // dh/ds, then grad h = dh/ds * q / s (ds/dq = q / s): smooth at r = 0.
+    const double dSpread = -r0 / (sr * sr);
+    const double dc = -p.wavenumber * std::sin(arg);
+    const double dw = -smoothstepDerivative(s.front - s.frontWidth, s.front + s.frontWidth, sr);
+    const double dTaper = -smoothstepDerivative(0.8 * rim, rim, sr);
+    const double dh = s.amplitude * (dSpread * w * c * taper + spread * dw * c * taper +
+                                     spread * w * dc * taper + spread * w * c * dTaper);
+    return {h, dh * q.x / sr, dh * q.y / sr};
+}
+
+double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q, double h) {
+    if (s.radius <= 0.0 || glm::dot(q, q) >= s.radius * s.radius)
+        return 0.0;
+    const double rr = glm::dot(q, q) / (s.crownRadius * s.crownRadius);
+    const double crown = s.foam * std::exp(-rr);
+    // GPU Gems 2 §18.3: alpha = (H - H0) / (Hmax - H0).
+    const double h0 = 0.35 * p.amplitude, hMax = 0.8 * p.amplitude;
+    const double crest = std::clamp((h - h0) / (hMax - h0), 0.0, 1.0);
+    return std::clamp(std::max(crown, crest), 0.0, 1.0);
+}
+
+// ---- Wakes ----------------------------------------------------------------------------------------------
+
+WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t) {
+    WakeState s;
+    s.ship = trail.history.empty() ? ship.position : trail.history.front().position;
+    s.length = std::max(ship.length, 1.0);
+    s.beam = s.length / 5.0;
+    s.waveLife = trail.params.waveLife;
+    s.foamLife = trail.params.foamLife;
+    const size_t n = trail.history.size();
+    if (n < 2)
+        return s;
+    double sigma = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const WakePoint& pt = trail.history[i];
+        if (i > 0)
+            sigma += glm::length(pt.position - trail.history[i - 1].position);
+        const double u = pt.speed;
+        const double amplitude = sternAmplitude(trail.params, s.length, u);
+        s.offsets.push_back(pt.position - s.ship);
+        s.sigma.push_back(sigma);
+        s.age.push_back(std::max(t - pt.time, 0.0));
+        s.amplitude.push_back(amplitude);
+        const double us = std::max(u, trail.params.minSpeed);
+        s.k0.push_back(GRAVITY / (us * us));
+        s.peak = std::max(s.peak, amplitude * std::exp(-s.age.back() / s.waveLife));
+        const double foam = wakeFoamStrength(amplitude) * std::exp(-s.age.back() / s.foamLife);
+        // The wedge reaches 0.36 sigma beside the track; the foam strip 3 widths.
+        const double reach = glm::length(s.offsets.back()) + std::sqrt(KELVIN_TAN2) * sigma +
+                             3.0 * s.beam * (1.0 + sigma / 400.0);
+        if (amplitude > 0.0 || foam > 0.0)
+            s.radius = std::max(s.radius, reach + 5.0);
+    }
+    return s;
+}
+
+WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q) {
+    WakeCoords best;
+    double bestDist2 = std::numeric_limits<double>::infinity();
+    const size_t n = s.offsets.size();
+    for (size_t i = 0; i + 1 < n; ++i) {
+        const glm::dvec2 a = s.offsets[i], b = s.offsets[i + 1];
+        const glm::dvec2 ab = b - a;
+        const double len2 = glm::dot(ab, ab);
+        const double u = len2 > 0.0 ? glm::dot(q - a, ab) / len2 : 0.0;
+        // Ahead of the ship the first segment's line is extended (negative distance behind).
+        const double uc = i == 0 ? std::min(u, 1.0) : std::clamp(u, 0.0, 1.0);
+        const glm::dvec2 c = a + uc * ab;
+        const double d2 = glm::dot(q - c, q - c);
+        // A later (older) segment wins only when clearly closer (relative 1e-4 of d^2): where two parts of
+        // the path are equally near (the medial axis, e.g. the centre of a turning circle) the newer one is
+        // kept, so float (GPU) and double (CPU) rounding pick the same segment.
+        if (d2 < bestDist2 * (1.0 - 1e-4)) {
+            bestDist2 = d2;
+            const double len = std::sqrt(len2);
+            const glm::dvec2 dir = len > 0.0 ? -ab / len : glm::dvec2(1.0, 0.0); // travel direction
+            best.direction = dir;
+            best.behind = s.sigma[i] + uc * len;
+            const double w = std::clamp(uc, 0.0, 1.0);
+            best.age = s.age[i] + w * (s.age[i + 1] - s.age[i]);
+            best.amplitude = s.amplitude[i] + w * (s.amplitude[i + 1] - s.amplitude[i]);
+            best.k0 = s.k0[i] + w * (s.k0[i + 1] - s.k0[i]);
+            const glm::dvec2 r = q - c;
+            best.lateral = dir.x * r.y - dir.y * r.x; // left of the track positive
+        }
+    }
+    return best;
+}
+
+double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral) {
+    const double x = behind;
+    if (!(x > 0.0) || c.amplitude <= 0.0 || s.sigma.empty())
+        return 0.0;
+    const double y = std::abs(lateral);
+    const double ta = y / x;
+    const double u = 8.0 * ta * ta; // tan^2 a / tan^2 a_Kelvin
+    if (u >= 1.0)
+        return 0.0;
+    const double kMax = TWO_PI / EFFECT_MIN_WAVELENGTH;
+    const double sd = std::sqrt(1.0 - u);
+    // Roots of 2 tan(a) T^2 - T + tan(a) = 0, written so neither divides by a vanishing tan(a).
+    const double t1 = 2.0 * ta / (1.0 + sd);
+    const double t2 = std::min((1.0 + sd) / (4.0 * std::max(ta, 1e-6)), 1000.0);
+    double sum = 0.0;
+    const double weights[2] = {1.0, 0.6};
+    const double roots[2] = {t1, t2};
+    for (int j = 0; j < 2; ++j) {
+        const double tt = roots[j];
+        const double k = c.k0 * (1.0 + tt * tt);
+        const double fade = 1.0 - smoothstep(0.5 * kMax, kMax, k);
+        if (fade <= 0.0)
+            continue;
+        const double phase = c.k0 * std::sqrt(1.0 + tt * tt) * (x + y * tt);
+        sum += weights[j] * fade * std::cos(phase);
+    }
+    const double lambda0 = TWO_PI / c.k0;
+    const double start = smoothstep(0.0, 0.5 * lambda0, x);
+    const double cusp = 1.0 - smoothstep(0.8, 1.0, u);
+    const double sigmaMax = s.sigma.back();
+    const double end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, x);
+    const double a = c.amplitude * std::exp(-c.age / s.waveLife) / std::sqrt(1.0 + x / s.length);
+    return a * start * cusp * end * sum;
+}
+
+glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q) {
+    if (s.radius <= 0.0 || glm::dot(q, q) >= s.radius * s.radius)
+        return glm::dvec3(0.0);
+    const WakeCoords c = wakeCoords(s, q);
+    const double h = kelvinHeight(s, c, c.behind, c.lateral);
+    // Slope by central differences in the path's frame (e = 0.1 m: 0.2% error at the shortest 3 m wave),
+    // turned into world axes: d(behind)/dq = -direction, d(lateral)/dq = the left normal.
+    const double e = 0.1;
+    const double dx =
+        (kelvinHeight(s, c, c.behind + e, c.lateral) - kelvinHeight(s, c, c.behind - e, c.lateral)) /
+        (2.0 * e);
+    const double dy =
+        (kelvinHeight(s, c, c.behind, c.lateral + e) - kelvinHeight(s, c, c.behind, c.lateral - e)) /
+        (2.0 * e);
+    const glm::dvec2 left(-c.direction.y, c.direction.x);
+    const glm::dvec2 g = -dx * c.direction + dy * left;
+    return {h, g.x, g.y};
+}
+
+double wakeFoam(const WakeState& s, const WakeCoords& c) {
+    if (s.sigma.empty() || c.amplitude <= 0.0)
+        return 0.0;
+    const double width = s.beam * (1.0 + std::max(c.behind, 0.0) / 400.0);
+    const double strip = std::exp(-(c.lateral * c.lateral) / (width * width));
+    const double start = smoothstep(-s.beam, 0.0, c.behind);
+    const double sigmaMax = s.sigma.back();
+    const double end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);
+    return std::clamp(wakeFoamStrength(c.amplitude) * std::exp(-c.age / s.foamLife) * strip * start * end,
+                      0.0, 1.0);
+}
+
+// ---- Whole field ----------------------------------------------------------------------------------------
+
+namespace {
+
+struct FieldSample {
+    glm::dvec3 wave{0.0}; // summed (h, dh/dx, dh/dy) before saturation
+    double foam = 0.0;
+};
+
+FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double t) {
+    FieldSample f;
+    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
+        const ExplosionState s = explosionState(e, t);
+        const glm::dvec2 q = xy - e.center;
+        const glm::dvec3 w = explosionWave(e.params, s, q);
+        f.wave += w;
+        f.foam = std::max(f.foam, explosionFoam(e.params, s, q, w.x));
+    });
+    registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
+        if (!trail.active)
+            return;
+        const WakeState s = wakeState(ship, trail, t);
+        const glm::dvec2 q = xy - s.ship;
+        if (glm::dot(q, q) >= s.radius * s.radius)
+            return;
+        f.wave += wakeWave(s, q);
+        f.foam = std::max(f.foam, wakeFoam(s, wakeCoords(s, q)));
+    });
+    return f;
+}
+
+} // namespace
+
+glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t) {
+    const glm::dvec3 sum = sampleEffects(registry, xy, t).wave;
+    // Soft saturation E = L tanh(sum / L); its slope scales by 1 - tanh^2.
+    const double th = std::tanh(sum.x / EFFECT_HEIGHT_LIMIT);
+    const double slope = 1.0 - th * th;
+    return {EFFECT_HEIGHT_LIMIT * th, sum.y * slope, sum.z * slope};
+}
+
+double effectsFoamAt(ecs::Registry& registry, const glm::dvec2& xy, double t) {
+    return sampleEffects(registry, xy, t).foam;
+}
+
+double oceanHeightAt(ecs::Registry& registry, ecs::Entity ocean, const glm::dvec2& xy, double t) {
+    const OceanComponent* c = registry.tryGet<OceanComponent>(ocean);
+    if (!c || !c->surface)
+        throw std::invalid_argument("oceanHeightAt(): entity " + ecs::toString(ocean) +
+                                    " has no OceanComponent");
+    return c->surface->heightAt(xy, t) + effectsAt(registry, xy, t).x;
+}
+
+// ---- System ---------------------------------------------------------------------------------------------
+
+EffectsSystem::EffectsSystem(ecs::Registry& registry, ecs::EventQueue& events, EffectsDesc desc)
+    : mRegistry(registry), mEvents(events), mDesc(desc) {
+    if (desc.maxExplosions < 0 || desc.maxWakes < 0)
+        throw std::invalid_argument("EffectsDesc: maxExplosions and maxWakes must be >= 0");
+    if (!std::isfinite(desc.endAmplitude) || desc.endAmplitude <= 0.0)
+        throw std::invalid_argument("EffectsDesc::endAmplitude must be finite and > 0");
+    mSubExplosion = mEvents.subscribe<SpawnExplosion>(
+        [this](const SpawnExplosion& e) { mPendingExplosions.push_back(e); });
+    mSubTrail =
+        mEvents.subscribe<AttachShipTrail>([this](const AttachShipTrail& e) { mPendingTrails.push_back(e); });
+}
+
+EffectsSystem::~EffectsSystem() {
+    mEvents.unsubscribe(mSubExplosion);
+    mEvents.unsubscribe(mSubTrail);
+}
+
+namespace {
+
+/// The most an explosion will still show: its largest amplitude from now on, times its extent over its
+/// distance (the size it subtends).
+double explosionVisibility(const Explosion& e, double t, const glm::dvec2& camera, double cameraHeight) {
+    const double peakTime = explosionPeakTime(e.params);
+    Explosion probe = e;
+    const ExplosionState s = explosionState(probe, std::max(t, e.startTime + peakTime));
+    const double extent = std::max(s.radius, 10.0 * e.params.coreRadius);
+    const glm::dvec2 d = e.center - camera;
+    const double dist = std::sqrt(glm::dot(d, d) + cameraHeight * cameraHeight);
+    return s.amplitude * extent / std::max(dist, extent);
+}
+
+} // namespace
+
+void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
+    mCounters = {};
+    const glm::dvec2 camera(cameraWorld);
+    const double camHeight = std::isfinite(cameraWorld.z) ? std::abs(cameraWorld.z) : 0.0;
+
+    // 1. Spawns, with the cap.
+    std::vector<SpawnExplosion> spawns;
+    spawns.swap(mPendingExplosions);
+    for (const SpawnExplosion& sp : spawns) {
+        if (!finite(sp.position) || !std::isfinite(sp.time) || !std::isfinite(sp.strength) ||
+            sp.strength <= 0.0) {
+            ++mCounters.rejected;
+            logWarning("effects: explosion spawn rejected: position (" + std::to_string(sp.position.x) +
+                       ", " + std::to_string(sp.position.y) + "), time " + std::to_string(sp.time) +
+                       ", strength " + std::to_string(sp.strength) + " (all must be finite, strength > 0)");
+            continue;
+        }
+        Explosion e;
+        e.center = sp.position;
+        e.startTime = sp.time;
+        e.strength = sp.strength;
+        e.params = explosionParams(sp.strength);
+        e.endAmplitude = mDesc.endAmplitude;
+        int count = 0;
+        ecs::Entity weakest;
+        double weakestVis = explosionVisibility(e, time, camera, camHeight); // the newcomer itself
+        bool newcomerWeakest = true;
+        mRegistry.view<Explosion>().each([&](ecs::Entity ent, Explosion& other) {
+            ++count;
+            const double v = explosionVisibility(other, time, camera, camHeight);
+            if (v < weakestVis) {
+                weakestVis = v;
+                weakest = ent;
+                newcomerWeakest = false;
+            }
+        });
+        if (count >= mDesc.maxExplosions) {
+            ++mCounters.droppedExplosions;
+            ++mTotalDropped;
+            if (newcomerWeakest || mDesc.maxExplosions == 0) {
+                mEvents.enqueue(EffectEnded{EffectKind::Explosion, ecs::Entity{}, time, true});
+                continue;
+            }
+            mRegistry.destroy(weakest);
+            mEvents.enqueue(EffectEnded{EffectKind::Explosion, weakest, time, true});
+        }
+        const ecs::Entity ent = mRegistry.create();
+        mRegistry.emplace<Explosion>(ent, e);
+        ++mCounters.spawned;
+    }
+
+    // 2. Trails attached by events.
+    std::vector<AttachShipTrail> attaches;
+    attaches.swap(mPendingTrails);
+    for (const AttachShipTrail& a : attaches) {
+        if (!mRegistry.valid(a.ship) || !mRegistry.has<Ship>(a.ship)) {
+            ++mCounters.rejected;
+            logWarning("effects: AttachShipTrail for entity " + ecs::toString(a.ship) + " without a Ship");
+            continue;
+        }
+        ShipTrail trail;
+        trail.params = a.params;
+        mRegistry.emplaceOrReplace<ShipTrail>(a.ship, trail);
+    }
+
+    // 3. Explosions that faded end.
+    std::vector<ecs::Entity> ended;
+    mRegistry.view<Explosion>().each([&](ecs::Entity ent, Explosion& e) {
+        const ExplosionState s = explosionState(e, time);
+        const bool grown = s.tau > 3.0 * e.params.rise + explosionPeakTime(e.params);
+        if (grown && s.amplitude < mDesc.endAmplitude && s.foam < 0.01)
+            ended.push_back(ent);
+        else if (s.tau > 0.0)
+            ++mCounters.activeExplosions;
+    });
+    for (ecs::Entity ent : ended) {
+        mRegistry.destroy(ent);
+        mEvents.enqueue(EffectEnded{EffectKind::Explosion, ent, time, false});
+        ++mCounters.ended;
+    }
+
+    // 4. Ship paths: the newest point follows the ship; a point is kept when the ship has moved a segment,
+    // turned 8 degrees, or 10 s have passed.
+    struct Candidate {
+        ecs::Entity entity;
+        double visibility;
+    };
+    std::vector<Candidate> wakes;
+    mRegistry.view<Ship, ShipTrail>().each([&](ecs::Entity ent, Ship& ship, ShipTrail& trail) {
+        std::vector<WakePoint>& h = trail.history;
+        if (!finite(ship.position)) {
+            ++mCounters.rejected;
+            return; // keep the path as it was; a NaN position never enters the history
+        }
+        const double segment = trail.params.maxLength / (MAX_WAKE_POINTS - 2);
+        if (h.empty() || time > h.front().time) {
+            // h[0] is the head (the ship now); h[1] the newest kept point. Speeds are over the segment
+            // from the next-older point (inherited when the head has barely moved on).
+            WakePoint now{ship.position, time, 0.0};
+            bool keep = false;
+            if (!h.empty()) {
+                const WakePoint& last = h.size() >= 2 ? h[1] : h[0];
+                const glm::dvec2 d = ship.position - last.position;
+                const double dist = glm::length(d);
+                const double dt = time - last.time;
+                now.speed = dt > 0.05 ? dist / dt : (h.size() >= 2 ? h[1].speed : 0.0);
+                keep = dist >= segment || dt >= 10.0;
+                if (!keep && h.size() >= 3 && dist >= 2.0) {
+                    const glm::dvec2 prev = last.position - h[2].position;
+                    const double pl = glm::length(prev);
+                    if (pl > 0.0)
+                        keep = glm::dot(d / dist, prev / pl) < std::cos(8.0 * std::numbers::pi / 180.0);
+                }
+            }
+            if (h.size() < 2) {
+                h.insert(h.begin(), now); // the first point stays as the newest kept one
+            } else if (keep) {
+                h.front() = now; // freeze the head here and start a new one
+                h.insert(h.begin(), now);
+            } else {
+                h.front() = now;
+            }
+            // Forget what is too long ago or too far back.
+            const double maxAge = 6.0 * std::max(trail.params.waveLife, trail.params.foamLife);
+            double sigma = 0.0;
+            size_t keepCount = h.size();
+            for (size_t i = 1; i < h.size(); ++i) {
+                sigma += glm::length(h[i].position - h[i - 1].position);
+                if (sigma > trail.params.maxLength || time - h[i].time > maxAge) {
+                    keepCount = i + 1;
+                    break;
+                }
+            }
+            keepCount = std::min(keepCount, static_cast<size_t>(MAX_WAKE_POINTS));
+            h.resize(keepCount);
+        }
+        const WakeState s = wakeState(ship, trail, time);
+        const double foamPeak =
+            s.age.empty() ? 0.0
+                          : wakeFoamStrength(s.amplitude.front()) * std::exp(-s.age.front() / s.foamLife);
+        const bool alive = s.radius > 0.0 && (s.peak >= mDesc.endAmplitude || foamPeak >= 0.01);
+        if (!alive) {
+            if (trail.active) {
+                mEvents.enqueue(EffectEnded{EffectKind::Wake, ent, time, false});
+                ++mCounters.ended;
+            }
+            trail.active = false;
+            return;
+        }
+        const glm::dvec2 d = s.ship - camera;
+        const double dist = std::sqrt(glm::dot(d, d) + camHeight * camHeight);
+        wakes.push_back({ent, std::max(s.peak, 0.1) * s.radius / std::max(dist, s.radius)});
+        trail.active = true;
+    });
+    // 5. Wake cap: the most visible are drawn.
+    std::sort(wakes.begin(), wakes.end(), [](const Candidate& a, const Candidate& b) {
+        return a.visibility > b.visibility ||
+               (a.visibility == b.visibility && a.entity.index < b.entity.index);
+    });
+    for (size_t i = 0; i < wakes.size(); ++i) {
+        if (static_cast<int>(i) < mDesc.maxWakes) {
+            ++mCounters.activeWakes;
+        } else {
+            mRegistry.get<ShipTrail>(wakes[i].entity).active = false;
+            ++mCounters.droppedWakes;
+        }
+    }
+    mCounters.totalDroppedExplosions = mTotalDropped;
+}
+
+} // namespace pacifica::ocean

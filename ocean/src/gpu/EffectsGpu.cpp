@@ -1,0 +1,215 @@
+// EffectsGpu: packs the effects into the effects.glsl buffers and draws their secondary radial grids.
+#include "gpu/EffectsGpu.h"
+
+#include "ocean/OceanConstants.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace pacifica::ocean {
+
+namespace {
+
+struct ExplosionGpu {
+    glm::vec4 a, b, c;
+};
+struct WakeGpu {
+    glm::vec4 a, b;
+};
+
+/// Bounding-sphere test against the side planes of the frustum and the camera's front (reverse-Z infinite
+/// projection: no far plane). Planes from the rows of viewProj (Gribb & Hartmann 2001).
+bool sphereInView(const glm::mat4& m, const glm::vec3& c, float r) {
+    const glm::vec4 row0(m[0][0], m[1][0], m[2][0], m[3][0]);
+    const glm::vec4 row1(m[0][1], m[1][1], m[2][1], m[3][1]);
+    const glm::vec4 row3(m[0][3], m[1][3], m[2][3], m[3][3]);
+    const glm::vec4 planes[5] = {row3 + row0, row3 - row0, row3 + row1, row3 - row1, row3};
+    for (const glm::vec4& p : planes) {
+        const float len = glm::length(glm::vec3(p));
+        if (len > 0.0f && glm::dot(glm::vec3(p), c) + p.w < -r * len)
+            return false;
+    }
+    return true;
+}
+
+} // namespace
+
+void EffectsGpu::ensureMesh(Mesh& mesh, int rings, int segments, double exponent, int& uploads) {
+    if (mesh.vao && mesh.rings == rings && mesh.segments == segments)
+        return;
+    // The unit disc: a centre vertex and rings at rho_i = (i / N)^p (GPU Gems 2 §18.2.3's radial grid with
+    // a gentler exponent than its i^4: an effect's waves fill its whole disc).
+    std::vector<float> v{0.0f, 0.0f};
+    for (int i = 1; i <= rings; ++i) {
+        const double rho = std::pow(static_cast<double>(i) / rings, exponent);
+        for (int j = 0; j < segments; ++j) {
+            const double a = 2.0 * std::numbers::pi * j / segments;
+            v.push_back(static_cast<float>(rho * std::cos(a)));
+            v.push_back(static_cast<float>(rho * std::sin(a)));
+        }
+    }
+    std::vector<uint32_t> idx;
+    auto at = [segments](int ring, int j) {
+        return static_cast<uint32_t>(1 + (ring - 1) * segments + (j % segments));
+    };
+    for (int j = 0; j < segments; ++j)
+        idx.insert(idx.end(), {0u, at(1, j), at(1, j + 1)});
+    for (int i = 1; i < rings; ++i)
+        for (int j = 0; j < segments; ++j)
+            idx.insert(idx.end(),
+                       {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    mesh.vertices = gl::Buffer::create(v.size() * sizeof(float), v.data());
+    mesh.indices = gl::Buffer::create(idx.size() * sizeof(uint32_t), idx.data());
+    mesh.vao = gl::VertexArray::create();
+    const GLuint vao = mesh.vao.id();
+    glVertexArrayVertexBuffer(vao, 0, mesh.vertices.id(), 0, 2 * sizeof(float));
+    glVertexArrayElementBuffer(vao, mesh.indices.id());
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    mesh.indexCount = static_cast<int>(idx.size());
+    mesh.vertexCount = static_cast<int>(v.size() / 2);
+    mesh.rings = rings;
+    mesh.segments = segments;
+    uploads += 2;
+}
+
+void EffectsGpu::upload(gl::Buffer& buffer, size_t& capacity, const void* data, size_t bytes, int& uploads) {
+    if (!buffer || capacity < bytes) {
+        capacity = std::max<size_t>(bytes, 2 * capacity);
+        buffer = gl::Buffer::create(capacity, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    buffer.upload(0, bytes, data);
+    ++uploads;
+}
+
+void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, double heightBound,
+                         const EffectGridDesc& grids) {
+    mExplosionUploads = mWakeUploads = 0;
+    mExplosionCount = mWakeCount = mExplosionsDrawn = mWakesDrawn = 0;
+    const glm::dvec3 cam = frame.camera.origin;
+    const double t = frame.time;
+    const double k = 1.0 / (2.0 * EARTH_RADIUS);
+    auto inView = [&](const glm::dvec2& rel, double radius) {
+        const double d = glm::length(rel);
+        const double drop = d * d * k;
+        const double r = radius + heightBound + (2.0 * d * radius + radius * radius) * k;
+        return sphereInView(frame.camera.viewProj, glm::vec3(rel.x, rel.y, -cam.z - drop),
+                            static_cast<float>(r));
+    };
+
+    // Explosions: visible ones first, so instance i of the draw is explosion i.
+    std::vector<ExplosionGpu> visible, hidden;
+    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
+        const ExplosionState s = explosionState(e, t);
+        if (s.radius <= 0.0)
+            return;
+        const glm::dvec2 rel = e.center - glm::dvec2(cam);
+        ExplosionGpu g;
+        g.a = glm::vec4(static_cast<float>(rel.x), static_cast<float>(rel.y), static_cast<float>(s.radius),
+                        static_cast<float>(s.amplitude));
+        g.b = glm::vec4(static_cast<float>(e.params.wavenumber), static_cast<float>(s.phase),
+                        static_cast<float>(e.params.coreRadius), static_cast<float>(s.front));
+        g.c = glm::vec4(static_cast<float>(s.frontWidth), static_cast<float>(s.foam),
+                        static_cast<float>(s.crownRadius), static_cast<float>(e.params.amplitude));
+        (inView(rel, s.radius) ? visible : hidden).push_back(g);
+    });
+    mExplosionsDrawn = static_cast<int>(visible.size());
+    visible.insert(visible.end(), hidden.begin(), hidden.end());
+    mExplosionCount = static_cast<int>(visible.size());
+    if (mExplosionCount > 0) {
+        ensureMesh(mExplosionMesh, grids.explosionRings, grids.explosionSegments, grids.explosionExponent,
+                   mExplosionUploads);
+        upload(mExplosionBuffer, mExplosionCapacity, visible.data(), visible.size() * sizeof(ExplosionGpu),
+               mExplosionUploads);
+    }
+
+    // Wakes.
+    struct Packed {
+        WakeGpu header;
+        std::vector<glm::vec4> points;
+    };
+    std::vector<Packed> wVisible, wHidden;
+    registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
+        if (!trail.active)
+            return;
+        const WakeState s = wakeState(ship, trail, t);
+        if (s.radius <= 0.0)
+            return;
+        const glm::dvec2 rel = s.ship - glm::dvec2(cam);
+        Packed p;
+        p.header.a = glm::vec4(static_cast<float>(rel.x), static_cast<float>(rel.y),
+                               static_cast<float>(s.radius), static_cast<float>(s.offsets.size()));
+        p.header.b = glm::vec4(static_cast<float>(s.length), static_cast<float>(s.beam),
+                               static_cast<float>(s.waveLife), static_cast<float>(s.foamLife));
+        p.points.assign(2 * MAX_WAKE_POINTS, glm::vec4(0.0f));
+        for (size_t i = 0; i < s.offsets.size(); ++i) {
+            p.points[2 * i] =
+                glm::vec4(static_cast<float>(s.offsets[i].x), static_cast<float>(s.offsets[i].y),
+                          static_cast<float>(s.sigma[i]), static_cast<float>(s.age[i]));
+            p.points[2 * i + 1] =
+                glm::vec4(static_cast<float>(s.amplitude[i]), static_cast<float>(s.k0[i]), 0.0f, 0.0f);
+        }
+        (inView(rel, s.radius) ? wVisible : wHidden).push_back(std::move(p));
+    });
+    mWakesDrawn = static_cast<int>(wVisible.size());
+    for (Packed& p : wHidden)
+        wVisible.push_back(std::move(p));
+    mWakeCount = static_cast<int>(wVisible.size());
+    if (mWakeCount > 0) {
+        ensureMesh(mWakeMesh, grids.wakeRings, grids.wakeSegments, grids.wakeExponent, mWakeUploads);
+        std::vector<WakeGpu> headers;
+        std::vector<glm::vec4> points;
+        for (const Packed& p : wVisible) {
+            headers.push_back(p.header);
+            points.insert(points.end(), p.points.begin(), p.points.end());
+        }
+        upload(mWakeBuffer, mWakeCapacity, headers.data(), headers.size() * sizeof(WakeGpu), mWakeUploads);
+        upload(mWakePointBuffer, mWakePointCapacity, points.data(), points.size() * sizeof(glm::vec4),
+               mWakeUploads);
+    }
+}
+
+std::string EffectsGpu::defines() const {
+    std::string d;
+    if (mExplosionCount > 0)
+        d += "#define EFFECTS_EXPLOSIONS\n";
+    if (mWakeCount > 0)
+        d += "#define EFFECTS_WAKES\n";
+    return d;
+}
+
+void EffectsGpu::bind(unsigned program) const {
+    if (mExplosionCount > 0)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, mExplosionBuffer.id());
+    if (mWakeCount > 0) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, mWakeBuffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, mWakePointBuffer.id());
+    }
+    glProgramUniform1i(program, glGetUniformLocation(program, "uExplosionCount"), mExplosionCount);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uWakeCount"), mWakeCount);
+}
+
+long long EffectsGpu::gridVertices(EffectKind kind) const {
+    return kind == EffectKind::Explosion ? mExplosionMesh.vertexCount : mWakeMesh.vertexCount;
+}
+
+long long EffectsGpu::draw(unsigned program, EffectKind kind, unsigned mode) {
+    const int instances = drawn(kind);
+    if (instances == 0)
+        return 0;
+    const Mesh& mesh = kind == EffectKind::Explosion ? mExplosionMesh : mWakeMesh;
+    glProgramUniform1i(program, glGetUniformLocation(program, "uKind"),
+                       kind == EffectKind::Explosion ? 0 : 1);
+    glBindVertexArray(mesh.vao.id());
+    if (mode == GL_POINTS)
+        glDrawArraysInstanced(GL_POINTS, 0, mesh.vertexCount, instances);
+    else
+        glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, instances);
+    return static_cast<long long>(mesh.vertexCount) * instances;
+}
+
+} // namespace pacifica::ocean

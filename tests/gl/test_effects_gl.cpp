@@ -1,0 +1,346 @@
+// Effects on the GPU (ctest labels gl, effects, stability):
+// - only what the scene calls for: a frame without effects has no effect pass, draw, upload or shader
+//   variant; with explosions only, the wake kind does nothing; removing the effects returns the frame to
+//   exactly the plain ocean's counters;
+// - readback: the secondary grids' displaced vertices equal oceanHeightAt() (the CPU double reference: the
+//   base surface plus the effects) within 1e-3 m, for an explosion near the camera, at r = 0 just after
+//   t = 0, 40 km away, at 10^7 m from the origin at t = 10^6 s, 64 overlapping ones, a ship in a tight
+//   circle; every captured value and every pixel finite;
+// - a wake is visible from 10 km altitude.
+#include "engine/Ecs.h"
+#include "engine/Space.h"
+#include "engine/gl/FrameTargets.h"
+#include "engine/gl/GlContext.h"
+#include "ocean/Effects.h"
+#include "ocean/Ocean.h"
+#include "ocean/OceanConstants.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+
+using namespace pacifica;
+using namespace pacifica::ocean;
+
+namespace {
+
+constexpr int W = 320, H = 180;
+
+class EffectsGl : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
+    static void TearDownTestSuite() { context.reset(); }
+    static inline std::unique_ptr<gl::GlContext> context;
+
+    ecs::Registry registry;
+    ecs::EventQueue events;
+    ecs::Entity oceanEntity = registry.create();
+    OceanRenderer renderer;
+    gl::FrameTargets targets{W, H};
+
+    EffectsGl() { registry.emplace<OceanComponent>(oceanEntity, makeOcean({})); }
+
+    OceanFrame frameAt(const glm::dvec3& camera, double headingDeg, double pitchDeg, double t) const {
+        Pose pose;
+        pose.position = camera;
+        pose.headingDeg = headingDeg;
+        pose.pitchDeg = pitchDeg;
+        OceanFrame f;
+        f.camera =
+            makeCameraFrame(pose, static_cast<float>(60.0 * std::numbers::pi / 180.0), float(W) / H, 0.05f);
+        f.time = t;
+        f.targetFramebuffer = targets.sceneFramebuffer().id();
+        f.width = W;
+        f.height = H;
+        return f;
+    }
+
+    size_t nonFinitePixels() const {
+        std::vector<float> rgba;
+        targets.readScene(rgba);
+        size_t bad = 0;
+        for (float v : rgba)
+            bad += !std::isfinite(v);
+        return bad;
+    }
+
+    /// Every captured vertex of `kind` against oceanHeightAt() at centre + vLocal (double). Returns the
+    /// largest error; fails on a non-finite value.
+    double compareWithCpu(const OceanFrame& frame, EffectKind kind, const std::vector<glm::dvec2>& centres) {
+        const auto vertices = renderer.effectVertices(registry, oceanEntity, frame, kind);
+        EXPECT_FALSE(vertices.empty());
+        if (vertices.empty())
+            return 0.0;
+        const size_t perInstance = vertices.size() / centres.size();
+        EXPECT_EQ(perInstance * centres.size(), vertices.size());
+        const glm::dvec3 cam = frame.camera.origin;
+        double worst = 0.0;
+        for (size_t i = 0; i < vertices.size(); ++i) {
+            const auto& v = vertices[i];
+            if (!(std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z) &&
+                  std::isfinite(v.local.x) && std::isfinite(v.local.y))) {
+                ADD_FAILURE() << "non-finite vertex " << i;
+                return 1e30;
+            }
+            const glm::dvec2 centre = centres[i / perInstance];
+            const glm::dvec2 world = centre + glm::dvec2(v.local);
+            // Undo the curvature drop the shader applied at the undisplaced point (octaves: = displaced).
+            const glm::dvec2 rel = glm::dvec2(glm::vec2(centre - glm::dvec2(cam)) + v.local);
+            const double gpu = double(v.position.z) + cam.z + curvatureDrop(glm::length(rel));
+            const double cpu = oceanHeightAt(registry, oceanEntity, world, frame.time);
+            worst = std::max(worst, std::abs(gpu - cpu));
+        }
+        return worst;
+    }
+
+    std::vector<glm::dvec2> explosionCentres(double t) {
+        std::vector<glm::dvec2> c;
+        registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
+            if (explosionState(e, t).radius > 0.0)
+                c.push_back(e.center);
+        });
+        return c;
+    }
+
+    /// 1e-3 m (the readback bound) plus one float spacing of the camera height and of the
+    /// curvature drop (the GPU's z is camera-relative float).
+    static double bound(const glm::dvec3& cam, double dropAtEffect) {
+        const float z = static_cast<float>(std::abs(cam.z) + dropAtEffect);
+        return 1e-3 + 2.0 * (double(std::nextafter(z, 2.0f * z + 1.0f)) - double(z));
+    }
+};
+
+TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
+    EffectsSystem fx(registry, events);
+    const glm::dvec3 cam(0.0, 0.0, 60.0);
+    // 1. Plain ocean, twice (the second frame is the steady state).
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.0));
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.1));
+    const OceanStats plain = renderer.lastStats();
+    EXPECT_EQ(plain.programsBuilt, 0);
+    for (const EffectKindStats& k : {plain.explosions, plain.wakes}) {
+        EXPECT_EQ(k.active, 0);
+        EXPECT_EQ(k.passes, 0);
+        EXPECT_EQ(k.draws, 0);
+        EXPECT_EQ(k.uploads, 0);
+        EXPECT_EQ(k.vertices, 0);
+    }
+    // 2. One explosion ahead: one extra pass and draw for explosions, uploads for its data (+ mesh once),
+    // two new shader variants (sea with holes, explosion grid); wakes nothing.
+    events.enqueue(SpawnExplosion{{300.0, 0.0}, 1.0, 1.0});
+    events.dispatch();
+    fx.update(3.0, cam);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.0));
+    OceanStats s = renderer.lastStats();
+    EXPECT_EQ(s.programsBuilt, 2);
+    EXPECT_EQ(s.explosions.active, 1);
+    EXPECT_EQ(s.explosions.drawn, 1);
+    EXPECT_EQ(s.explosions.passes, 1);
+    EXPECT_EQ(s.explosions.draws, 1);
+    EXPECT_EQ(s.explosions.uploads, 3); // vertex + index buffer of the grid, the explosion data
+    EXPECT_EQ(s.explosions.vertices, 1 + 48 * 96);
+    EXPECT_EQ(s.wakes.active + s.wakes.passes + s.wakes.draws + s.wakes.uploads, 0);
+    EXPECT_EQ(s.wakes.vertices, 0);
+    EXPECT_EQ(s.passes, plain.passes + 1);
+    EXPECT_EQ(s.draws, plain.draws + 1);
+    EXPECT_EQ(s.uploads, plain.uploads + 3);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.1));
+    EXPECT_EQ(renderer.lastStats().explosions.uploads, 1); // steady state: the data only
+    EXPECT_EQ(renderer.lastStats().programsBuilt, 0);
+    EXPECT_EQ(nonFinitePixels(), 0u);
+    // 3. Behind the camera: its field is evaluated (active) but its grid is not drawn.
+    renderer.render(registry, frameAt(cam, 270.0, -15.0, 3.2));
+    s = renderer.lastStats();
+    EXPECT_EQ(s.explosions.active, 1);
+    EXPECT_EQ(s.explosions.drawn, 0);
+    EXPECT_EQ(s.explosions.draws, 0);
+    EXPECT_EQ(s.explosions.vertices, 0);
+    // 4. All effects gone: exactly the plain ocean's counters again.
+    registry.clear();
+    oceanEntity = registry.create();
+    registry.emplace<OceanComponent>(oceanEntity, makeOcean({}));
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0)); // new entity: rebuilds its grid
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.1));
+    s = renderer.lastStats();
+    EXPECT_EQ(s.passes, plain.passes);
+    EXPECT_EQ(s.draws, plain.draws);
+    EXPECT_EQ(s.uploads, plain.uploads);
+    EXPECT_EQ(s.vertices, plain.vertices);
+    EXPECT_EQ(s.programsBuilt, 0);
+    EXPECT_EQ(s.explosions.uploads + s.wakes.uploads + s.explosions.draws + s.wakes.draws, 0);
+}
+
+TEST_F(EffectsGl, WakeOnlySceneDoesNoExplosionWork) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 60.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    for (int i = 0; i <= 600; ++i) { // 60 s at 10 m/s heading east
+        registry.get<Ship>(ship).position = {i * 1.0, 0.0};
+        events.dispatch();
+        fx.update(i * 0.1, {0.0, -400.0, 200.0});
+    }
+    const OceanFrame f = frameAt({300.0, -400.0, 200.0}, 0.0, -35.0, 60.0);
+    renderer.render(registry, f);
+    const OceanStats s = renderer.lastStats();
+    EXPECT_EQ(s.wakes.active, 1);
+    EXPECT_EQ(s.wakes.draws, 1);
+    EXPECT_EQ(s.wakes.vertices, 1 + 96 * 192);
+    EXPECT_EQ(s.explosions.active + s.explosions.passes + s.explosions.draws + s.explosions.uploads, 0);
+    EXPECT_EQ(nonFinitePixels(), 0u);
+    const WakeState w = wakeState(registry.get<Ship>(ship), registry.get<ShipTrail>(ship), 60.0);
+    const double err = compareWithCpu(f, EffectKind::Wake, {w.ship});
+    std::printf("[wake straight] max |GPU - CPU| = %.3g m\n", err);
+    EXPECT_LT(err, bound(f.camera.origin, 0.0));
+}
+
+struct ExplosionCase {
+    const char* name;
+    glm::dvec3 camera;
+    double heading, pitch;
+    glm::dvec2 at;
+    double spawnTime, time;
+    int count;
+};
+
+class ExplosionReadback : public EffectsGl, public ::testing::WithParamInterface<ExplosionCase> {};
+
+TEST_P(ExplosionReadback, GridHeightsEqualTheCpuQuery) {
+    const ExplosionCase c = GetParam();
+    EffectsSystem fx(registry, events);
+    for (int i = 0; i < c.count; ++i)
+        events.enqueue(
+            SpawnExplosion{c.at + glm::dvec2(3.0 * (i % 7), 2.0 * (i % 5)), c.spawnTime, 1.0 + (i % 3)});
+    events.dispatch();
+    fx.update(c.time, c.camera);
+    const OceanFrame f = frameAt(c.camera, c.heading, c.pitch, c.time);
+    renderer.render(registry, f);
+    const OceanStats s = renderer.lastStats();
+    EXPECT_EQ(nonFinitePixels(), 0u);
+    const std::vector<glm::dvec2> centres = explosionCentres(c.time);
+    ASSERT_FALSE(centres.empty());
+    EXPECT_EQ(s.explosions.active, static_cast<int>(centres.size()));
+    ASSERT_EQ(s.explosions.drawn, s.explosions.active) << "every explosion of the case must be in view";
+    const double err = compareWithCpu(f, EffectKind::Explosion, centres);
+    const double dist = glm::length(c.at - glm::dvec2(c.camera));
+    std::printf("[%s] %zu explosions, max |GPU - CPU| = %.3g m\n", c.name, centres.size(), err);
+    EXPECT_LT(err, bound(c.camera, curvatureDrop(dist)));
+}
+
+// Cases (all bounds 1e-3 m + float spacing of the camera-relative z, see bound()):
+INSTANTIATE_TEST_SUITE_P(
+    HardCases, ExplosionReadback,
+    ::testing::Values(
+        ExplosionCase{"near_tau5", {0.0, 0.0, 40.0}, 90.0, -12.0, {250.0, 10.0}, 0.0, 5.0, 1},
+        // r = 0 and t = 0: the camera right above the centre, 10 ms after the blast.
+        ExplosionCase{"centre_t0", {500.0, 500.0, 30.0}, 0.0, -89.0, {500.0, 500.0}, 2.0, 2.01, 1},
+        ExplosionCase{"far_40km", {0.0, 0.0, 30.0}, 90.0, -0.5, {39900.0, 0.0}, 0.0, 12.0, 1},
+        ExplosionCase{"origin_1e7_t1e6",
+                      {1.0e7 + 0.37, -1.0e7 + 0.81, 60.0},
+                      90.0,
+                      -10.0,
+                      {1.0e7 + 300.0, -1.0e7},
+                      1.0e6,
+                      1.0e6 + 7.5,
+                      1},
+        ExplosionCase{"overlapping_64", {0.0, 0.0, 120.0}, 90.0, -25.0, {300.0, 0.0}, 0.0, 4.0, 64}),
+    [](const ::testing::TestParamInfo<ExplosionCase>& p) { return std::string(p.param.name); });
+
+TEST_F(EffectsGl, ExplosionAtTimeZeroDrawsNothingAndStaysFinite) {
+    EffectsSystem fx(registry, events);
+    events.enqueue(SpawnExplosion{{0.0, 0.0}, 5.0, 1.0});
+    events.dispatch();
+    fx.update(5.0, {0.0, 0.0, 20.0});
+    renderer.render(registry, frameAt({0.0, 0.0, 20.0}, 0.0, -60.0, 5.0));
+    EXPECT_EQ(renderer.lastStats().explosions.active, 0); // tau = 0: flat, nothing to draw
+    EXPECT_EQ(nonFinitePixels(), 0u);
+    EXPECT_EQ(oceanHeightAt(registry, oceanEntity, {0.0, 0.0}, 5.0),
+              registry.get<OceanComponent>(oceanEntity).surface->heightAt({0.0, 0.0}, 5.0));
+}
+
+TEST_F(EffectsGl, TenThousandSpawnsInOneSecondRenderCappedAndFinite) {
+    EffectsSystem fx(registry, events);
+    const glm::dvec3 cam(0.0, 0.0, 150.0);
+    long long dropped = 0;
+    for (int frame = 0; frame < 60; ++frame) { // 10 000 spawns over 60 frames of one second
+        const double t = frame / 60.0;
+        for (int i = 0; i < 10000 / 60 + (frame < 10000 % 60 ? 1 : 0); ++i)
+            events.enqueue(SpawnExplosion{
+                {200.0 + std::fmod(i * 37.0, 400.0), std::fmod(i * 53.0, 300.0) - 150.0}, t, 1.0});
+        events.dispatch();
+        fx.update(t, cam);
+        dropped += fx.counters().droppedExplosions;
+    }
+    EXPECT_EQ(dropped, 10000 - 64);
+    renderer.render(registry, frameAt(cam, 90.0, -20.0, 2.0));
+    const OceanStats s = renderer.lastStats();
+    // Bounded cost: at most the cap's worth of grids, each evaluating at most the cap's worth of explosions.
+    EXPECT_EQ(s.explosions.active, 64);
+    EXPECT_LE(s.explosions.vertices, 64LL * (1 + 48 * 96));
+    EXPECT_EQ(nonFinitePixels(), 0u);
+}
+
+TEST_F(EffectsGl, TightCircleWakeMatchesCpuAndStaysFinite) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 40.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    double heading = 0.0;
+    glm::dvec2 p(0.0);
+    for (int i = 0; i <= 1200; ++i) { // 120 s at 6 m/s turning 0.2 rad/s: radius 30 m, ~4 circles
+        if (i > 0) {
+            heading += 0.02;
+            p += 0.6 * glm::dvec2(std::cos(heading), std::sin(heading));
+        }
+        registry.get<Ship>(ship).position = p;
+        events.dispatch();
+        fx.update(i * 0.1, {0.0, -150.0, 120.0});
+    }
+    const OceanFrame f = frameAt({0.0, -150.0, 120.0}, 0.0, -40.0, 120.0);
+    renderer.render(registry, f);
+    EXPECT_EQ(nonFinitePixels(), 0u);
+    EXPECT_EQ(renderer.lastStats().wakes.drawn, 1);
+    const WakeState w = wakeState(registry.get<Ship>(ship), registry.get<ShipTrail>(ship), 120.0);
+    const double err = compareWithCpu(f, EffectKind::Wake, {w.ship});
+    std::printf("[wake tight circle] max |GPU - CPU| = %.3g m\n", err);
+    EXPECT_LT(err, bound(f.camera.origin, 0.0));
+}
+
+TEST_F(EffectsGl, WakeIsVisibleFromTenKilometres) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 80.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    for (int i = 0; i <= 240; ++i) { // 240 s at 12 m/s heading north
+        registry.get<Ship>(ship).position = {0.0, i * 12.0};
+        events.dispatch();
+        fx.update(i, {0.0, 1500.0, 10000.0});
+    }
+    // Straight down from 10 km over the middle of the wake: at 320 x 180 and 60 degrees a pixel is ~64 m.
+    const OceanFrame f = frameAt({0.0, 1500.0, 10000.0}, 0.0, -90.0, 240.0);
+    renderer.render(registry, f);
+    ASSERT_EQ(renderer.lastStats().wakes.drawn, 1);
+    std::vector<float> rgba;
+    targets.readScene(rgba);
+    auto luminance = [&](const glm::dvec2& world) {
+        const glm::vec4 clip = f.camera.viewProj * glm::vec4(glm::vec2(world - glm::dvec2(f.camera.origin)),
+                                                             static_cast<float>(-f.camera.origin.z), 1.0f);
+        const int px = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * W);
+        const int py = static_cast<int>((0.5f - clip.y / clip.w * 0.5f) * H); // rows top-down
+        const float* c = &rgba[(static_cast<size_t>(py) * W + px) * 4];
+        return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    };
+    // On the track 0.5, 1 and 1.5 km behind the ship vs 400 m beside it.
+    for (double behind : {500.0, 1000.0, 1500.0}) {
+        const double onTrack = luminance({0.0, 2880.0 - behind});
+        const double beside = luminance({400.0, 2880.0 - behind});
+        std::printf("[wake from 10 km] %.0f m behind: on track %.4g (foam %.3f), beside %.4g\n", behind,
+                    onTrack, effectsFoamAt(registry, {0.0, 2880.0 - behind}, 240.0), beside);
+        EXPECT_GT(onTrack, 1.5 * beside) << behind << " m behind the ship";
+    }
+}
+
+} // namespace

@@ -1,0 +1,309 @@
+// Effects on the CPU (ocean/include/ocean/Effects.h): the explosion ring and the Kelvin wake as functions
+// (finite at r = 0 and t = 0, slopes equal to finite differences, the 19.47 degree wedge, a turning ship's
+// curved wake), and the system (events -> components, lifetimes with EffectEnded, caps with counted drops,
+// bad data rejected without throwing).
+#include "engine/Ecs.h"
+#include "ocean/Effects.h"
+#include "ocean/OceanConstants.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+using namespace pacifica;
+using namespace pacifica::ocean;
+
+namespace {
+
+Explosion makeExplosion(glm::dvec2 c, double t0, double strength = 1.0) {
+    Explosion e;
+    e.center = c;
+    e.startTime = t0;
+    e.strength = strength;
+    e.params = explosionParams(strength);
+    return e;
+}
+
+TEST(Explosion, FlatAtTheStartAndFiniteAtTheCentre) {
+    const Explosion e = makeExplosion({100.0, 200.0}, 10.0);
+    // tau = 0 and before: no displacement anywhere, nothing to draw.
+    for (double t : {0.0, 9.99, 10.0}) {
+        const ExplosionState s = explosionState(e, t);
+        EXPECT_EQ(s.radius, 0.0) << t;
+        EXPECT_EQ(explosionWave(e.params, s, {0.0, 0.0}), glm::dvec3(0.0));
+    }
+    // r = 0 a moment later: finite, bounded by I0, and the slope vanishes (the field is smooth there).
+    for (double t : {10.0 + 1e-9, 10.001, 10.5, 12.0, 40.0}) {
+        const ExplosionState s = explosionState(e, t);
+        const glm::dvec3 w = explosionWave(e.params, s, {0.0, 0.0});
+        ASSERT_TRUE(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) << t;
+        EXPECT_LE(std::abs(w.x), e.params.amplitude) << t;
+        EXPECT_EQ(w.y, 0.0);
+        EXPECT_EQ(w.z, 0.0);
+    }
+}
+
+TEST(Explosion, SlopeEqualsFiniteDifferences) {
+    const Explosion e = makeExplosion({0.0, 0.0}, 0.0, 2.0);
+    const ExplosionState s = explosionState(e, 6.0);
+    ASSERT_GT(s.radius, 20.0);
+    const double h = 1e-4;
+    for (glm::dvec2 q :
+         {glm::dvec2(0.3, -0.2), glm::dvec2(7.0, 3.0), glm::dvec2(-15.0, 9.0), glm::dvec2(2.0, 25.0)}) {
+        const glm::dvec3 w = explosionWave(e.params, s, q);
+        const double dx = (explosionWave(e.params, s, q + glm::dvec2(h, 0)).x -
+                           explosionWave(e.params, s, q - glm::dvec2(h, 0)).x) /
+                          (2 * h);
+        const double dy = (explosionWave(e.params, s, q + glm::dvec2(0, h)).x -
+                           explosionWave(e.params, s, q - glm::dvec2(0, h)).x) /
+                          (2 * h);
+        EXPECT_NEAR(w.y, dx, 1e-6 + 1e-5 * std::abs(dx)) << q.x << "," << q.y;
+        EXPECT_NEAR(w.z, dy, 1e-6 + 1e-5 * std::abs(dy)) << q.x << "," << q.y;
+    }
+}
+
+TEST(Explosion, NoWaveAheadOfTheFrontAndZeroAtTheRim) {
+    const Explosion e = makeExplosion({0.0, 0.0}, 0.0);
+    const ExplosionState s = explosionState(e, 8.0);
+    // Group front r0 + c_g tau with c_g = sqrt(g / k) / 2.
+    const double cg = 0.5 * std::sqrt(GRAVITY / e.params.wavenumber);
+    EXPECT_NEAR(s.front, e.params.coreRadius + cg * 8.0, 1e-9);
+    EXPECT_EQ(explosionWave(e.params, s, {s.front + s.frontWidth + 0.5, 0.0}).x, 0.0);
+    EXPECT_EQ(explosionWave(e.params, s, {0.0, s.radius}).x, 0.0);
+    // Inside the front there is a wave of the expected size (spreading r0 / sqrt(r0^2 + r^2)).
+    double peak = 0.0;
+    for (double r = 0.0; r < s.front - s.frontWidth; r += 0.25)
+        peak = std::max(peak, std::abs(explosionWave(e.params, s, {r, 0.0}).x));
+    EXPECT_GT(peak, 0.3 * s.amplitude); // the crest near the centre at this instant: cos(phase) ~ 0.6
+    EXPECT_LE(peak, s.amplitude + 1e-12);
+}
+
+TEST(Explosion, StrengthScalesWithTheCubeRootAndBadStrengthThrows) {
+    const ExplosionParams a = explosionParams(1.0), b = explosionParams(8.0);
+    EXPECT_NEAR(b.amplitude / a.amplitude, 2.0, 1e-12);
+    EXPECT_NEAR(a.wavenumber / b.wavenumber, 2.0, 1e-12);
+    EXPECT_THROW(explosionParams(0.0), std::invalid_argument);
+    EXPECT_THROW(explosionParams(-1.0), std::invalid_argument);
+    EXPECT_THROW(explosionParams(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
+
+/// A ship that has sailed `seconds` at `speed` m/s along heading direction `dir` (or turning at `turnRate`
+/// rad/s), recorded by the system at 10 Hz. Returns the ship entity.
+ecs::Entity sail(ecs::Registry& reg, ecs::EventQueue& events, EffectsSystem& fx, double seconds, double speed,
+                 double turnRate, double t0 = 0.0) {
+    const ecs::Entity ship = reg.create();
+    reg.emplace<Ship>(ship, Ship{{0.0, 0.0}, 60.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    double heading = 0.0;
+    glm::dvec2 p(0.0);
+    for (int i = 0; i <= static_cast<int>(seconds * 10); ++i) {
+        const double t = t0 + i * 0.1;
+        if (i > 0) {
+            heading += turnRate * 0.1;
+            p += 0.1 * speed * glm::dvec2(std::cos(heading), std::sin(heading));
+        }
+        reg.get<Ship>(ship).position = p;
+        events.dispatch();
+        fx.update(t, {0.0, 0.0, 100.0});
+    }
+    return ship;
+}
+
+TEST(Wake, KelvinWedgeOnAStraightCourse) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const ecs::Entity ship = sail(reg, events, fx, 120.0, 10.0, 0.0);
+    const double t = 120.0;
+    const WakeState s = wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), t);
+    ASSERT_GE(s.offsets.size(), 2u);
+    EXPECT_NEAR(s.sigma.back(), 1200.0, 1.0);
+    EXPECT_NEAR(s.k0.front(), GRAVITY / 100.0, 1e-6); // k0 = g / U^2
+    // The ship sails +x; behind it is -x. Inside the wedge there are waves, outside none.
+    const double x = 400.0;
+    double inside = 0.0;
+    for (double y = -0.3 * x; y <= 0.3 * x; y += 1.0)
+        inside = std::max(inside, std::abs(wakeWave(s, {-x, y}).x));
+    EXPECT_GT(inside, 0.05);
+    const double tanKelvin = std::sqrt(KELVIN_TAN2); // tan 19.47 deg
+    for (double y : {tanKelvin * x + 1.0, 0.45 * x, -0.5 * x})
+        EXPECT_EQ(wakeWave(s, {-x, y}).x, 0.0) << y;
+    // Ahead of the ship: nothing.
+    EXPECT_EQ(wakeWave(s, {50.0, 0.0}).x, 0.0);
+    // Transverse waves on the track have wavelength 2 pi U^2 / g (62.9 m): zero crossings that far apart.
+    std::vector<double> crossings;
+    double prev = wakeWave(s, {-150.0, 0.0}).x;
+    for (double xx = 150.25; xx < 450.0; xx += 0.25) {
+        const double h = wakeWave(s, {-xx, 0.0}).x;
+        if ((h > 0) != (prev > 0))
+            crossings.push_back(xx);
+        prev = h;
+    }
+    ASSERT_GE(crossings.size(), 6u);
+    const double spacing = (crossings.back() - crossings.front()) / (crossings.size() - 1);
+    EXPECT_NEAR(spacing, std::numbers::pi * 100.0 / GRAVITY, 0.5);
+}
+
+TEST(Wake, TurningShipLeavesACurvedWake) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    // 90 degrees over 60 s at 8 m/s: radius 305 m.
+    const double rate = (std::numbers::pi / 2.0) / 60.0;
+    const ecs::Entity ship = sail(reg, events, fx, 60.0, 8.0, rate);
+    const WakeState s = wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), 60.0);
+    // The foam strip follows the path: a point on the path 45 degrees back is white, the point where a
+    // straight wake (behind the current heading) would be is not.
+    const double radius = 8.0 / rate;
+    const glm::dvec2 centre(0.0, radius); // turning left from heading +x around (0, R)
+    const glm::dvec2 onPath =
+        centre + radius * glm::dvec2(std::sin(std::numbers::pi / 4), -std::cos(std::numbers::pi / 4));
+    const WakeCoords c = wakeCoords(s, onPath - s.ship);
+    EXPECT_NEAR(c.lateral, 0.0, 2.0);
+    EXPECT_NEAR(c.behind, radius * std::numbers::pi / 4.0, 5.0);
+    EXPECT_GT(wakeFoam(s, c), 0.5);
+    const glm::dvec2 heading(0.0, 1.0); // now sailing +y
+    const glm::dvec2 straight = s.ship - c.behind * heading;
+    EXPECT_LT(wakeFoam(s, wakeCoords(s, straight - s.ship)), 1e-3);
+}
+
+TEST(Wake, TightCircleStaysFinite) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    // Radius 25 m at 5 m/s, five full turns.
+    const ecs::Entity ship = sail(reg, events, fx, 5 * 2 * std::numbers::pi * 5.0, 5.0, 0.2);
+    const ShipTrail& trail = reg.get<ShipTrail>(ship);
+    EXPECT_LE(trail.history.size(), static_cast<size_t>(MAX_WAKE_POINTS));
+    const WakeState s = wakeState(reg.get<Ship>(ship), trail, 157.0);
+    for (double x = -60.0; x <= 60.0; x += 0.7)
+        for (double y = -60.0; y <= 60.0; y += 0.7) {
+            const glm::dvec3 w = wakeWave(s, {x, y});
+            ASSERT_TRUE(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) << x << "," << y;
+            ASSERT_LT(std::abs(w.x), 5.0);
+        }
+}
+
+TEST(EffectsSystem, EventsCreateExplosionsThatEndWithAnEvent) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    int endedEvents = 0;
+    events.subscribe<EffectEnded>([&](const EffectEnded& e) {
+        EXPECT_EQ(e.kind, EffectKind::Explosion);
+        EXPECT_FALSE(e.dropped);
+        ++endedEvents;
+    });
+    events.enqueue(SpawnExplosion{{10.0, 20.0}, 1.0, 1.0});
+    events.dispatch();
+    fx.update(1.0, {0, 0, 50});
+    EXPECT_EQ(fx.counters().spawned, 1);
+    auto view = reg.view<Explosion>();
+    ASSERT_NE(view.begin(), view.end());
+    EXPECT_EQ(reg.get<Explosion>(*view.begin()).center, glm::dvec2(10.0, 20.0));
+    // The nominal explosion decays as e^(-0.06 tau) from 2 m: under 1 cm after ~88 s; its foam sooner.
+    double endTime = -1.0;
+    for (double t = 1.0; t < 200.0; t += 0.5) {
+        events.dispatch();
+        fx.update(t, {0, 0, 50});
+        if (fx.counters().ended == 1)
+            endTime = t;
+    }
+    events.dispatch();
+    EXPECT_EQ(endedEvents, 1);
+    EXPECT_GT(endTime - 1.0, 80.0);
+    EXPECT_LT(endTime - 1.0, 95.0);
+    EXPECT_EQ(reg.view<Explosion>().begin(), reg.view<Explosion>().end());
+}
+
+TEST(EffectsSystem, CapDropsTheLeastVisibleAndCountsIt) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsDesc desc;
+    desc.maxExplosions = 4;
+    EffectsSystem fx(reg, events, desc);
+    int droppedEvents = 0;
+    events.subscribe<EffectEnded>([&](const EffectEnded& e) { droppedEvents += e.dropped ? 1 : 0; });
+    // Four near the camera, then one far away (least visible: dropped itself), then a near one that
+    // replaces the farthest of the four.
+    for (int i = 0; i < 4; ++i)
+        events.enqueue(SpawnExplosion{{100.0 + 50.0 * i, 0.0}, 0.0, 1.0});
+    events.enqueue(SpawnExplosion{{30000.0, 0.0}, 0.0, 1.0});
+    events.enqueue(SpawnExplosion{{50.0, 0.0}, 0.0, 1.0});
+    events.dispatch();
+    fx.update(0.0, {0.0, 0.0, 100.0});
+    EXPECT_EQ(fx.counters().spawned, 5);
+    EXPECT_EQ(fx.counters().droppedExplosions, 2);
+    EXPECT_EQ(fx.counters().totalDroppedExplosions, 2);
+    std::vector<double> xs;
+    reg.view<Explosion>().each([&](ecs::Entity, Explosion& e) { xs.push_back(e.center.x); });
+    std::sort(xs.begin(), xs.end());
+    EXPECT_EQ(xs, (std::vector<double>{50.0, 100.0, 150.0, 200.0}));
+    events.dispatch();
+    EXPECT_EQ(droppedEvents, 2);
+}
+
+TEST(EffectsSystem, TenThousandSpawnsInOneSecondStayCapped) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    long long dropped = 0;
+    for (int frame = 0; frame < 60; ++frame) {
+        const double t = frame / 60.0;
+        for (int i = 0; i < 10000 / 60 + (frame < 10000 % 60 ? 1 : 0); ++i)
+            events.enqueue(
+                SpawnExplosion{{std::fmod(i * 37.0, 900.0), std::fmod(i * 53.0, 700.0)}, t, 1.0 + (i % 5)});
+        events.dispatch();
+        fx.update(t, {0.0, 0.0, 300.0});
+        dropped += fx.counters().droppedExplosions;
+        size_t n = 0;
+        reg.view<Explosion>().each([&](ecs::Entity, Explosion&) { ++n; });
+        ASSERT_LE(n, 64u);
+    }
+    EXPECT_EQ(dropped, 10000 - 64);
+    EXPECT_EQ(fx.counters().totalDroppedExplosions, 10000 - 64);
+    const glm::dvec3 e = effectsAt(reg, {450.0, 350.0}, 1.5);
+    EXPECT_TRUE(std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z));
+    EXPECT_LE(std::abs(e.x), EFFECT_HEIGHT_LIMIT);
+}
+
+TEST(EffectsSystem, BadSpawnDataIsRejectedNotThrown) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    events.enqueue(SpawnExplosion{{nan, 0.0}, 0.0, 1.0});
+    events.enqueue(SpawnExplosion{{0.0, 0.0}, 0.0, -2.0});
+    events.enqueue(SpawnExplosion{{0.0, 0.0}, std::numeric_limits<double>::infinity(), 1.0});
+    events.enqueue(AttachShipTrail{reg.create(), WakeParams{}}); // no Ship component
+    events.dispatch();
+    EXPECT_NO_THROW(fx.update(0.0, {0, 0, 10}));
+    EXPECT_EQ(fx.counters().rejected, 4);
+    EXPECT_EQ(fx.counters().spawned, 0);
+    EXPECT_EQ(reg.view<Explosion>().begin(), reg.view<Explosion>().end());
+}
+
+TEST(EffectsSystem, ThousandOverlappingExplosionsSaturate) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsDesc desc;
+    desc.maxExplosions = 1000;
+    EffectsSystem fx(reg, events, desc);
+    for (int i = 0; i < 1000; ++i)
+        events.enqueue(SpawnExplosion{{0.0, 0.0}, 0.0, 1.0});
+    events.dispatch();
+    fx.update(0.0, {0, 0, 100});
+    EXPECT_EQ(fx.counters().spawned, 1000);
+    double worst = 0.0;
+    for (double r = 0.0; r < 60.0; r += 0.5) {
+        const glm::dvec3 e = effectsAt(reg, {r, 0.3 * r}, 3.0);
+        ASSERT_TRUE(std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z));
+        worst = std::max(worst, std::abs(e.x));
+    }
+    EXPECT_LE(worst, EFFECT_HEIGHT_LIMIT);
+    EXPECT_GT(worst, 0.9 * EFFECT_HEIGHT_LIMIT); // 1000 x ~1.7 m, saturated
+}
+
+} // namespace
