@@ -86,7 +86,7 @@ ExplosionState explosionState(const Explosion& e, double t) {
     s.front = p.coreRadius + groupSpeed * s.tau;
     s.frontWidth = std::numbers::pi / p.wavenumber;
     s.foam = -std::expm1(-s.tau / p.foamRise) * std::exp(-s.tau / p.foamLife);
-    s.crownRadius = p.coreRadius + 0.5 * groupSpeed * std::min(s.tau, p.foamLife);
+    s.crownRadius = 2.5 * p.coreRadius + 0.5 * groupSpeed * std::min(s.tau, p.foamLife);
     // Where the spreading r0 / s brings the amplitude under the end threshold: s = r0 A / end.
     const double spread = p.coreRadius * s.amplitude / std::max(e.endAmplitude, 1e-6);
     double radius = std::min(s.front + s.frontWidth, spread);
