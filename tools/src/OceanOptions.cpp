@@ -33,19 +33,19 @@ float checked(const std::optional<double>& v, const char* option, double lo, dou
     throw UsageError(std::string(option) + " must be " + range + unit + ", got " + text(*v));
 }
 
-glm::vec3 parseColor(const std::string& text) {
+glm::vec3 parseColor(const std::string& value) {
     auto bad = [&] {
         return UsageError("--fog-color: expected R,G,B with finite scene-linear values >= 0 (e.g. "
                           "0.6,0.7,0.8), got '" +
-                          text + "'");
+                          value + "'");
     };
     glm::vec3 c(0.0f);
     size_t pos = 0;
     for (int i = 0; i < 3; ++i) {
-        const size_t end = i < 2 ? text.find(',', pos) : text.size();
+        const size_t end = i < 2 ? value.find(',', pos) : value.size();
         if (end == std::string::npos)
             throw bad();
-        const std::string field = text.substr(pos, end - pos);
+        const std::string field = value.substr(pos, end - pos);
         try {
             size_t used = 0;
             const double v = std::stod(field, &used);
