@@ -1,0 +1,104 @@
+# bench_effects_quick: runs `pacifica-bench-effects --quick --frames 3 --out OUT_DIR` and checks its CSV: the
+# header, the plain, zero_effect, explosion (1, 4) and wake (1, 2) rows, finite positive times,
+# that the zero-effect frame did no effect work (0 effect passes, draws, uploads and vertices in every timed
+# frame: the columns are maxima over the frames), and that every explosion and wake of a setting was active
+# and drawn with one pass and one instanced draw of its kind. It asserts nothing about speed.
+# Usage: cmake -DEFFECTS_EXE=... -DOUT_DIR=... -P test_effects_bench.cmake
+cmake_minimum_required(VERSION 3.25) # IN_LIST (CMP0057) in script mode
+file(REMOVE_RECURSE "${OUT_DIR}")
+execute_process(COMMAND "${EFFECTS_EXE}" --quick --frames 3 --out "${OUT_DIR}" RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "pacifica-bench-effects --quick exited with ${rc}")
+endif()
+foreach(f effects.csv effects.md effects.json)
+    if(NOT EXISTS "${OUT_DIR}/${f}")
+        message(FATAL_ERROR "missing ${OUT_DIR}/${f}")
+    endif()
+endforeach()
+file(STRINGS "${OUT_DIR}/effects.csv" lines)
+list(GET lines 0 header)
+set(expectedHeader "setting,kind,count,active,drawn,ms_median,ms_p90,us_per_effect_vs_plain,update_us_median,\
+render_cpu_ms_median,vertices,fx_vertices,fx_passes,fx_draws,fx_uploads,passes,draws,uploads,programs_built,\
+clock,renderer")
+if(NOT header STREQUAL expectedHeader)
+    message(FATAL_ERROR "unexpected header: ${header}")
+endif()
+list(REMOVE_AT lines 0)
+set(num "[-+]?[0-9]*\\.?[0-9]+([eE][-+]?[0-9]+)?")
+set(seen "")
+foreach(line IN LISTS lines)
+    # setting,kind,count,active,drawn,ms,p90,us_per_effect,update_us,render_cpu,vertices,fx_vertices,fx_passes,
+    # fx_draws,fx_uploads,passes,draws,uploads,programs_built,"clock","renderer"
+    if(NOT line MATCHES "^([a-z_]+),([a-z]+),([0-9]+),([^\"]*),\"([^\"]*)\",\"([^\"]*)\"$")
+        message(FATAL_ERROR "malformed row: ${line}")
+    endif()
+    set(setting "${CMAKE_MATCH_1}")
+    set(kind "${CMAKE_MATCH_2}")
+    set(count "${CMAKE_MATCH_3}")
+    set(clock "${CMAKE_MATCH_5}")
+    set(renderer "${CMAKE_MATCH_6}")
+    string(REPLACE "," ";" f "${CMAKE_MATCH_4}")
+    list(LENGTH f nf)
+    if(NOT nf EQUAL 16)
+        message(FATAL_ERROR "expected 21 columns: ${line}")
+    endif()
+    list(GET f 0 active)
+    list(GET f 1 drawn)
+    list(GET f 2 ms)
+    list(GET f 3 p90)
+    list(GET f 9 fxPasses)
+    list(GET f 10 fxDraws)
+    list(GET f 11 fxUploads)
+    list(GET f 8 fxVertices)
+    list(GET f 15 programsBuilt)
+    if(NOT ms MATCHES "^${num}$" OR NOT p90 MATCHES "^${num}$" OR NOT ms GREATER 0 OR p90 LESS ms)
+        message(FATAL_ERROR "ms median '${ms}' / p90 '${p90}' not positive numbers with p90 >= median: ${line}")
+    endif()
+    if(clock STREQUAL "" OR renderer STREQUAL "")
+        message(FATAL_ERROR "empty clock or renderer: ${line}")
+    endif()
+    # Two warm-up frames build the shader variants and upload the grid meshes: the timed frames build none.
+    if(NOT programsBuilt EQUAL 0)
+        message(FATAL_ERROR "${programsBuilt} shader programs built during timed frames: ${line}")
+    endif()
+    if(kind STREQUAL "none")
+        # No effects (with or without an EffectsSystem): no effect pass, draw, upload or vertex, ever.
+        if(NOT fxPasses EQUAL 0 OR NOT fxDraws EQUAL 0 OR NOT fxUploads EQUAL 0 OR NOT fxVertices EQUAL 0)
+            message(FATAL_ERROR "${setting} did effect work (passes ${fxPasses}, draws ${fxDraws}, uploads "
+                                "${fxUploads}, vertices ${fxVertices}): ${line}")
+        endif()
+    else()
+        # Every effect of the setting is in view (the bench places them so): one pass, one instanced draw,
+        # and the effect data uploaded each frame (>= 1 upload).
+        if(NOT active EQUAL count OR NOT drawn EQUAL count)
+            message(FATAL_ERROR "${count} ${kind}s but active ${active}, drawn ${drawn}: ${line}")
+        endif()
+        if(NOT fxPasses EQUAL 1 OR NOT fxDraws EQUAL 1 OR fxUploads LESS 1)
+            message(FATAL_ERROR "${kind} x${count}: passes ${fxPasses}, draws ${fxDraws}, uploads ${fxUploads}, "
+                                "expected 1, 1, >= 1: ${line}")
+        endif()
+        if(NOT fxVertices GREATER 0)
+            message(FATAL_ERROR "${kind} x${count}: no secondary-grid vertices: ${line}")
+        endif()
+        set(vertices_${kind}_${count} "${fxVertices}")
+    endif()
+    list(APPEND seen "${setting}:${kind}:${count}")
+endforeach()
+foreach(expected "plain:none:0" "zero_effect:none:0" "explosions:explosion:1" "explosions:explosion:4"
+                 "wakes:wake:1" "wakes:wake:2")
+    if(NOT expected IN_LIST seen)
+        message(FATAL_ERROR "missing row ${expected}; rows: ${seen}")
+    endif()
+endforeach()
+# Secondary-grid vertices grow with the count: 4 explosion grids are 4 times one, 2 wake grids twice one.
+math(EXPR fourOne "4 * ${vertices_explosion_1}")
+math(EXPR twoOne "2 * ${vertices_wake_1}")
+if(NOT vertices_explosion_4 EQUAL fourOne OR NOT vertices_wake_2 EQUAL twoOne)
+    message(FATAL_ERROR "effect vertices do not scale with the count: explosions ${vertices_explosion_1} -> "
+                        "${vertices_explosion_4}, wakes ${vertices_wake_1} -> ${vertices_wake_2}")
+endif()
+file(READ "${OUT_DIR}/effects.md" md)
+if(NOT md MATCHES "GL_RENDERER: [^\n]+" OR NOT md MATCHES "## Zero-effect frame")
+    message(FATAL_ERROR "effects.md lacks the renderer line or the zero-effect table")
+endif()
+message(STATUS "effects quick: rows ${seen}; explosion vertices ${vertices_explosion_1}, wake ${vertices_wake_1}")

@@ -1,0 +1,597 @@
+// pacifica-bench-effects: what the ocean's effects (ocean/Effects.h) cost per active effect of each kind, and
+// what the frame without effects costs against the plain ocean (docs/EFFECTS_BENCH.md). Settings, each timed
+// as the median (and p90) of N frames of OceanRenderer::render + glFinish with the engine's GpuTimer
+// (GL_TIME_ELAPSED on hardware, wall clock around glFinish on llvmpipe), the settings interleaved frame by
+// frame (round robin) so that the load of a shared machine changing during the run hits all of them alike:
+//   - plain: a registry holding only the OceanComponent, no EffectsSystem at all;
+//   - zero-effect: an EffectsSystem exists and update() runs every frame, but there are no effects; its
+//     effect counters (passes, draws, uploads) must be 0 in every timed frame;
+//   - explosions: 1, 4, 16, 64 grown explosions in view; wakes: 1, 2, 4, 8 ships with built-up trails in
+//     view (parallel courses, 10 m/s).
+// Per kind it reports the slope of a least-squares line through (count, ms) and (ms(N) - ms(plain)) / N,
+// the CPU time of EffectsSystem::update() per frame (steady_clock) and the vertices processed (lastStats()).
+// It links no OpenImageIO, so the no-OIIO build runs it on the GPU benchmark machine (NVIDIA H100).
+#include "engine/Ecs.h"
+#include "engine/Events.h"
+#include "engine/Space.h"
+#include "engine/gl/FrameTargets.h"
+#include "engine/gl/GlContext.h"
+#include "engine/gl/GpuTimer.h"
+#include "ocean/Effects.h"
+#include "ocean/Ocean.h"
+
+#include <epoxy/gl.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace pacifica;
+
+namespace {
+
+constexpr double T0 = 100.0;            // simulation time of the first frame, s
+constexpr double FRAME_DT = 1.0 / 60.0; // simulation time between frames, s
+constexpr double FOV_Y_DEG = 60.0;
+constexpr int WARMUP_FRAMES = 2; // first use builds shader variants and uploads grid meshes
+// The brief's camera: ~100 m up, looking down 20 degrees, heading east (+x); away from the origin so the
+// camera-relative float path is exercised as in a game.
+constexpr glm::dvec3 CAMERA{2000.0, -1500.0, 100.0};
+constexpr double HEADING_DEG = 90.0;
+constexpr double PITCH_DEG = -20.0;
+// Ships: 10 m/s on parallel courses along +x; their paths are built for 120 s in 0.5 s steps first.
+constexpr double SHIP_SPEED = 10.0;
+constexpr double HISTORY_SECONDS = 120.0;
+constexpr double HISTORY_STEP = 0.5;
+
+enum class Kind { None, Explosion, Wake };
+
+const char* kindName(Kind k) {
+    switch (k) {
+    case Kind::None:
+        return "none";
+    case Kind::Explosion:
+        return "explosion";
+    case Kind::Wake:
+        return "wake";
+    }
+    return "?";
+}
+
+struct Row {
+    std::string setting; // plain, zero_effect, explosions, wakes
+    Kind kind = Kind::None;
+    int count = 0;
+    int active = 0, drawn = 0; // of the kind, from lastStats() (minimum over the timed frames)
+    double msMedian = 0.0, msP90 = 0.0;
+    double updateUsMedian = std::numeric_limits<double>::quiet_NaN(); // EffectsSystem::update(), CPU
+    double renderCpuMsMedian = 0.0; // steady_clock around the render() call alone (CPU side, no glFinish)
+    long long vertices = 0;         // all vertices of the frame (max over the timed frames)
+    long long fxVertices = 0;       // secondary-grid vertices, both kinds
+    int fxPasses = 0, fxDraws = 0, fxUploads = 0; // both kinds, max over the timed frames
+    int passes = 0, draws = 0, uploads = 0;       // frame totals, max over the timed frames
+    int programsBuilt = 0;                        // summed over the timed frames (must be 0: warm)
+    std::vector<double> samples;                  // ms of each timed frame, one per round (round order)
+};
+
+double quantile(std::vector<double> v, double q) {
+    if (v.empty())
+        return std::numeric_limits<double>::quiet_NaN();
+    std::sort(v.begin(), v.end());
+    // Nearest rank: the median of an odd count is the middle sample.
+    const size_t i = std::min(v.size() - 1, static_cast<size_t>(std::ceil(q * double(v.size())) - 1.0));
+    return v[q == 0.5 ? v.size() / 2 : i];
+}
+
+std::string num(double v, int precision = 6) {
+    if (std::isnan(v))
+        return "nan";
+    std::ostringstream s;
+    s << std::setprecision(precision) << v;
+    return s.str();
+}
+
+std::string fixed(double v, int decimals) {
+    if (std::isnan(v))
+        return "–";
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(decimals) << v;
+    return s.str();
+}
+
+std::string csvQuote(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"')
+            out += '"';
+        out += c;
+    }
+    return out + "\"";
+}
+
+// Halton radical inverse: well-spread points whose first N are spread for every N (so 1, 4, 16 and 64
+// explosions all cover the view instead of piling up in one corner).
+double halton(int i, int base) {
+    double f = 1.0, r = 0.0;
+    for (; i > 0; i /= base) {
+        f /= base;
+        r += f * (i % base);
+    }
+    return r;
+}
+
+// Explosion i: 180..600 m ahead of the camera, within +-55% of the depth sideways (the view's half width on
+// the sea is ~1.0 of the depth at 640x360 and 60 degrees vertical fov), spawned 3..5 s before T0 so the ring
+// has grown (front ~20-30 m out), strengths 1..2. `origin`: sim time of the setting's first frame.
+ocean::SpawnExplosion explosionSpawn(int i, double origin) {
+    const double depth = 180.0 + 420.0 * halton(i + 1, 2);
+    const double side = (2.0 * halton(i + 1, 3) - 1.0) * 0.55 * depth;
+    return {glm::dvec2(CAMERA) + glm::dvec2(depth, side), origin - 3.0 - (i % 3), 1.0 + 0.5 * (i % 3)};
+}
+
+// Ship i's lane: centre lane first, then alternating sides 90 m apart, so the first N are centred in view.
+// At the setting's first frame (sinceOrigin = 0) the ships are 450..590 m ahead; their 1200 m of path runs
+// back past the camera.
+glm::dvec2 shipPosition(int i, double sinceOrigin) {
+    const double lane = 90.0 * ((i + 1) / 2) * (i % 2 == 1 ? 1.0 : -1.0);
+    const double ahead = 450.0 + 20.0 * i + SHIP_SPEED * sinceOrigin;
+    return glm::dvec2(CAMERA) + glm::dvec2(ahead, lane);
+}
+
+ocean::OceanFrame makeFrame(const gl::FrameTargets& targets, double time) {
+    Pose pose;
+    pose.position = CAMERA;
+    pose.headingDeg = HEADING_DEG;
+    pose.pitchDeg = PITCH_DEG;
+    ocean::OceanFrame f;
+    f.camera = makeCameraFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
+                               float(targets.width()) / float(targets.height()), 0.5f);
+    f.time = time;
+    f.targetFramebuffer = targets.sceneFramebuffer().id();
+    f.width = targets.width();
+    f.height = targets.height();
+    return f;
+}
+
+// One setting: its own registry, events, effects system, renderer and sim clock, so the settings can be
+// timed interleaved (round robin, one frame each) and a shared machine's drift hits all of them alike.
+struct Scene {
+    Row row;
+    ecs::Registry registry;
+    ecs::EventQueue events;
+    std::unique_ptr<ocean::EffectsSystem> fx; // null: the plain ocean
+    std::vector<ecs::Entity> ships;
+    std::unique_ptr<ocean::OceanRenderer> renderer; // one per scene: its cache is keyed by entity
+    double origin = T0, time = T0;                  // sim time of the first frame, of the next frame
+    std::vector<double> ms, updateUs, renderCpuMs;
+
+    Scene(std::string setting, Kind kind, int count, bool withSystem) : row{std::move(setting), kind, count} {
+        row.active = row.drawn = std::numeric_limits<int>::max();
+        registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean({}));
+        if (withSystem)
+            fx = std::make_unique<ocean::EffectsSystem>(registry, events);
+        renderer = std::make_unique<ocean::OceanRenderer>();
+    }
+
+    // One frame: move the ships, dispatch the events and run fx->update() (timed on the CPU), then render +
+    // glFinish inside the GPU timer. Untimed frames warm up (shader variants, grid meshes).
+    void frame(gl::GpuTimer& timer, const gl::FrameTargets& targets, bool timed) {
+        for (size_t s = 0; s < ships.size(); ++s)
+            registry.get<ocean::Ship>(ships[s]).position = shipPosition(static_cast<int>(s), time - origin);
+        if (fx) {
+            events.dispatch();
+            const auto u0 = std::chrono::steady_clock::now();
+            fx->update(time, CAMERA);
+            const auto u1 = std::chrono::steady_clock::now();
+            if (timed)
+                updateUs.push_back(std::chrono::duration<double, std::micro>(u1 - u0).count());
+        }
+        const ocean::OceanFrame f = makeFrame(targets, time);
+        time += FRAME_DT;
+        glFinish(); // nothing of an earlier scene's frame may run inside this one's span
+        if (timed)
+            timer.begin();
+        const auto r0 = std::chrono::steady_clock::now();
+        renderer->render(registry, f);
+        const auto r1 = std::chrono::steady_clock::now();
+        if (timed)
+            timer.end();
+        glFinish();
+        if (!timed)
+            return;
+        timer.drain(); // the span just ended is the newest sample (the frame has finished: no stall)
+        ms.push_back(timer.samples().back());
+        renderCpuMs.push_back(std::chrono::duration<double, std::milli>(r1 - r0).count());
+        const ocean::OceanStats& s = renderer->lastStats();
+        const ocean::EffectKindStats& k = row.kind == Kind::Wake ? s.wakes : s.explosions;
+        row.active = std::min(row.active, row.kind == Kind::None ? 0 : k.active);
+        row.drawn = std::min(row.drawn, row.kind == Kind::None ? 0 : k.drawn);
+        row.vertices = std::max(row.vertices, s.vertices);
+        row.fxVertices = std::max(row.fxVertices, s.explosions.vertices + s.wakes.vertices);
+        row.fxPasses = std::max(row.fxPasses, s.explosions.passes + s.wakes.passes);
+        row.fxDraws = std::max(row.fxDraws, s.explosions.draws + s.wakes.draws);
+        row.fxUploads = std::max(row.fxUploads, s.explosions.uploads + s.wakes.uploads);
+        row.passes = std::max(row.passes, s.passes);
+        row.draws = std::max(row.draws, s.draws);
+        row.uploads = std::max(row.uploads, s.uploads);
+        row.programsBuilt += s.programsBuilt;
+    }
+
+    Row finish() {
+        row.samples = ms;
+        row.msMedian = quantile(ms, 0.5);
+        row.msP90 = quantile(ms, 0.9);
+        row.renderCpuMsMedian = quantile(renderCpuMs, 0.5);
+        if (!updateUs.empty())
+            row.updateUsMedian = quantile(updateUs, 0.5);
+        std::fprintf(stderr,
+                     "[%s] %s x%d: %.3f ms (p90 %.3f), update %.1f us, active %d drawn %d, fx vertices %lld, "
+                     "fx passes %d draws %d uploads %d\n",
+                     row.setting.c_str(), kindName(row.kind), row.count, row.msMedian, row.msP90,
+                     row.updateUsMedian, row.active, row.drawn, row.fxVertices, row.fxPasses, row.fxDraws,
+                     row.fxUploads);
+        return row;
+    }
+};
+
+std::unique_ptr<Scene> explosionScene(int n) {
+    auto scene = std::make_unique<Scene>("explosions", Kind::Explosion, n, true);
+    for (int i = 0; i < n; ++i)
+        scene->events.enqueue(explosionSpawn(i, scene->origin));
+    return scene;
+}
+
+// Ships with trails, their paths recorded for 120 s of sim time in 0.5 s steps before the first frame
+// (update() only: the renderer never sees that earlier time).
+std::unique_ptr<Scene> wakeScene(int n) {
+    auto scene = std::make_unique<Scene>("wakes", Kind::Wake, n, true);
+    ecs::Registry& reg = scene->registry;
+    for (int i = 0; i < n; ++i) {
+        const ecs::Entity ship = reg.create();
+        reg.emplace<ocean::Ship>(ship, ocean::Ship{shipPosition(i, -HISTORY_SECONDS), 60.0});
+        scene->events.enqueue(ocean::AttachShipTrail{ship, ocean::WakeParams{}});
+        scene->ships.push_back(ship);
+    }
+    const int steps = static_cast<int>(HISTORY_SECONDS / HISTORY_STEP);
+    for (int step = 0; step < steps; ++step) {
+        const double since = -HISTORY_SECONDS + step * HISTORY_STEP;
+        for (int i = 0; i < n; ++i)
+            reg.get<ocean::Ship>(scene->ships[size_t(i)]).position = shipPosition(i, since);
+        scene->events.dispatch();
+        scene->fx->update(scene->origin + since, CAMERA);
+    }
+    return scene;
+}
+
+struct Fit {
+    double slope = std::numeric_limits<double>::quiet_NaN(); // ms per effect
+    double intercept = std::numeric_limits<double>::quiet_NaN();
+};
+
+// Ordinary least squares y = a + b x.
+Fit leastSquares(const std::vector<double>& x, const std::vector<double>& y) {
+    const size_t n = x.size();
+    if (n < 2)
+        return {};
+    double mx = 0.0, my = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        mx += x[i];
+        my += y[i];
+    }
+    mx /= double(n);
+    my /= double(n);
+    double sxy = 0.0, sxx = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        sxy += (x[i] - mx) * (y[i] - my);
+        sxx += (x[i] - mx) * (x[i] - mx);
+    }
+    if (sxx <= 0.0)
+        return {};
+    Fit f;
+    f.slope = sxy / sxx;
+    f.intercept = my - f.slope * mx;
+    return f;
+}
+
+struct KindSummary {
+    Kind kind = Kind::None;
+    std::vector<int> counts;
+    Fit ms;                                                             // render ms against count
+    Fit updateUs;                                                       // update() us against count
+    double usPerEffectAtMax = std::numeric_limits<double>::quiet_NaN(); // (ms(Nmax) - ms(plain)) / Nmax
+    long long verticesPerEffect = 0;
+};
+
+KindSummary summarise(const std::vector<Row>& rows, Kind kind, double plainMs) {
+    KindSummary k;
+    k.kind = kind;
+    std::vector<double> x, y, u;
+    const Row* largest = nullptr;
+    for (const Row& r : rows)
+        if (r.kind == kind) {
+            k.counts.push_back(r.count);
+            x.push_back(r.count);
+            y.push_back(r.msMedian);
+            u.push_back(r.updateUsMedian);
+            if (!largest || r.count > largest->count)
+                largest = &r;
+        }
+    k.ms = leastSquares(x, y);
+    k.updateUs = leastSquares(x, u);
+    if (largest && largest->count > 0) {
+        k.usPerEffectAtMax = 1000.0 * (largest->msMedian - plainMs) / largest->count;
+        k.verticesPerEffect = largest->fxVertices / std::max(1, largest->drawn);
+    }
+    return k;
+}
+
+const Row& findRow(const std::vector<Row>& rows, const std::string& setting) {
+    for (const Row& r : rows)
+        if (r.setting == setting)
+            return r;
+    throw std::logic_error("findRow(): no row " + setting);
+}
+
+std::string loadAverage() {
+    std::ifstream in("/proc/loadavg");
+    std::string a, b, c;
+    if (!(in >> a >> b >> c))
+        return "unknown";
+    return a + " " + b + " " + c;
+}
+
+std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    char date[64];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
+    return date;
+}
+
+// effects.csv (one row per setting), effects.md (the tables docs/EFFECTS_BENCH.md quotes) and effects.json
+// (the per-kind summary, for scripts).
+void writeReports(const std::string& outDir, const std::vector<Row>& rows, const gl::ContextInfo& info,
+                  const gl::GpuTimer& timer, int width, int height, int frames,
+                  const std::string& commandLine) {
+    const Row& plain = findRow(rows, "plain");
+    const Row& zero = findRow(rows, "zero_effect");
+    const double plainMs = plain.msMedian;
+    // Paired: zero-effect / plain frame by frame within a round (adjacent in time), which cancels load that
+    // changes between rounds; its spread (p10..p90) shows the noise the ratio of medians carries.
+    std::vector<double> paired;
+    for (size_t i = 0; i < std::min(zero.samples.size(), plain.samples.size()); ++i)
+        paired.push_back(zero.samples[i] / plain.samples[i]);
+    const double pairedMedian = quantile(paired, 0.5), pairedP10 = quantile(paired, 0.1),
+                 pairedP90 = quantile(paired, 0.9);
+    const KindSummary kinds[] = {summarise(rows, Kind::Explosion, plainMs),
+                                 summarise(rows, Kind::Wake, plainMs)};
+    const std::string clock = timer.clockName();
+    const std::string load = loadAverage();
+
+    std::ofstream csv(outDir + "/effects.csv");
+    csv << "setting,kind,count,active,drawn,ms_median,ms_p90,us_per_effect_vs_plain,update_us_median,"
+           "render_cpu_ms_median,vertices,fx_vertices,fx_passes,fx_draws,fx_uploads,passes,draws,uploads,"
+           "programs_built,clock,renderer\n";
+    for (const Row& r : rows) {
+        const double perEffect = r.count > 0 ? 1000.0 * (r.msMedian - plainMs) / r.count
+                                             : std::numeric_limits<double>::quiet_NaN();
+        csv << r.setting << ',' << kindName(r.kind) << ',' << r.count << ',' << r.active << ',' << r.drawn
+            << ',' << num(r.msMedian) << ',' << num(r.msP90) << ',' << num(perEffect) << ','
+            << num(r.updateUsMedian) << ',' << num(r.renderCpuMsMedian) << ',' << r.vertices << ','
+            << r.fxVertices << ',' << r.fxPasses << ',' << r.fxDraws << ',' << r.fxUploads << ',' << r.passes
+            << ',' << r.draws << ',' << r.uploads << ',' << r.programsBuilt << ',' << csvQuote(clock) << ','
+            << csvQuote(info.renderer) << '\n';
+    }
+
+    std::ofstream md(outDir + "/effects.md");
+    md << "# Pacifica effects benchmark\n\n"
+       << "- GL_RENDERER: " << info.renderer << "\n- clock: " << clock << "\n- date: " << utcNow()
+       << "\n- command: `" << commandLine << "`\n- size: " << width << "x" << height << ", " << frames
+       << " timed frames per setting (+" << WARMUP_FRAMES
+       << " warm-up), settings interleaved frame by frame; ms = median (p90) of render + glFinish\n"
+       << "- camera: (" << CAMERA.x << ", " << CAMERA.y << ", " << CAMERA.z << ") m, heading " << HEADING_DEG
+       << " deg, pitch " << PITCH_DEG << " deg, " << FOV_Y_DEG << " deg vertical fov; default OceanDesc\n"
+       << "- load average at the end: " << load << "\n\n"
+       << "| setting | kind | count | active | drawn | ms median | ms p90 | µs/effect vs plain | update µs | "
+          "render CPU ms | vertices | fx vertices | fx passes | fx draws | fx uploads |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const Row& r : rows) {
+        const double perEffect = r.count > 0 ? 1000.0 * (r.msMedian - plainMs) / r.count
+                                             : std::numeric_limits<double>::quiet_NaN();
+        md << "| " << r.setting << " | " << kindName(r.kind) << " | " << r.count << " | " << r.active << " | "
+           << r.drawn << " | " << fixed(r.msMedian, 3) << " | " << fixed(r.msP90, 3) << " | "
+           << fixed(perEffect, 1) << " | " << fixed(r.updateUsMedian, 1) << " | "
+           << fixed(r.renderCpuMsMedian, 3) << " | " << r.vertices << " | " << r.fxVertices << " | "
+           << r.fxPasses << " | " << r.fxDraws << " | " << r.fxUploads << " |\n";
+    }
+    md << "\n## Per effect\n\nplain = " << fixed(plainMs, 3)
+       << " ms. Slope and intercept: least squares through (count, ms median) of the kind's settings.\n\n"
+       << "| kind | counts | µs per effect (slope) | intercept ms | fixed cost ms (intercept − plain) "
+       << "| µs per effect at max count ((ms(N) − plain) / N) | update() µs per effect (slope) "
+       << "| vertices per effect |\n"
+       << "|---|---|---|---|---|---|---|---|\n";
+    for (const KindSummary& k : kinds) {
+        std::string counts;
+        for (int c : k.counts)
+            counts += (counts.empty() ? "" : ", ") + std::to_string(c);
+        md << "| " << kindName(k.kind) << " | " << counts << " | " << fixed(1000.0 * k.ms.slope, 1) << " | "
+           << fixed(k.ms.intercept, 3) << " | " << fixed(k.ms.intercept - plainMs, 3) << " | "
+           << fixed(k.usPerEffectAtMax, 1) << " | " << fixed(k.updateUs.slope, 2) << " | "
+           << k.verticesPerEffect << " |\n";
+    }
+    md << "\n## Zero-effect frame\n\n"
+       << "| zero-effect ms | plain ms | ratio of medians | paired ratio median (p10–p90) | Δ ms | update() "
+          "µs "
+       << "| fx passes | fx draws | fx uploads | fx vertices |\n|---|---|---|---|---|---|---|---|---|---|\n"
+       << "| " << fixed(zero.msMedian, 3) << " | " << fixed(plainMs, 3) << " | "
+       << fixed(zero.msMedian / plainMs, 3) << " | " << fixed(pairedMedian, 3) << " (" << fixed(pairedP10, 3)
+       << "–" << fixed(pairedP90, 3) << ") | " << fixed(zero.msMedian - plainMs, 3) << " | "
+       << fixed(zero.updateUsMedian, 2) << " | " << zero.fxPasses << " | " << zero.fxDraws << " | "
+       << zero.fxUploads << " | " << zero.fxVertices << " |\n\n"
+       << "fx counters are the maximum over the timed frames (both kinds summed), so 0 means no effect work "
+          "in "
+          "any of them.\n";
+
+    nlohmann::json j;
+    j["renderer"] = info.renderer;
+    j["clock"] = clock;
+    j["size"] = {width, height};
+    j["frames"] = frames;
+    j["command"] = commandLine;
+    j["load_average"] = load;
+    j["plain_ms"] = plainMs;
+    j["zero_effect"] = {
+        {"ms", zero.msMedian},        {"ratio", zero.msMedian / plainMs}, {"update_us", zero.updateUsMedian},
+        {"fx_passes", zero.fxPasses}, {"fx_draws", zero.fxDraws},         {"fx_uploads", zero.fxUploads}};
+    auto jnum = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+    for (const KindSummary& k : kinds)
+        j["kinds"][kindName(k.kind)] = {{"counts", k.counts},
+                                        {"us_per_effect_slope", jnum(1000.0 * k.ms.slope)},
+                                        {"intercept_ms", jnum(k.ms.intercept)},
+                                        {"us_per_effect_at_max", jnum(k.usPerEffectAtMax)},
+                                        {"update_us_per_effect_slope", jnum(k.updateUs.slope)},
+                                        {"vertices_per_effect", k.verticesPerEffect}};
+    std::ofstream js(outDir + "/effects.json");
+    js << j.dump(2) << '\n';
+    csv.close();
+    md.close();
+    js.close();
+    if (!csv || !md || !js)
+        throw std::runtime_error("cannot write the reports to " + outDir);
+    std::cout << "wrote " << outDir << "/effects.csv, effects.md, effects.json (" << info.renderer << ", "
+              << clock << ")\n"
+              << "explosion: " << fixed(1000.0 * kinds[0].ms.slope, 1) << " us/effect (slope), "
+              << fixed(kinds[0].usPerEffectAtMax, 1) << " us/effect at " << kinds[0].counts.back()
+              << "; wake: " << fixed(1000.0 * kinds[1].ms.slope, 1) << " us/effect (slope), "
+              << fixed(kinds[1].usPerEffectAtMax, 1) << " us/effect at " << kinds[1].counts.back()
+              << "; zero-effect/plain " << fixed(zero.msMedian / plainMs, 3) << " (paired "
+              << fixed(pairedMedian, 3) << ", p10-p90 " << fixed(pairedP10, 3) << "-" << fixed(pairedP90, 3)
+              << ")\n";
+}
+
+std::optional<std::pair<int, int>> parseSize(const std::string& s) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 16 ||
+        h < 16 || w > 8192 || h > 8192)
+        return std::nullopt;
+    return std::pair{w, h};
+}
+
+int usage(const char* argv0, int rc) {
+    (rc == 0 ? std::cout : std::cerr)
+        << "usage: " << argv0 << " [--out DIR] [--size WxH] [--frames N] [--quick]\n"
+        << "  --out DIR     output directory for effects.csv, effects.md, effects.json (default effects)\n"
+        << "  --size WxH    render size (default 640x360; --quick: 160x90)\n"
+        << "  --frames N    timed frames per setting, median and p90 reported (default 15; --quick: 3)\n"
+        << "  --quick       few settings (plain, zero-effect, 1 and 4 explosions, 1 and 2 wakes): the test\n"
+        << "Cost per active effect of each kind and the zero-effect frame against the plain ocean "
+           "(docs/EFFECTS_BENCH.md).\n";
+    return rc;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::string outDir = "effects";
+    bool quick = false;
+    std::optional<std::pair<int, int>> size;
+    std::optional<int> framesArg;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::optional<std::string> {
+            if (i + 1 >= argc)
+                return std::nullopt;
+            return std::string(argv[++i]);
+        };
+        if (a == "--help" || a == "-h")
+            return usage(argv[0], 0);
+        if (a == "--quick") {
+            quick = true;
+        } else if (a == "--out") {
+            const auto v = value();
+            if (!v || v->empty())
+                return usage(argv[0], 2);
+            outDir = *v;
+        } else if (a == "--size") {
+            const auto v = value();
+            size = v ? parseSize(*v) : std::nullopt;
+            if (!size) {
+                std::cerr << "pacifica-bench-effects: --size expects WxH (16..8192 each), e.g. 1920x1080\n";
+                return 2;
+            }
+        } else if (a == "--frames") {
+            const auto v = value();
+            char* end = nullptr;
+            const long n = v ? std::strtol(v->c_str(), &end, 10) : 0;
+            if (!v || *end != '\0' || n < 1 || n > 10000) {
+                std::cerr << "pacifica-bench-effects: --frames expects an integer in 1..10000\n";
+                return 2;
+            }
+            framesArg = static_cast<int>(n);
+        } else {
+            std::cerr << "pacifica-bench-effects: unknown argument '" << a << "'\n";
+            return usage(argv[0], 2);
+        }
+    }
+    const auto [width, height] = size.value_or(quick ? std::pair{160, 90} : std::pair{640, 360});
+    const int frames = framesArg.value_or(quick ? 3 : 15);
+    const std::vector<int> explosionCounts = quick ? std::vector{1, 4} : std::vector{1, 4, 16, 64};
+    const std::vector<int> wakeCounts = quick ? std::vector{1, 2} : std::vector{1, 2, 4, 8};
+    std::string commandLine;
+    for (int i = 0; i < argc; ++i)
+        commandLine += (i ? " " : "") + std::string(argv[i]);
+
+    try {
+        std::filesystem::create_directories(outDir);
+        auto context = gl::createHeadlessContext({.debug = false});
+        const gl::ContextInfo info = context->info();
+        gl::GpuTimer timer(info);
+        std::fprintf(stderr,
+                     "pacifica-bench-effects: GL_RENDERER %s; clock: %s; %dx%d, %d frames per setting\n",
+                     info.renderer.c_str(), timer.clockName(), width, height, frames);
+        gl::FrameTargets targets(width, height);
+        // a. plain ocean (no EffectsSystem); b. zero effects (the system exists and runs, nothing to do);
+        // c. explosions; d. wakes.
+        std::vector<std::unique_ptr<Scene>> scenes;
+        scenes.push_back(std::make_unique<Scene>("plain", Kind::None, 0, false));
+        scenes.push_back(std::make_unique<Scene>("zero_effect", Kind::None, 0, true));
+        for (int n : explosionCounts)
+            scenes.push_back(explosionScene(n));
+        for (int n : wakeCounts)
+            scenes.push_back(wakeScene(n));
+        for (auto& scene : scenes)
+            for (int i = 0; i < WARMUP_FRAMES; ++i)
+                scene->frame(timer, targets, false);
+        // Round robin, one frame per scene per round, the starting scene rotating from round to round.
+        for (int f = 0; f < frames; ++f)
+            for (size_t k = 0; k < scenes.size(); ++k)
+                scenes[(k + size_t(f)) % scenes.size()]->frame(timer, targets, true);
+        std::vector<Row> rows;
+        for (auto& scene : scenes)
+            rows.push_back(scene->finish());
+
+        writeReports(outDir, rows, info, timer, width, height, frames, commandLine);
+        return 0;
+    } catch (const gl::ContextError& e) {
+        std::cerr << "pacifica-bench-effects: no GL context: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "pacifica-bench-effects: " << e.what() << "\n";
+        return 1;
+    }
+}
