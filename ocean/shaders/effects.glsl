@@ -12,10 +12,11 @@
 struct ExplosionGpu {
     vec4 a, b, c;
 };
-// Per wake: a = (ship - camera: x, y; grid radius; point count), b = (length L, beam, wave life, foam life).
+// Per wake: a = (ship - camera: x, y; grid radius; point count), b = (length L, beam, wave life, foam life),
+// c = the box (relative to the ship: min x, min y, max x, max y) outside which the wake is 0.
 // Its points at [wake * MAX_WAKE_POINTS * 2 ...]: (offset from ship x, y; sigma; age), (amplitude, k0, 0, 0).
 struct WakeGpu {
-    vec4 a, b;
+    vec4 a, b, c;
 };
 layout(std430, binding = 4) readonly buffer EffectExplosions { ExplosionGpu uExplosions[]; };
 layout(std430, binding = 5) readonly buffer EffectWakes { WakeGpu uWakes[]; };
@@ -138,13 +139,19 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
 // (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship).
 vec4 wakeWave(int i, vec2 q) {
     float R = uWakes[i].a.z;
-    if (R <= 0.0 || dot(q, q) >= R * R)
+    vec4 box = uWakes[i].c;
+    // insideWakeBox() in Effects.cpp
+    if (R <= 0.0 || dot(q, q) >= R * R || q.x <= box.x || q.y <= box.y || q.x >= box.z || q.y >= box.w)
         return vec4(0.0);
     WakeCoords c = wakeCoords(i, q);
     float h = kelvinHeight(i, c, c.behind, c.lateral);
     const float e = 0.1;
-    float dx = (kelvinHeight(i, c, c.behind + e, c.lateral) - kelvinHeight(i, c, c.behind - e, c.lateral)) / (2.0 * e);
-    float dy = (kelvinHeight(i, c, c.behind, c.lateral + e) - kelvinHeight(i, c, c.behind, c.lateral - e)) / (2.0 * e);
+    bool outside = c.behind + e <= 0.0 || abs(c.lateral) - e >= sqrt(KELVIN_TAN2) * (c.behind + e);
+    float dx = 0.0, dy = 0.0;
+    if (!outside) {
+        dx = (kelvinHeight(i, c, c.behind + e, c.lateral) - kelvinHeight(i, c, c.behind - e, c.lateral)) / (2.0 * e);
+        dy = (kelvinHeight(i, c, c.behind, c.lateral + e) - kelvinHeight(i, c, c.behind, c.lateral - e)) / (2.0 * e);
+    }
     vec2 left = vec2(-c.direction.y, c.direction.x);
     vec2 g = -dx * c.direction + dy * left;
     // wakeFoam(): the turbulent strip behind the stern.

@@ -31,6 +31,23 @@ vec3 modelDisplacement(vec2 rel) {
     return bottom + (top - bottom) * a.y;
 }
 
+// Foam inputs (ocean.frag): (h, J) bilinear from the same texels as modelDisplacement — J is the Jacobian
+// determinant of the choppy map, computed with the displacement (fft_finalize.comp; Tessendorf 2001 §4.4).
+#define MODEL_HAS_FOAM_INPUTS
+vec2 modelFoamInputs(vec2 rel) {
+    vec2 p = fract(rel * uFftInvTile + uFftUvOffset) * float(uFftSize);
+    vec2 p0 = floor(p);
+    vec2 a = p - p0;
+    ivec2 t0 = ivec2(p0);
+    vec2 d00 = texelFetch(uFftDisplacement, t0 & (uFftSize - 1), 0).zw;
+    vec2 d10 = texelFetch(uFftDisplacement, (t0 + ivec2(1, 0)) & (uFftSize - 1), 0).zw;
+    vec2 d01 = texelFetch(uFftDisplacement, (t0 + ivec2(0, 1)) & (uFftSize - 1), 0).zw;
+    vec2 d11 = texelFetch(uFftDisplacement, (t0 + ivec2(1, 1)) & (uFftSize - 1), 0).zw;
+    vec2 bottom = d00 + (d10 - d00) * a.x;
+    vec2 top = d01 + (d11 - d01) * a.x;
+    return bottom + (top - bottom) * a.y;
+}
+
 vec3 modelLighting(vec2 rel) {
     vec2 uv = rel * uFftInvTile + uFftUvOffset + 0.5 / float(uFftSize);
     vec4 s = texture(uFftSlope, uv);

@@ -71,6 +71,28 @@ vec3 gerstnerLighting(vec2 rel) {
     return vec3(((1.0 - syy) * g.x + sxy * g.y) / det, (sxy * g.x + (1.0 - sxx) * g.y) / det, variance);
 }
 
+// Foam inputs (ocean.frag): (H, det J) with the displacement fade — Tessendorf 2001 §4.4: the surface folds
+// where det J -> 0, so foam where J falls under the threshold. CPU twin: GerstnerWaves::foamInputsSeenFrom.
+#define MODEL_HAS_FOAM_INPUTS
+vec2 modelFoamInputs(vec2 rel) {
+    float r = length(rel);
+    float h = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0;
+    for (int i = 0; i < uGerstnerCount; ++i) {
+        vec4 w = uGerstnerWave[i];
+        vec4 e = uGerstnerExtra[i];
+        if (r >= e.z)
+            continue;
+        float a = w.w * gerstnerFade(r, e.z);
+        float s = sin(w.z * dot(w.xy, rel) + e.y);
+        h += a * s;
+        float qaks = e.x * a * w.z * s;
+        sxx += qaks * w.x * w.x;
+        sxy += qaks * w.x * w.y;
+        syy += qaks * w.y * w.y;
+    }
+    return vec2(h, (1.0 - sxx) * (1.0 - syy) - sxy * sxy);
+}
+
 // The surface-model contract (ocean/src/gpu/SurfaceGpu.h).
 vec3 modelDisplacement(vec2 rel) { return gerstnerDisplacement(rel); }
 vec3 modelLighting(vec2 rel) { return gerstnerLighting(rel); }

@@ -164,6 +164,16 @@ WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t) {
         if (amplitude > 0.0 || foam > 0.0)
             s.radius = std::max(s.radius, reach + 5.0);
     }
+    // The box outside which the wake is taken as 0 (the GPU skips the path walk there): the path's bounds
+    // widened by the wedge's reach and 3 foam-strip widths (where the strip is down to e^-9).
+    const double margin = std::sqrt(KELVIN_TAN2) * sigma + 3.0 * s.beam * (1.0 + sigma / 400.0) + 1.0;
+    s.boxMin = s.boxMax = s.offsets.front();
+    for (const glm::dvec2& o : s.offsets) {
+        s.boxMin = glm::min(s.boxMin, o);
+        s.boxMax = glm::max(s.boxMax, o);
+    }
+    s.boxMin -= margin;
+    s.boxMax += margin;
     return s;
 }
 
@@ -235,14 +245,22 @@ double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, doub
     return a * start * cusp * end * sum;
 }
 
+bool insideWakeBox(const WakeState& s, const glm::dvec2& q) {
+    return s.radius > 0.0 && glm::dot(q, q) < s.radius * s.radius && q.x > s.boxMin.x && q.y > s.boxMin.y &&
+           q.x < s.boxMax.x && q.y < s.boxMax.y;
+}
+
 glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q) {
-    if (s.radius <= 0.0 || glm::dot(q, q) >= s.radius * s.radius)
+    if (!insideWakeBox(s, q))
         return glm::dvec3(0.0);
     const WakeCoords c = wakeCoords(s, q);
     const double h = kelvinHeight(s, c, c.behind, c.lateral);
     // Slope by central differences in the path's frame (e = 0.1 m: 0.2% error at the shortest 3 m wave),
-    // turned into world axes: d(behind)/dq = -direction, d(lateral)/dq = the left normal.
+    // turned into world axes: d(behind)/dq = -direction, d(lateral)/dq = the left normal. Where all four
+    // difference points lie outside the wedge (or ahead of the ship) they are 0: skipped.
     const double e = 0.1;
+    if (c.behind + e <= 0.0 || std::abs(c.lateral) - e >= std::sqrt(KELVIN_TAN2) * (c.behind + e))
+        return {h, 0.0, 0.0};
     const double dx =
         (kelvinHeight(s, c, c.behind + e, c.lateral) - kelvinHeight(s, c, c.behind - e, c.lateral)) /
         (2.0 * e);
@@ -289,7 +307,7 @@ FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double 
             return;
         const WakeState s = wakeState(ship, trail, t);
         const glm::dvec2 q = xy - s.ship;
-        if (glm::dot(q, q) >= s.radius * s.radius)
+        if (!insideWakeBox(s, q))
             return;
         f.wave += wakeWave(s, q);
         f.foam = std::max(f.foam, wakeFoam(s, wakeCoords(s, q)));

@@ -242,4 +242,16 @@ glm::dvec3 GerstnerWaves::lightingSeenFrom(const glm::dvec2& xy, double t, const
     return {((1.0 - s.z) * g.x + s.y * g.y) / det, (s.y * g.x + (1.0 - s.x) * g.y) / det, variance};
 }
 
+glm::dvec2 GerstnerWaves::foamInputsSeenFrom(const glm::dvec2& xy, double t,
+                                             const glm::dvec2& cameraXY) const {
+    const double r = glm::length(xy - cameraXY);
+    double fades[MAX_WAVES];
+    for (size_t i = 0; i < mTerms.size(); ++i)
+        fades[i] = fade(r, DISPLACEMENT_FADE_WAVELENGTHS * mTerms[i].wavelength);
+    glm::dvec3 s;
+    glm::dvec2 g;
+    jacobianTerms(xy, t, fades, s, g);
+    return {displacement(xy, t, fades).z, (1.0 - s.x) * (1.0 - s.z) - s.y * s.y};
+}
+
 } // namespace pacifica::ocean

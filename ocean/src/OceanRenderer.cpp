@@ -67,11 +67,12 @@ namespace {
 constexpr int LIGHTING_FIRST_UNIT = 12;
 
 std::string effectConstantDefines() {
-    char buf[256];
+    char buf[320];
     std::snprintf(
         buf, sizeof buf,
-        "#define EFFECT_HEIGHT_LIMIT %.9g\n#define MAX_WAKE_POINTS %d\n#define EFFECT_MIN_WAVELENGTH %.9g\n",
-        EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH);
+        "#define EFFECT_HEIGHT_LIMIT %.9g\n#define MAX_WAKE_POINTS %d\n#define EFFECT_MIN_WAVELENGTH %.9g\n"
+        "#define KELVIN_TAN2 %.9g\n",
+        EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH, KELVIN_TAN2);
     return buf;
 }
 

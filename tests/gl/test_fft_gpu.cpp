@@ -233,7 +233,7 @@ TEST_P(FftGpuCpu, ShaderMatchesTheDirectSumAroundCameras) {
             const ocean::ProbeResult probe = ocean::probeSurface(gpu, rel, cam, t);
             ASSERT_EQ(probe.displacement.size(), rel.size());
             Errors grid, exact, interp;
-            double sumSqH = 0, sumSqD = 0, lightErr = 0;
+            double sumSqH = 0, sumSqD = 0, lightErr = 0, foamJErr = 0, foamHErr = 0;
             int lightCount = 0;
             for (size_t p = 0; p < rel.size(); ++p) {
                 ASSERT_TRUE(finite(probe.displacement[p])) << "point " << p;
@@ -243,6 +243,11 @@ TEST_P(FftGpuCpu, ShaderMatchesTheDirectSumAroundCameras) {
                 const glm::dvec3 g(probe.displacement[p]);
                 if (p < gridCount) {
                     grid.add(g, cpu);
+                    // Foam inputs (modelFoamInputs: h and the Jacobian determinant of the choppy map) at a
+                    // grid node are the node's values: equal to the direct sum's height and jacobianAt.
+                    foamHErr = std::max(foamHErr, std::abs(double(probe.foam[p].x) - cpu.z));
+                    foamJErr =
+                        std::max(foamJErr, std::abs(double(probe.foam[p].y) - sea->jacobianAt(world, t)));
                     if (sea->jacobianAt(world, t) > 0.2) {
                         const glm::dvec3 nn = sea->normalAt(world, t);
                         const glm::dvec2 slope = -glm::dvec2(nn) / nn.z;
@@ -271,6 +276,10 @@ TEST_P(FftGpuCpu, ShaderMatchesTheDirectSumAroundCameras) {
                 lightCount);
             EXPECT_LE(grid.h, exactH);
             EXPECT_LE(grid.horizontal, exactD);
+            std::printf("    foam inputs at grid nodes: max |dh| %.3g m, max |dJ| %.3g\n", foamHErr,
+                        foamJErr);
+            EXPECT_LE(foamHErr, exactH);
+            EXPECT_LT(foamJErr, 1e-3); // J = (1 + l Dxx)(1 + l Dyy) - l^2 Dxy^2 from float spectra
             EXPECT_LE(exact.h, exactH);
             EXPECT_LE(exact.horizontal, exactD);
             EXPECT_LE(interp.h, exactH + 5.0 * sb.interpH);

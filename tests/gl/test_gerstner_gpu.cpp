@@ -78,7 +78,8 @@ TEST_P(GerstnerGpuCpu, DisplacementAndLightingMatchTheDoubleReference) {
     ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
     ASSERT_EQ(r.displacement.size(), rel.size());
 
-    double worst = 0.0, worstSlope = 0.0, worstVariance = 0.0;
+    double worst = 0.0, worstSlope = 0.0, worstVariance = 0.0, worstFoamH = 0.0, worstFoamJ = 0.0;
+    double minJ = 1.0;
     size_t worstIndex = 0;
     double maxDz = 0.0;
     for (size_t i = 0; i < rel.size(); ++i) {
@@ -96,7 +97,17 @@ TEST_P(GerstnerGpuCpu, DisplacementAndLightingMatchTheDoubleReference) {
         const glm::dvec3 cpuLight = sea->lightingSeenFrom(world, c.time, c.camera);
         worstSlope = std::max(worstSlope, glm::length(glm::dvec2(l) - glm::dvec2(cpuLight)));
         worstVariance = std::max(worstVariance, std::abs(double(l.z) - cpuLight.z));
+        const glm::dvec2 cpuFoam = sea->foamInputsSeenFrom(world, c.time, c.camera);
+        worstFoamH = std::max(worstFoamH, std::abs(double(r.foam[i].x) - cpuFoam.x));
+        worstFoamJ = std::max(worstFoamJ, std::abs(double(r.foam[i].y) - cpuFoam.y));
+        minJ = std::min(minJ, cpuFoam.y);
     }
+    // Foam inputs (modelFoamInputs): the height is the displacement's z (same bound); J sums Q a k sin(theta)
+    // terms whose float phase error is that of the displacement (<= 2e-5 rad here): |dJ| << 1e-4.
+    std::printf("[%s] foam inputs: max |dH| %.3g m, max |dJ| %.3g (min J %.3f)\n", c.name, worstFoamH,
+                worstFoamJ, minJ);
+    EXPECT_LT(worstFoamJ, 1e-4);
+    EXPECT_LT(minJ, 0.95); // the comparison saw compressed crests (J ~0.9 for this sea), not J = 1 everywhere
     const double bound = displacementBound(*sea);
     RecordProperty("max_abs_displacement_error_m", std::to_string(worst));
     std::printf("[%s] max |GPU - CPU| displacement = %.3g m (point %zu, |rel| = %.1f m; bound %.3g m), "
@@ -106,6 +117,7 @@ TEST_P(GerstnerGpuCpu, DisplacementAndLightingMatchTheDoubleReference) {
     // The derived bound is ~2e-4 m for this sea, inside the 1e-3 m.
     EXPECT_LT(bound, 1e-3);
     EXPECT_LT(worst, bound);
+    EXPECT_LT(worstFoamH, bound);
     EXPECT_GT(maxDz, 0.5); // the comparison saw real waves, not an all-zero readback
     // Lighting: the same rounding with k r < 800 pi (the lighting fade), |d theta| <= 2^-24 (4800 pi + 4 pi)
     // = 9e-4 rad, times sum k A (0.18) over a Jacobian >= 0.8 for this sea: <= 2e-4 in slope; the variance

@@ -138,7 +138,12 @@ struct WakeState {
     double waveLife = 0.0, foamLife = 0.0;
     double radius = 0.0; ///< the secondary grid's radius (0: nothing to draw)
     double peak = 0.0;   ///< largest wave amplitude anywhere in the wake, metres
+    /// Relative to the ship: outside this box (and the radius) the wake is 0 (insideWakeBox).
+    glm::dvec2 boxMin{0.0}, boxMax{0.0};
 };
+/// Whether q (relative to the ship) is where the wake can be non-zero: inside the radius and the box of the
+/// path widened by the wedge's reach and 3 foam-strip widths.
+bool insideWakeBox(const WakeState& s, const glm::dvec2& q);
 WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t);
 
 /// Where a point lies relative to the path: arc length behind the ship, signed lateral offset, age of the

@@ -112,6 +112,9 @@ public:
     /// tilts the normal by at most 3 A_i / R_i), and the slope variance the fade removed,
     /// sum_i ((1 - f_i) k_i A_i)^2 / 2 (the mean |grad h|^2 of a sinusoid of slope amplitude k A).
     glm::dvec3 lightingSeenFrom(const glm::dvec2& xy, double t, const glm::dvec2& cameraXY) const;
+    /// The foam inputs the GPU computes per fragment (gerstner.glsl modelFoamInputs): (height dz, Jacobian
+    /// determinant), both with the displacement fade, as the sea is drawn. J < threshold makes folding foam.
+    glm::dvec2 foamInputsSeenFrom(const glm::dvec2& xy, double t, const glm::dvec2& cameraXY) const;
 
 private:
     struct Terms {      // per wave, derived once from mWaves

@@ -17,7 +17,7 @@ struct ExplosionGpu {
     glm::vec4 a, b, c;
 };
 struct WakeGpu {
-    glm::vec4 a, b;
+    glm::vec4 a, b, c;
 };
 
 /// Bounding-sphere test against the side planes of the frustum and the camera's front (reverse-Z infinite
@@ -145,6 +145,7 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
                                static_cast<float>(s.radius), static_cast<float>(s.offsets.size()));
         p.header.b = glm::vec4(static_cast<float>(s.length), static_cast<float>(s.beam),
                                static_cast<float>(s.waveLife), static_cast<float>(s.foamLife));
+        p.header.c = glm::vec4(glm::vec2(s.boxMin), glm::vec2(s.boxMax));
         p.points.assign(2 * MAX_WAKE_POINTS, glm::vec4(0.0f));
         for (size_t i = 0; i < s.offsets.size(); ++i) {
             p.points[2 * i] =

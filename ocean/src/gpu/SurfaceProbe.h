@@ -14,6 +14,7 @@ namespace pacifica::ocean {
 struct ProbeResult {
     std::vector<glm::vec3> displacement; ///< modelDisplacement(rel) per point
     std::vector<glm::vec3> lighting;     ///< modelLighting(rel) per point
+    std::vector<glm::vec2> foam; ///< modelFoamInputs(rel) (H, J); (displacement z, 1) for a model without
 };
 
 /// Needs a current GL 4.5 context. Calls gpu.update(time, camera) first (FFT models compute their maps).
