@@ -21,6 +21,9 @@ struct WakeGpu {
 layout(std430, binding = 4) readonly buffer EffectExplosions { ExplosionGpu uExplosions[]; };
 layout(std430, binding = 5) readonly buffer EffectWakes { WakeGpu uWakes[]; };
 layout(std430, binding = 6) readonly buffer EffectWakePoints { vec4 uWakePoints[]; };
+// Per effect g (explosions first, then wakes): [4 g .. 4 g + 3] = (offset, count) of the explosions and
+// (offset, count) of the wakes whose field reaches g's grid, then the index lists (EffectsGpu.cpp).
+layout(std430, binding = 7) readonly buffer EffectNeighbours { int uNeighbours[]; };
 uniform int uExplosionCount;
 uniform int uWakeCount;
 
@@ -170,12 +173,15 @@ vec4 wakeWave(int i, vec2 q) {
 }
 
 // The field of all effects at a camera-relative point qCam: (E, dE/dx, dE/dy, foam), E = L tanh(sum / L).
-// selfKind/selfIndex name the effect whose grid is drawn (-1: none); qSelf is the point relative to it.
+// selfKind/selfIndex name the effect whose grid is drawn; qSelf is the point relative to it. Only the
+// effects that reach that grid are visited (their lists in uNeighbours): the others are 0 there.
 vec4 effectField(vec2 qCam, vec2 qSelf, int selfKind, int selfIndex) {
     vec3 sum = vec3(0.0);
     float foam = 0.0;
+    int g = 4 * (selfKind == 0 ? selfIndex : uExplosionCount + selfIndex);
 #ifdef EFFECTS_EXPLOSIONS
-    for (int i = 0; i < uExplosionCount; ++i) {
+    for (int k = 0; k < uNeighbours[g + 1]; ++k) {
+        int i = uNeighbours[uNeighbours[g] + k];
         vec2 q = (selfKind == 0 && i == selfIndex) ? qSelf : qCam - uExplosions[i].a.xy;
         float R = uExplosions[i].a.z;
         if (dot(q, q) >= R * R)
@@ -186,7 +192,8 @@ vec4 effectField(vec2 qCam, vec2 qSelf, int selfKind, int selfIndex) {
     }
 #endif
 #ifdef EFFECTS_WAKES
-    for (int i = 0; i < uWakeCount; ++i) {
+    for (int k = 0; k < uNeighbours[g + 3]; ++k) {
+        int i = uNeighbours[uNeighbours[g + 2] + k];
         vec2 q = (selfKind == 1 && i == selfIndex) ? qSelf : qCam - uWakes[i].a.xy;
         vec4 w = wakeWave(i, q);
         sum += w.xyz;

@@ -140,15 +140,15 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
     EXPECT_EQ(s.explosions.drawn, 1);
     EXPECT_EQ(s.explosions.passes, 1);
     EXPECT_EQ(s.explosions.draws, 1);
-    EXPECT_EQ(s.explosions.uploads, 3); // vertex + index buffer of the grid, the explosion data
+    EXPECT_EQ(s.explosions.uploads, 4); // vertex + index buffer of the grid, the explosion data, neighbours
     EXPECT_EQ(s.explosions.vertices, 1 + 48 * 96);
     EXPECT_EQ(s.wakes.active + s.wakes.passes + s.wakes.draws + s.wakes.uploads, 0);
     EXPECT_EQ(s.wakes.vertices, 0);
     EXPECT_EQ(s.passes, plain.passes + 1);
     EXPECT_EQ(s.draws, plain.draws + 1);
-    EXPECT_EQ(s.uploads, plain.uploads + 3);
+    EXPECT_EQ(s.uploads, plain.uploads + 4);
     renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.1));
-    EXPECT_EQ(renderer.lastStats().explosions.uploads, 1); // steady state: the data only
+    EXPECT_EQ(renderer.lastStats().explosions.uploads, 2); // steady state: the data and neighbour lists
     EXPECT_EQ(renderer.lastStats().programsBuilt, 0);
     EXPECT_EQ(nonFinitePixels(), 0u);
     // 3. Behind the camera: its field is evaluated (active) but its grid is not drawn.

@@ -35,6 +35,47 @@ bool sphereInView(const glm::mat4& m, const glm::vec3& c, float r) {
     return true;
 }
 
+/// Where an effect can be non-zero, camera-relative: its disc, and (wakes) the box of its path.
+struct Footprint {
+    glm::dvec2 centre;
+    double radius;
+    glm::dvec2 boxMin, boxMax;
+};
+
+bool discMeetsBox(const glm::dvec2& c, double r, const glm::dvec2& lo, const glm::dvec2& hi) {
+    const glm::dvec2 nearest = glm::clamp(c, lo, hi);
+    return glm::dot(c - nearest, c - nearest) < r * r;
+}
+
+/// For each effect g (explosions 0..E-1, then wakes), the effects whose field can reach g's grid: ranges
+/// (offset, count of explosions, offset, count of wakes) at [4 g, 4 g + 4), then the index lists. A grid's
+/// vertices lie within its disc plus the base surface's horizontal displacement (< pad), and an effect's
+/// field is 0 outside its footprint, so leaving the others out changes no value (effects.glsl
+/// effectField) while the work per vertex stops growing with the number of effects far away.
+std::vector<int32_t> neighbourLists(const std::vector<Footprint>& f, int explosions, double pad) {
+    const size_t n = f.size();
+    std::vector<int32_t> out(4 * n);
+    for (size_t g = 0; g < n; ++g) {
+        const double reach = f[g].radius + pad;
+        for (int kind = 0; kind < 2; ++kind) {
+            const size_t first = kind == 0 ? 0 : static_cast<size_t>(explosions);
+            const size_t last = kind == 0 ? static_cast<size_t>(explosions) : n;
+            out[4 * g + 2 * kind] = static_cast<int32_t>(out.size());
+            int32_t count = 0;
+            for (size_t j = first; j < last; ++j) {
+                const glm::dvec2 d = f[j].centre - f[g].centre;
+                const double r = reach + f[j].radius;
+                if (glm::dot(d, d) < r * r && discMeetsBox(f[g].centre, reach, f[j].boxMin, f[j].boxMax)) {
+                    out.push_back(static_cast<int32_t>(j - first));
+                    ++count;
+                }
+            }
+            out[4 * g + 2 * kind + 1] = count;
+        }
+    }
+    return out;
+}
+
 } // namespace
 
 void EffectsGpu::ensureMesh(Mesh& mesh, int rings, int segments, double exponent, int& uploads) {
@@ -119,6 +160,9 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
     });
     mExplosionsDrawn = static_cast<int>(visible.size());
     visible.insert(visible.end(), hidden.begin(), hidden.end());
+    std::vector<Footprint> footprints;
+    for (const ExplosionGpu& g : visible)
+        footprints.push_back({glm::dvec2(g.a.x, g.a.y), double(g.a.z), glm::dvec2(-1e30), glm::dvec2(1e30)});
     mExplosionCount = static_cast<int>(visible.size());
     if (mExplosionCount > 0) {
         ensureMesh(mExplosionMesh, grids.explosionRings, grids.explosionSegments, grids.explosionExponent,
@@ -160,6 +204,11 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
     for (Packed& p : wHidden)
         wVisible.push_back(std::move(p));
     mWakeCount = static_cast<int>(wVisible.size());
+    for (const Packed& p : wVisible) {
+        const glm::dvec2 ship(p.header.a.x, p.header.a.y);
+        footprints.push_back({ship, double(p.header.a.z), ship + glm::dvec2(p.header.c.x, p.header.c.y),
+                              ship + glm::dvec2(p.header.c.z, p.header.c.w)});
+    }
     if (mWakeCount > 0) {
         ensureMesh(mWakeMesh, grids.wakeRings, grids.wakeSegments, grids.wakeExponent, mWakeUploads);
         std::vector<WakeGpu> headers;
@@ -171,6 +220,11 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
         upload(mWakeBuffer, mWakeCapacity, headers.data(), headers.size() * sizeof(WakeGpu), mWakeUploads);
         upload(mWakePointBuffer, mWakePointCapacity, points.data(), points.size() * sizeof(glm::vec4),
                mWakeUploads);
+    }
+    if (mExplosionCount + mWakeCount > 0) {
+        const std::vector<int32_t> neighbours = neighbourLists(footprints, mExplosionCount, heightBound);
+        upload(mNeighbourBuffer, mNeighbourCapacity, neighbours.data(), neighbours.size() * sizeof(int32_t),
+               mExplosionCount > 0 ? mExplosionUploads : mWakeUploads);
     }
 }
 
@@ -190,6 +244,8 @@ void EffectsGpu::bind(unsigned program) const {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, mWakeBuffer.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, mWakePointBuffer.id());
     }
+    if (mExplosionCount + mWakeCount > 0)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, mNeighbourBuffer.id());
     glProgramUniform1i(program, glGetUniformLocation(program, "uExplosionCount"), mExplosionCount);
     glProgramUniform1i(program, glGetUniformLocation(program, "uWakeCount"), mWakeCount);
 }

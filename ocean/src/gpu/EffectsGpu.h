@@ -29,7 +29,8 @@ public:
     }
     /// "#define EFFECTS_EXPLOSIONS" / "#define EFFECTS_WAKES" for the kinds present (the shader variant).
     std::string defines() const;
-    /// Buffer uploads of one kind made by the last prepare() (its data; its grid mesh when first built).
+    /// Buffer uploads of one kind made by the last prepare() (its data; its grid mesh when first built; the
+    /// neighbour lists count with the explosions, or with the wakes when there are no explosions).
     int uploads(EffectKind kind) const {
         return kind == EffectKind::Explosion ? mExplosionUploads : mWakeUploads;
     }
@@ -52,8 +53,8 @@ private:
     void upload(gl::Buffer& buffer, size_t& capacity, const void* data, size_t bytes, int& uploads);
 
     Mesh mExplosionMesh, mWakeMesh;
-    gl::Buffer mExplosionBuffer, mWakeBuffer, mWakePointBuffer;
-    size_t mExplosionCapacity = 0, mWakeCapacity = 0, mWakePointCapacity = 0;
+    gl::Buffer mExplosionBuffer, mWakeBuffer, mWakePointBuffer, mNeighbourBuffer;
+    size_t mExplosionCapacity = 0, mWakeCapacity = 0, mWakePointCapacity = 0, mNeighbourCapacity = 0;
     int mExplosionCount = 0, mWakeCount = 0, mExplosionsDrawn = 0, mWakesDrawn = 0;
     int mExplosionUploads = 0, mWakeUploads = 0;
 };
