@@ -130,6 +130,13 @@ def make_cases(inputs, demo):
         ("--fog-color 1,2", [demo], QUICK + ["--fog-color", "1,2"], {}, 2, ["--fog-color", "R,G,B", "'1,2'"], []),
         ("--foam-height-full below --foam-height-start", [demo], QUICK + ["--foam-height-full", "1"], {}, 2,
          ["--foam-height-full (1 m) must be > --foam-height-start (1.6 m)"], []),
+        # FFT spectrum options (tools/src/OceanOptions.cpp applyFftSpectrum).
+        ("--wind-speed -1", [demo], QUICK + ["--model", "fft", "--wind-speed", "-1"], {}, 2,
+         ["--wind-speed must be in (0, 60], got -1"], []),
+        ("--fft-spectrum foo", [demo], QUICK + ["--model", "fft", "--fft-spectrum", "foo"], {}, 2,
+         ["--fft-spectrum must be phillips or jonswap; got 'foo'"], []),
+        ("--choppiness nan", [demo], QUICK + ["--model", "fft", "--choppiness", "nan"], {}, 2,
+         ["--choppiness must be in [0, 3], got nan"], []),
         ("--sun-elevation with --env", [demo], QUICK + ["--sun-elevation", "30", "--env", missing_map], {}, 2,
          ["--sun-elevation/--sun-azimuth cannot be combined with --env"], []),
         # Painted height maps: the message names the file; nothing is written.

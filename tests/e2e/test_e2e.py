@@ -488,6 +488,13 @@ def case_ocean_options(c, exe, source_dir, tmp):
     c.check(frame_s["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "sun options change the EXR pixels",
             frame_s["exr_pixel_hash"])
 
+    print("[fft spectrum] --model fft, then with --fft-spectrum phillips --wind-speed 20 --choppiness 0.5")
+    _, frame_fft = run("fft", ["--model", "fft"])
+    _, frame_ph = run("fft_phillips", ["--model", "fft", "--fft-spectrum", "phillips", "--wind-speed", "20",
+                                       "--choppiness", "0.5"])
+    c.check(frame_ph["exr_pixel_hash"] != frame_fft["exr_pixel_hash"],
+            "FFT spectrum options change the EXR pixels", frame_ph["exr_pixel_hash"])
+
     print("[height maps] --height-map still.png --height-map strip.png (4 frames)")
     still = write_gray_png(os.path.join(tmp, "still.png"), 64, 64, lambda x, r: 0.5 + 0.5 * math.cos(
         2 * math.pi * (3 * (x + 0.5) / 64 + 2 * (r + 0.5) / 64)))

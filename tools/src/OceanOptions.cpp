@@ -173,6 +173,14 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_flag("--no-cull", o.noCull, "displace every vertex (no per-vertex frustum test)");
     app.add_flag("--no-view-sector", o.noViewSector, "tessellate the full circle, not just the view sector");
     app.add_option("--fft-size", o.fftSize, "FFT grid N (power of two, 16..1024)");
+    app.add_option("--fft-spectrum", o.fftSpectrum, "FFT spectrum: phillips or jonswap (default jonswap)");
+    app.add_option("--wind-speed", o.windSpeed, "FFT: wind speed U10, m/s (default 12)");
+    app.add_option("--wind-direction", o.windDirectionDeg,
+                   "FFT and octaves: compass direction the wind blows toward, degrees (default 60)");
+    app.add_option("--fetch", o.fetch, "FFT (JONSWAP): fetch, m (default 200000)");
+    app.add_option("--choppiness", o.choppiness,
+                   "FFT: horizontal displacement scale lambda, 0..3 (default 1)");
+    app.add_option("--fft-tile", o.fftTile, "FFT: metres per tile (default 500)");
     app.add_option("--height-map", o.heightMaps,
                    "octaves: painted height map image for the next octave (repeat: octave 0, 1, ...); W x W, "
                    "or W x (W * frames) for an animated map")
@@ -192,6 +200,45 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--foam-intensity", o.foamIntensity, "foam coverage scale; 0 = no foam (default 1)");
     app.add_option("--normal-tilt", o.normalTilt, "tilt of the lighting normal toward the viewer, 0..1");
 }
+
+namespace {
+
+double requireRange(const std::optional<double>& v, const char* option, double lo, double hi, bool loOpen) {
+    const double x = *v;
+    if (!std::isfinite(x) || x > hi || (loOpen ? x <= lo : x < lo)) {
+        std::ostringstream m;
+        m << option << " must be in " << (loOpen ? "(" : "[") << lo << ", " << hi << "], got " << x;
+        throw UsageError(m.str());
+    }
+    return x;
+}
+
+/// --fft-spectrum, --wind-speed, --wind-direction, --fetch, --choppiness, --fft-tile (ocean/FftOcean.h
+/// FftDesc; the wind direction also turns the octave maps' waves).
+void applyFftSpectrum(const OceanOptions& o, ocean::OceanDesc& d) {
+    if (!o.fftSpectrum.empty()) {
+        if (o.fftSpectrum == "phillips")
+            d.fft.spectrum = ocean::Spectrum::Phillips;
+        else if (o.fftSpectrum == "jonswap")
+            d.fft.spectrum = ocean::Spectrum::Jonswap;
+        else
+            throw UsageError("--fft-spectrum must be phillips or jonswap; got '" + o.fftSpectrum + "'");
+    }
+    if (o.windSpeed)
+        d.fft.windSpeed = requireRange(o.windSpeed, "--wind-speed", 0.0, 60.0, true);
+    if (o.windDirectionDeg) {
+        d.fft.windDirectionDeg = requireRange(o.windDirectionDeg, "--wind-direction", -360.0, 360.0, false);
+        d.octaves.windDirectionDeg = d.fft.windDirectionDeg;
+    }
+    if (o.fetch)
+        d.fft.fetch = requireRange(o.fetch, "--fetch", 0.0, 1.0e7, true);
+    if (o.choppiness)
+        d.fft.choppiness = requireRange(o.choppiness, "--choppiness", 0.0, 3.0, false);
+    if (o.fftTile)
+        d.fft.tileSize = requireRange(o.fftTile, "--fft-tile", 0.0, 1.0e5, true);
+}
+
+} // namespace
 
 ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     ocean::OceanDesc d;
@@ -232,6 +279,7 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     d.viewSector = !o.noViewSector;
     if (o.fftSize != 0)
         d.fft.size = o.fftSize;
+    applyFftSpectrum(o, d);
     if (o.rings != 0)
         d.grid.rings = o.rings;
     if (o.segments != 0)

@@ -27,6 +27,13 @@ struct OceanOptions {
     bool noCull = false;       ///< disable the per-vertex frustum test (§18.2.5)
     bool noViewSector = false; ///< tessellate the full circle instead of the view sector
     int fftSize = 0;           ///< 0 = default N
+    // FFT spectrum (ocean::FftDesc); unset = the FftDesc default.
+    std::string fftSpectrum;                ///< phillips | jonswap; empty = default (JONSWAP)
+    std::optional<double> windSpeed;        ///< U10, m/s, (0, 60]
+    std::optional<double> windDirectionDeg; ///< compass direction the wind blows toward (FFT and octaves)
+    std::optional<double> fetch;            ///< metres, > 0 (JONSWAP)
+    std::optional<double> choppiness;       ///< lambda, [0, 3]
+    std::optional<double> fftTile;          ///< metres per FFT tile, > 0
     /// octaves: painted height maps, one file per octave from octave 0 (the swell) on (HeightMapFile.h)
     std::vector<std::string> heightMaps;
 
@@ -43,7 +50,9 @@ struct OceanOptions {
 };
 
 /// Adds --model, --grid, --grid-rings, --grid-segments, --vertex-filter, --combined, --no-cull,
-/// --no-view-sector, --gerstner-steepness, --fft-size, --height-map and the lighting options --sun-elevation,
+/// --no-view-sector, --gerstner-steepness, --fft-size, --fft-spectrum, --wind-speed, --wind-direction,
+/// --fetch,
+/// --choppiness, --fft-tile, --height-map and the lighting options --sun-elevation,
 /// --sun-azimuth, --sun-intensity, --sky-intensity, --fog-density, --fog-height-falloff, --fog-noise,
 /// --fog-color, --foam-height-start, --foam-height-full, --foam-jacobian, --foam-intensity, --normal-tilt
 /// to a (sub)command.
