@@ -1,6 +1,8 @@
 // pacifica-game: a small flight viewer that embeds the ocean component through its public API only.
-// Keys: W/S pitch, A/D roll, Q/E yaw, R/F throttle, Escape quits. The simulation runs on a fixed step in
-// double precision; the camera starts far from the origin (10^6 m) to exercise camera-relative rendering.
+// Keys: W/S pitch, A/D roll, Q/E yaw, R/F throttle, B drops a bomb on the sea ahead, Escape quits. A ship
+// circles ahead of the start, leaving its wake (ocean/Effects.h: effects are created by events). The
+// simulation runs on a fixed step in double precision; the camera starts far from the origin (10^6 m) to
+// exercise camera-relative rendering.
 //   pacifica-game [--frames N]   N > 0: fly a scripted manoeuvre for N frames, check the image, exit
 //                                (0 = rendered finite, non-black frames; 1 = not).
 #include <engine/Ecs.h>
@@ -11,6 +13,7 @@
 #include <engine/color/Tonemapper.h>
 #include <engine/gl/FrameTargets.h>
 #include <engine/gl/GlContext.h>
+#include <ocean/Effects.h>
 #include <ocean/Ocean.h>
 
 #include <epoxy/gl.h>
@@ -91,11 +94,32 @@ int main(int argc, char** argv) {
         pacifica::ecs::Registry registry;
         registry.emplace<pacifica::ocean::OceanComponent>(registry.create(), pacifica::ocean::makeOcean({}));
         pacifica::ocean::OceanRenderer renderer;
+        pacifica::ecs::EventQueue events;
+        pacifica::ocean::EffectsSystem effects(registry, events);
 
         Aircraft plane;
         plane.pose.position = {1.0e6, -2.0e6, 60.0};
         plane.pose.headingDeg = 80.0;
         plane.pose.pitchDeg = -3.0;
+
+        // A ship circling (radius 600 m, 12 m/s) 2 km ahead of the start; its path since t = -180 s is
+        // recorded before the first frame so the wake is already there.
+        const glm::dvec2 shipCentre =
+            glm::dvec2(plane.pose.position) + 2000.0 * glm::dvec2(std::sin(80.0 * std::numbers::pi / 180.0),
+                                                                  std::cos(80.0 * std::numbers::pi / 180.0));
+        auto shipAt = [&](double t) {
+            const double a = 12.0 / 600.0 * t;
+            return shipCentre + 600.0 * glm::dvec2(std::cos(a), std::sin(a));
+        };
+        const pacifica::ecs::Entity ship = registry.create();
+        registry.emplace<pacifica::ocean::Ship>(ship, pacifica::ocean::Ship{shipAt(-180.0), 80.0});
+        events.enqueue(pacifica::ocean::AttachShipTrail{ship, pacifica::ocean::WakeParams{}});
+        for (double t = -180.0; t < 0.0; t += 0.5) {
+            registry.get<pacifica::ocean::Ship>(ship).position = shipAt(t);
+            events.dispatch();
+            effects.update(t, plane.pose.position);
+        }
+        bool bombKeyWasDown = false;
         pacifica::FixedStepClock clock(1.0 / 120.0);
         std::unique_ptr<pacifica::gl::FrameTargets> targets;
         auto last = std::chrono::steady_clock::now();
@@ -113,6 +137,19 @@ int main(int argc, char** argv) {
             const int steps = clock.advance(realDt);
             for (int s = 0; s < steps; ++s)
                 step(plane, scriptedFrames ? scripted(clock.time()) : readKeys(*ctx), clock.step());
+
+            // B (or the script's 2nd frame): a bomb hits the sea where the nose points, or 400 m ahead.
+            const bool bombKey = scriptedFrames ? frame == 1 : ctx->keyDown(GLFW_KEY_B);
+            if (bombKey && !bombKeyWasDown) {
+                const double h = glm::radians(plane.pose.headingDeg);
+                events.enqueue(pacifica::ocean::SpawnExplosion{
+                    glm::dvec2(plane.pose.position) + 400.0 * glm::dvec2(std::sin(h), std::cos(h)),
+                    clock.time(), 1.0});
+            }
+            bombKeyWasDown = bombKey;
+            registry.get<pacifica::ocean::Ship>(ship).position = shipAt(clock.time());
+            events.dispatch();
+            effects.update(clock.time(), plane.pose.position);
 
             const glm::ivec2 size = ctx->framebufferSize();
             if (size.x <= 0 || size.y <= 0)
@@ -143,11 +180,15 @@ int main(int argc, char** argv) {
                 break;
         }
         if (scriptedFrames) {
-            std::printf(
-                "pacifica-game: %lld frames, t = %.3f s, position (%.1f, %.1f, %.1f), %d bad frames, %s\n",
-                frame, clock.time(), plane.pose.position.x, plane.pose.position.y, plane.pose.position.z,
-                badFrames, ctx->info().renderer.c_str());
-            return badFrames == 0 && frame == scriptedFrames ? 0 : 1;
+            const pacifica::ocean::OceanStats& st = renderer.lastStats();
+            std::printf("pacifica-game: %lld frames, t = %.3f s, position (%.1f, %.1f, %.1f), %d bad frames, "
+                        "explosions %d, wakes %d, %s\n",
+                        frame, clock.time(), plane.pose.position.x, plane.pose.position.y,
+                        plane.pose.position.z, badFrames, st.explosions.active, st.wakes.active,
+                        ctx->info().renderer.c_str());
+            // The script drops one bomb and the ship sails: both effects must be alive at the end.
+            const bool effectsAlive = st.explosions.active == 1 && st.wakes.active == 1;
+            return badFrames == 0 && frame == scriptedFrames && effectsAlive ? 0 : 1;
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pacifica-game: error: %s\n", e.what());
