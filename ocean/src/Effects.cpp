@@ -158,6 +158,7 @@ WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t) {
         s.k0.push_back(GRAVITY / (us * us));
         s.peak = std::max(s.peak, amplitude * std::exp(-s.age.back() / s.waveLife));
         const double foam = wakeFoamStrength(amplitude) * std::exp(-s.age.back() / s.foamLife);
+        s.foamPeak = std::max(s.foamPeak, foam);
         // The wedge reaches 0.36 sigma beside the track; the foam strip 3 widths.
         const double reach = glm::length(s.offsets.back()) + std::sqrt(KELVIN_TAN2) * sigma +
                              3.0 * s.beam * (1.0 + sigma / 400.0);
@@ -509,10 +510,7 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
             h.resize(keepCount);
         }
         const WakeState s = wakeState(ship, trail, time);
-        const double foamPeak =
-            s.age.empty() ? 0.0
-                          : wakeFoamStrength(s.amplitude.front()) * std::exp(-s.age.front() / s.foamLife);
-        const bool alive = s.radius > 0.0 && (s.peak >= mDesc.endAmplitude || foamPeak >= 0.01);
+        const bool alive = s.radius > 0.0 && (s.peak >= mDesc.endAmplitude || s.foamPeak >= 0.01);
         if (!alive) {
             if (trail.active) {
                 mEvents.enqueue(EffectEnded{EffectKind::Wake, ent, time, false});

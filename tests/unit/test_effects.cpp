@@ -186,6 +186,64 @@ TEST(Wake, TightCircleStaysFinite) {
         }
 }
 
+TEST(EffectsSystem, StoppedShipsWakeEndsWithAnEvent) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    std::vector<EffectEnded> ended;
+    events.subscribe<EffectEnded>([&](const EffectEnded& e) { ended.push_back(e); });
+    const ecs::Entity ship = sail(reg, events, fx, 60.0, 10.0, 0.0); // sails 60 s, then stops at x = 600
+    EXPECT_EQ(fx.counters().activeWakes, 1);
+    // Stopped: no new waves (speed < minSpeed), the old ones decay (waves e^(-age/90 s) from 0.5 m under
+    // 1 cm after ~350 s; the foam strip e^(-age/150 s) under 0.01 after ~690 s): the wake goes quiet then.
+    double endTime = -1.0;
+    for (double t = 61.0; t < 1200.0; t += 1.0) {
+        events.dispatch();
+        fx.update(t, {0.0, 0.0, 100.0});
+        if (fx.counters().ended == 1 && endTime < 0.0)
+            endTime = t;
+    }
+    events.dispatch();
+    ASSERT_EQ(ended.size(), 1u);
+    EXPECT_EQ(ended[0].kind, EffectKind::Wake);
+    EXPECT_EQ(ended[0].entity, ship);
+    EXPECT_FALSE(ended[0].dropped);
+    // At most 690 s (full-strength foam laid at the stop); earlier by how much the last points' strength
+    // (speed^2) and age had already fallen (the newest kept point is up to 10 s old).
+    EXPECT_GT(endTime - 60.0, 550.0);
+    EXPECT_LE(endTime - 60.0, 691.0);
+    EXPECT_EQ(fx.counters().activeWakes, 0);
+    EXPECT_FALSE(reg.get<ShipTrail>(ship).active);
+    EXPECT_EQ(effectsAt(reg, {300.0, 0.0}, 1199.0), glm::dvec3(0.0));
+}
+
+TEST(EffectsSystem, WakeCapDrawsTheMostVisibleAndCountsTheRest) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsDesc desc;
+    desc.maxWakes = 3;
+    EffectsSystem fx(reg, events, desc);
+    // Five ships sailing east in lanes 0, 1, 2, 3 and 4 km north of the camera at the origin.
+    std::vector<ecs::Entity> ships;
+    for (int i = 0; i < 5; ++i) {
+        ships.push_back(reg.create());
+        reg.emplace<Ship>(ships.back(), Ship{{0.0, 1000.0 * i}, 60.0});
+        events.enqueue(AttachShipTrail{ships.back(), WakeParams{}});
+    }
+    for (int k = 0; k <= 300; ++k) {
+        for (int i = 0; i < 5; ++i)
+            reg.get<Ship>(ships[size_t(i)]).position = {k * 1.0, 1000.0 * i};
+        events.dispatch();
+        fx.update(k * 0.1, {0.0, 0.0, 100.0});
+    }
+    EXPECT_EQ(fx.counters().activeWakes, 3);
+    EXPECT_EQ(fx.counters().droppedWakes, 2);
+    for (int i = 0; i < 5; ++i) // the nearest three are drawn and queried
+        EXPECT_EQ(reg.get<ShipTrail>(ships[size_t(i)]).active, i < 3) << i;
+    EXPECT_EQ(effectsFoamAt(reg, {250.0, 4000.0}, 30.0), 0.0); // dropped this frame: not in the queries
+    EXPECT_GT(effectsFoamAt(reg, {250.0, 0.0}, 30.0), 0.3);    // drawn: its foam strip
+}
+
 TEST(EffectsSystem, EventsCreateExplosionsThatEndWithAnEvent) {
     ecs::Registry reg;
     ecs::EventQueue events;

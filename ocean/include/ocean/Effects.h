@@ -136,8 +136,9 @@ struct WakeState {
     double length = 60.0; ///< ship length, metres (amplitude falls as 1 / sqrt(1 + x / L))
     double beam = 0.0;    ///< half-width of the turbulent strip at the stern, metres
     double waveLife = 0.0, foamLife = 0.0;
-    double radius = 0.0; ///< the secondary grid's radius (0: nothing to draw)
-    double peak = 0.0;   ///< largest wave amplitude anywhere in the wake, metres
+    double radius = 0.0;   ///< the secondary grid's radius (0: nothing to draw)
+    double peak = 0.0;     ///< largest wave amplitude anywhere in the wake, metres
+    double foamPeak = 0.0; ///< largest foam strength anywhere in the wake, [0, 1]
     /// Relative to the ship: outside this box (and the radius) the wake is 0 (insideWakeBox).
     glm::dvec2 boxMin{0.0}, boxMax{0.0};
 };
