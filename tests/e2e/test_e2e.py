@@ -488,6 +488,11 @@ def case_ocean_options(c, exe, source_dir, tmp):
     c.check(frame_s["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "sun options change the EXR pixels",
             frame_s["exr_pixel_hash"])
 
+    print("[octaves] --octaves 2 --displaced-octaves 1")
+    _, frame_o = run("octaves", ["--octaves", "2", "--displaced-octaves", "1"])
+    c.check(frame_o["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "octave count options change the EXR pixels",
+            frame_o["exr_pixel_hash"])
+
     print("[fft spectrum] --model fft, then with --fft-spectrum phillips --wind-speed 20 --choppiness 0.5")
     _, frame_fft = run("fft", ["--model", "fft"])
     _, frame_ph = run("fft_phillips", ["--model", "fft", "--fft-spectrum", "phillips", "--wind-speed", "20",

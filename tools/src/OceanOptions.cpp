@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -172,6 +173,12 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_flag("--combined", o.combined, "octaves: combine displaced octaves in a compute pass first");
     app.add_flag("--no-cull", o.noCull, "displace every vertex (no per-vertex frustum test)");
     app.add_flag("--no-view-sector", o.noViewSector, "tessellate the full circle, not just the view sector");
+    app.add_option(
+        "--octaves", o.octaveCount,
+        "octaves: use the first N height-map octaves (GPU Gems 2 §18.2.1; default: all of the preset's)");
+    app.add_option(
+        "--displaced-octaves", o.displacedOctaves,
+        "octaves: how many leading octaves displace the vertices (the rest only light; default 3)");
     app.add_option("--fft-size", o.fftSize, "FFT grid N (power of two, 16..1024)");
     app.add_option("--fft-spectrum", o.fftSpectrum, "FFT spectrum: phillips or jonswap (default jonswap)");
     app.add_option("--wind-speed", o.windSpeed, "FFT: wind speed U10, m/s (default 12)");
@@ -277,6 +284,21 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     d.octaves.combinedDisplacement = o.combined;
     d.cullVertices = !o.noCull;
     d.viewSector = !o.noViewSector;
+    if (o.octaveCount != 0) {
+        const int available = static_cast<int>(d.octaves.octaves.size());
+        if (o.octaveCount < 1 || o.octaveCount > available)
+            throw UsageError("--octaves must be in [1, " + std::to_string(available) + "], got " +
+                             std::to_string(o.octaveCount));
+        d.octaves.octaves.resize(static_cast<size_t>(o.octaveCount));
+        d.octaves.displacedOctaves = std::min(d.octaves.displacedOctaves, o.octaveCount);
+    }
+    if (o.displacedOctaves >= 0) {
+        const int count = static_cast<int>(d.octaves.octaves.size());
+        if (o.displacedOctaves > count)
+            throw UsageError("--displaced-octaves must be in [0, " + std::to_string(count) + "], got " +
+                             std::to_string(o.displacedOctaves));
+        d.octaves.displacedOctaves = o.displacedOctaves;
+    }
     if (o.fftSize != 0)
         d.fft.size = o.fftSize;
     applyFftSpectrum(o, d);

@@ -27,6 +27,8 @@ struct OceanOptions {
     bool noCull = false;       ///< disable the per-vertex frustum test (§18.2.5)
     bool noViewSector = false; ///< tessellate the full circle instead of the view sector
     int fftSize = 0;           ///< 0 = default N
+    int octaveCount = 0;       ///< octaves: how many of the preset's octaves to use (1..count); 0 = all
+    int displacedOctaves = -1; ///< octaves: how many leading octaves displace vertices; < 0 = the preset's
     // FFT spectrum (ocean::FftDesc); unset = the FftDesc default.
     std::string fftSpectrum;                ///< phillips | jonswap; empty = default (JONSWAP)
     std::optional<double> windSpeed;        ///< U10, m/s, (0, 60]
@@ -50,7 +52,8 @@ struct OceanOptions {
 };
 
 /// Adds --model, --grid, --grid-rings, --grid-segments, --vertex-filter, --combined, --no-cull,
-/// --no-view-sector, --gerstner-steepness, --fft-size, --fft-spectrum, --wind-speed, --wind-direction,
+/// --no-view-sector, --gerstner-steepness, --octaves, --displaced-octaves, --fft-size, --fft-spectrum,
+/// --wind-speed, --wind-direction,
 /// --fetch,
 /// --choppiness, --fft-tile, --height-map and the lighting options --sun-elevation,
 /// --sun-azimuth, --sun-intensity, --sky-intensity, --fog-density, --fog-height-falloff, --fog-noise,
