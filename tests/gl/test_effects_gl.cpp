@@ -15,6 +15,7 @@
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
 
+#include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -248,6 +249,52 @@ INSTANTIATE_TEST_SUITE_P(
                       1},
         ExplosionCase{"overlapping_64", {0.0, 0.0, 120.0}, 90.0, -25.0, {300.0, 0.0}, 0.0, 4.0, 64}),
     [](const ::testing::TestParamInfo<ExplosionCase>& p) { return std::string(p.param.name); });
+
+// No crack between the base grid (which leaves out 0.98 of each effect's disc) and the effect grids: with
+// the sky pass off and the target cleared to a marker colour, every pixel of a view that sees only sea is
+// drawn over, for an explosion and a wake seen from above and at a grazing angle.
+TEST_F(EffectsGl, NoGapBetweenTheBaseGridAndTheEffectGrids) {
+    OceanDesc desc;
+    desc.drawSky = false;
+    registry.get<OceanComponent>(oceanEntity) = makeOcean(desc);
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 60.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    events.enqueue(SpawnExplosion{{1200.0, -400.0}, 0.0, 2.0}); // outside the wake's disc (radius ~900 m)
+    for (int i = 0; i <= 600; ++i) { // the ship sails 60 s north at 10 m/s, ending at (0, 600)
+        registry.get<Ship>(ship).position = {0.0, i * 1.0};
+        events.dispatch();
+        fx.update(i * 0.1 - 50.0, {0.0, 300.0, 300.0});
+    }
+    struct View {
+        const char* name;
+        glm::dvec3 camera;
+        double heading, pitch;
+    };
+    for (const View& v : {View{"explosion from above", {1200.0, -500.0, 120.0}, 0.0, -50.0},
+                          View{"wake's rim from above", {0.0, -300.0, 400.0}, 0.0, -60.0},
+                          View{"explosion, low and grazing", {1050.0, -550.0, 15.0}, 45.0, -2.0}}) {
+        const OceanFrame f = frameAt(v.camera, v.heading, v.pitch, 10.0);
+        const float marker[4] = {1000.0f, 0.0f, 1000.0f, 1.0f};
+        glClearNamedFramebufferfv(targets.sceneFramebuffer().id(), GL_COLOR, 0, marker);
+        renderer.render(registry, f);
+        const OceanStats st = renderer.lastStats();
+        EXPECT_GE(st.explosions.drawn + st.wakes.drawn, 1) << v.name;
+        std::vector<float> rgba;
+        targets.readScene(rgba);
+        // Rows below the horizon (+3 rows): the horizon is -pitch above the centre (60 degree vertical fov).
+        const double horizonRow =
+            0.5 * H *
+            (1.0 - std::tan(-v.pitch * std::numbers::pi / 180.0) / std::tan(std::numbers::pi / 6.0));
+        const int firstRow = std::max(0, static_cast<int>(horizonRow) + 3);
+        size_t gaps = 0;
+        for (int y = firstRow; y < H; ++y)
+            for (int x = 0; x < W; ++x)
+                gaps += rgba[(static_cast<size_t>(y) * W + x) * 4] >= 999.0f;
+        EXPECT_EQ(gaps, 0u) << v.name << ": pixels left at the marker colour";
+    }
+}
 
 TEST_F(EffectsGl, ExplosionAtTimeZeroDrawsNothingAndStaysFinite) {
     EffectsSystem fx(registry, events);
