@@ -68,7 +68,7 @@ ExplosionParams explosionParams(double strength) {
     p.amplitude = 2.0 * c;
     p.wavenumber = 0.2 / c; // 31 m wavelength for the nominal charge
     p.coreRadius = 8.0 * c;
-    p.foamLife = 20.0 * std::sqrt(c);
+    p.foamLife = 12.0 * std::sqrt(c);
     return p;
 }
 
@@ -86,7 +86,7 @@ ExplosionState explosionState(const Explosion& e, double t) {
     s.front = p.coreRadius + groupSpeed * s.tau;
     s.frontWidth = std::numbers::pi / p.wavenumber;
     s.foam = -std::expm1(-s.tau / p.foamRise) * std::exp(-s.tau / p.foamLife);
-    s.crownRadius = 2.5 * p.coreRadius + 0.5 * groupSpeed * std::min(s.tau, p.foamLife);
+    s.crownRadius = 1.5 * p.coreRadius + 0.3 * groupSpeed * std::min(s.tau, p.foamLife);
     // Where the spreading r0 / s brings the amplitude under the end threshold: s = r0 A / end.
     const double spread = p.coreRadius * s.amplitude / std::max(e.endAmplitude, 1e-6);
     double radius = std::min(s.front + s.frontWidth, spread);

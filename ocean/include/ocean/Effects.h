@@ -50,7 +50,7 @@ struct ExplosionParams {
     double decay = 0.06;     ///< b, 1/s: temporal decay e^(-b tau)
     double rise = 0.6;       ///< s: growth 1 - e^(-tau / rise), so the sea is flat at tau = 0
     double coreRadius = 8.0; ///< r0, metres: regularises the cylindrical spreading r0 / sqrt(r0^2 + r^2)
-    double foamLife = 20.0;  ///< s: crown foam decays as e^(-tau / foamLife)
+    double foamLife = 12.0;  ///< s: crown foam decays as e^(-tau / foamLife)
     double foamRise = 0.4;   ///< s: crown foam grows as 1 - e^(-tau / foamRise)
 };
 
