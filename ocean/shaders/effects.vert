@@ -4,7 +4,8 @@
 // displaces its own, then raised by the field of all effects at the displaced point (effects.glsl), so the
 // grids of overlapping effects draw the same surface.
 
-layout(location = 0) in vec2 aDisc; // a point of the unit disc (rings spaced as rho^p, see EffectsGpu.cpp)
+layout(location = 0) in vec2 aDisc; // a point of the unit disc (rings spaced as rho^p, see EffectsGpu.cpp);
+                                    // length 2: the rim's skirt, hung below the surface
 
 uniform mat4 uViewProj;
 uniform float uCameraHeight;
@@ -27,13 +28,18 @@ void main() {
         center = uWakes[gl_InstanceID].a.xy;
         radius = uWakes[gl_InstanceID].a.z;
     }
-    vec2 local = aDisc * radius;
+    bool skirt = dot(aDisc, aDisc) > 2.0;
+    vec2 local = (skirt ? 0.5 * aDisc : aDisc) * radius;
     vec2 rel = center + local;
     float drop = dot(rel, rel) * uCurvature;
     vec3 d = dot(rel, rel) <= uDisplaceRadius * uDisplaceRadius ? modelDisplacement(rel) : vec3(0.0);
     vec2 qLocal = local + d.xy;
     vec4 e = effectField(rel + d.xy, qLocal, uKind, gl_InstanceID);
     vRel = vec3(rel, -drop - uCameraHeight) + d + vec3(0.0, 0.0, e.x);
+    // The skirt hangs 2% of the radius (at least 0.5 m) below the rim: under the base surface, so it shows
+    // only through the sliver it closes.
+    if (skirt)
+        vRel.z -= max(0.5, 0.02 * radius);
     vGrid = rel;
     vEffect = e.yzw;
     vLocal = qLocal;

@@ -102,6 +102,18 @@ void EffectsGpu::ensureMesh(Mesh& mesh, int rings, int segments, double exponent
         for (int j = 0; j < segments; ++j)
             idx.insert(idx.end(),
                        {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    // The skirt: the rim again, marked by length 2 (effects.vert hangs it below the surface). The base grid
+    // and the effect grid tessellate the base surface differently, so along the rim their heights differ by
+    // the interpolation error; a grazing ray could slip through that sliver. The skirt closes it, the way
+    // terrain LOD closes cracks between tiles.
+    for (int j = 0; j < segments; ++j) {
+        const double a = 2.0 * std::numbers::pi * j / segments;
+        v.push_back(static_cast<float>(2.0 * std::cos(a)));
+        v.push_back(static_cast<float>(2.0 * std::sin(a)));
+    }
+    for (int j = 0; j < segments; ++j)
+        idx.insert(idx.end(), {at(rings, j), at(rings + 1, j), at(rings + 1, j + 1), at(rings, j),
+                               at(rings + 1, j + 1), at(rings, j + 1)});
     mesh.vertices = gl::Buffer::create(v.size() * sizeof(float), v.data());
     mesh.indices = gl::Buffer::create(idx.size() * sizeof(uint32_t), idx.data());
     mesh.vao = gl::VertexArray::create();
@@ -113,6 +125,7 @@ void EffectsGpu::ensureMesh(Mesh& mesh, int rings, int segments, double exponent
     glVertexArrayAttribBinding(vao, 0, 0);
     mesh.indexCount = static_cast<int>(idx.size());
     mesh.vertexCount = static_cast<int>(v.size() / 2);
+    mesh.skirtCount = segments;
     mesh.rings = rings;
     mesh.segments = segments;
     uploads += 2;
@@ -251,7 +264,8 @@ void EffectsGpu::bind(unsigned program) const {
 }
 
 long long EffectsGpu::gridVertices(EffectKind kind) const {
-    return kind == EffectKind::Explosion ? mExplosionMesh.vertexCount : mWakeMesh.vertexCount;
+    const Mesh& mesh = kind == EffectKind::Explosion ? mExplosionMesh : mWakeMesh;
+    return mesh.vertexCount - mesh.skirtCount;
 }
 
 long long EffectsGpu::draw(unsigned program, EffectKind kind, unsigned mode) {
@@ -263,10 +277,11 @@ long long EffectsGpu::draw(unsigned program, EffectKind kind, unsigned mode) {
                        kind == EffectKind::Explosion ? 0 : 1);
     glBindVertexArray(mesh.vao.id());
     if (mode == GL_POINTS)
-        glDrawArraysInstanced(GL_POINTS, 0, mesh.vertexCount, instances);
+        glDrawArraysInstanced(GL_POINTS, 0, mesh.vertexCount - mesh.skirtCount, instances); // surface only
     else
         glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, instances);
-    return static_cast<long long>(mesh.vertexCount) * instances;
+    return static_cast<long long>(mode == GL_POINTS ? mesh.vertexCount - mesh.skirtCount : mesh.vertexCount) *
+           instances;
 }
 
 } // namespace pacifica::ocean

@@ -39,7 +39,7 @@ public:
     void bind(unsigned program) const;
     /// Draws the visible grids of one kind with `program` (bound, uniforms set). Returns vertices processed.
     long long draw(unsigned program, EffectKind kind, unsigned mode = 0x0004 /* GL_TRIANGLES */);
-    /// Grid vertices per instance of a kind.
+    /// Surface vertices per instance of a kind (the skirt left out).
     long long gridVertices(EffectKind kind) const;
 
 private:
@@ -47,6 +47,7 @@ private:
         gl::Buffer vertices, indices;
         gl::VertexArray vao;
         int indexCount = 0, vertexCount = 0;
+        int skirtCount = 0; ///< the last vertices: the rim's skirt (not part of the surface)
         int rings = 0, segments = 0;
     };
     void ensureMesh(Mesh& mesh, int rings, int segments, double exponent, int& uploads);
