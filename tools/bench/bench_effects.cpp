@@ -506,6 +506,175 @@ int usage(const char* argv0, int rc) {
 
 } // namespace
 
+// ---- The grid density knob: error and cost ---------------------------------------------------------------
+
+/// Interpolation error of a field over an effect grid (the unit disc of EffectsGpu.cpp, rings at
+/// (i / rings)^exponent, scaled to `radius`): at each triangle's centroid and edge midpoints, |f - the
+/// linear interpolation of f at the triangle's corners| (what the rasterised mesh shows between vertices),
+/// area-weighted RMS and the maximum.
+struct MeshError {
+    double rms = 0.0, max = 0.0;
+};
+template <class F>
+MeshError meshError(double radius, int rings, int segments, double exponent, F field) {
+    std::vector<glm::dvec2> v{glm::dvec2(0.0)};
+    for (int i = 1; i <= rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const double a = 2.0 * std::numbers::pi * j / segments;
+            v.push_back(radius * std::pow(double(i) / rings, exponent) *
+                        glm::dvec2(std::cos(a), std::sin(a)));
+        }
+    std::vector<double> fv(v.size());
+    for (size_t i = 0; i < v.size(); ++i)
+        fv[i] = field(v[i]);
+    auto at = [segments](int ring, int j) { return size_t(1 + (ring - 1) * segments + (j % segments)); };
+    double sumSq = 0.0, sumArea = 0.0;
+    MeshError e;
+    auto triangle = [&](size_t a, size_t b, size_t c) {
+        const glm::dvec2 ab = v[b] - v[a], ac = v[c] - v[a];
+        const double area = 0.5 * std::abs(ab.x * ac.y - ab.y * ac.x);
+        const glm::dvec3 bary[4] = {{1 / 3.0, 1 / 3.0, 1 / 3.0}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+        for (const glm::dvec3& w : bary) {
+            const glm::dvec2 p = w.x * v[a] + w.y * v[b] + w.z * v[c];
+            const double err = std::abs(field(p) - (w.x * fv[a] + w.y * fv[b] + w.z * fv[c]));
+            sumSq += area * err * err / 4.0;
+            e.max = std::max(e.max, err);
+        }
+        sumArea += area;
+    };
+    for (int j = 0; j < segments; ++j)
+        triangle(0, at(1, j), at(1, j + 1));
+    for (int i = 1; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            triangle(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+            triangle(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    e.rms = std::sqrt(sumSq / std::max(sumArea, 1e-30));
+    return e;
+}
+
+struct GridRow {
+    std::string kind;
+    int count = 0, rings = 0, segments = 0;
+    double exponent = 0.0;
+    double msMedian = 0.0;
+    long long fxVertices = 0;
+    double rmsRel = 0.0, maxRel = 0.0, amplitude = 0.0, radius = 0.0;
+};
+
+/// Times `count` explosions (or wakes) at each grid density, round robin, and measures each density's mesh
+/// interpolation error of the field of the scene's first effect (relative to its amplitude).
+std::vector<GridRow> gridKnob(gl::GpuTimer& timer, const gl::FrameTargets& targets, int frames, bool quick) {
+    struct Density {
+        const char* kind;
+        int rings, segments;
+        double exponent;
+    };
+    std::vector<Density> densities = {{"explosion", 24, 48, 1.5},  {"explosion", 48, 96, 1.5},
+                                      {"explosion", 96, 192, 1.5}, {"wake", 48, 96, 2.0},
+                                      {"wake", 96, 192, 2.0},      {"wake", 192, 384, 2.0}};
+    if (quick)
+        densities = {{"explosion", 24, 48, 1.5}, {"explosion", 48, 96, 1.5}, {"wake", 48, 96, 2.0}};
+    const int explosions = quick ? 4 : 16;
+    std::vector<std::unique_ptr<Scene>> scenes;
+    std::vector<GridRow> rows;
+    for (const Density& d : densities) {
+        const bool isWake = std::string(d.kind) == "wake";
+        scenes.push_back(isWake ? wakeScene(1) : explosionScene(explosions));
+        Scene& sc = *scenes.back();
+        sc.row.setting =
+            std::string(d.kind) + "_grid_" + std::to_string(d.rings) + "x" + std::to_string(d.segments);
+        sc.registry.view<ocean::OceanComponent>().each([&](ecs::Entity, ocean::OceanComponent& oc) {
+            ocean::EffectGridDesc& g = oc.desc.effectGrids;
+            if (isWake) {
+                g.wakeRings = d.rings;
+                g.wakeSegments = d.segments;
+                g.wakeExponent = d.exponent;
+            } else {
+                g.explosionRings = d.rings;
+                g.explosionSegments = d.segments;
+                g.explosionExponent = d.exponent;
+            }
+        });
+        GridRow r;
+        r.kind = d.kind;
+        r.count = isWake ? 1 : explosions;
+        r.rings = d.rings;
+        r.segments = d.segments;
+        r.exponent = d.exponent;
+        rows.push_back(r);
+    }
+    for (auto& scene : scenes)
+        for (int i = 0; i < WARMUP_FRAMES; ++i)
+            scene->frame(timer, targets, false);
+    for (int f = 0; f < frames; ++f)
+        for (size_t k = 0; k < scenes.size(); ++k)
+            scenes[(k + size_t(f)) % scenes.size()]->frame(timer, targets, true);
+    for (size_t i = 0; i < scenes.size(); ++i) {
+        Scene& sc = *scenes[i];
+        GridRow& r = rows[i];
+        r.msMedian = quantile(sc.ms, 0.5);
+        r.fxVertices = sc.renderer->lastStats().explosions.vertices + sc.renderer->lastStats().wakes.vertices;
+        const double t = sc.time;
+        if (r.kind == "wake") {
+            sc.registry.view<ocean::Ship, ocean::ShipTrail>().each([&](ecs::Entity, ocean::Ship& ship,
+                                                                       ocean::ShipTrail& trail) {
+                if (r.radius > 0.0)
+                    return;
+                const ocean::WakeState ws = ocean::wakeState(ship, trail, t);
+                r.radius = ws.radius;
+                r.amplitude = ws.peak;
+                const MeshError e = meshError(ws.radius, r.rings, r.segments, r.exponent,
+                                              [&](const glm::dvec2& q) { return ocean::wakeWave(ws, q).x; });
+                r.rmsRel = e.rms / ws.peak;
+                r.maxRel = e.max / ws.peak;
+            });
+        } else {
+            sc.registry.view<ocean::Explosion>().each([&](ecs::Entity, ocean::Explosion& ex) {
+                if (r.radius > 0.0)
+                    return;
+                const ocean::ExplosionState es = ocean::explosionState(ex, t);
+                r.radius = es.radius;
+                r.amplitude = es.amplitude;
+                const MeshError e =
+                    meshError(es.radius, r.rings, r.segments, r.exponent,
+                              [&](const glm::dvec2& q) { return ocean::explosionWave(ex.params, es, q).x; });
+                r.rmsRel = e.rms / es.amplitude;
+                r.maxRel = e.max / es.amplitude;
+            });
+        }
+        std::fprintf(stderr, "[grid] %s %dx%d: %.3f ms, mesh error rms %.3g max %.3g of the amplitude\n",
+                     r.kind.c_str(), r.rings, r.segments, r.msMedian, r.rmsRel, r.maxRel);
+    }
+    return rows;
+}
+
+void writeGridReport(const std::string& outDir, const std::vector<GridRow>& rows, const gl::ContextInfo& info,
+                     const gl::GpuTimer& timer, int width, int height, int frames) {
+    std::ofstream csv(std::filesystem::path(outDir) / "effects_grid.csv");
+    csv << "kind,count,rings,segments,exponent,radius_m,amplitude_m,mesh_rms_rel,mesh_max_rel,ms_median,"
+           "fx_vertices,clock,renderer\n";
+    for (const GridRow& r : rows)
+        csv << r.kind << ',' << r.count << ',' << r.rings << ',' << r.segments << ',' << num(r.exponent)
+            << ',' << num(r.radius) << ',' << num(r.amplitude) << ',' << num(r.rmsRel) << ',' << num(r.maxRel)
+            << ',' << num(r.msMedian) << ',' << r.fxVertices << ',' << csvQuote(timer.clockName()) << ','
+            << csvQuote(info.renderer) << '\n';
+    std::ofstream md(std::filesystem::path(outDir) / "effects_grid.md");
+    md << "# Effect grid density: error against cost\n\n- GL_RENDERER: " << info.renderer
+       << "\n- clock: " << timer.clockName() << "\n- size: " << width << "x" << height << ", " << frames
+       << " timed frames per setting, round robin; ms = median of render + glFinish\n"
+       << "- error: the mesh's linear interpolation of the effect's height between its vertices against the "
+          "analytic field (explosionWave / wakeWave) at triangle centroids and edge midpoints, area-weighted "
+          "RMS and max, relative to the effect's amplitude (A(tau) / the wake's peak)\n\n"
+       << "| kind | count | grid (rings x segments, exponent) | radius m | mesh rms / A | mesh max / A | ms "
+          "| fx "
+          "vertices |\n|---|---|---|---|---|---|---|---|\n";
+    for (const GridRow& r : rows)
+        md << "| " << r.kind << " | " << r.count << " | " << r.rings << " x " << r.segments << ", "
+           << num(r.exponent) << " | " << fixed(r.radius, 0) << " | " << num(r.rmsRel, 3) << " | "
+           << num(r.maxRel, 3) << " | " << fixed(r.msMedian, 3) << " | " << r.fxVertices << " |\n";
+}
+
 int main(int argc, char** argv) {
     std::string outDir = "effects";
     bool quick = false;
@@ -586,6 +755,9 @@ int main(int argc, char** argv) {
             rows.push_back(scene->finish());
 
         writeReports(outDir, rows, info, timer, width, height, frames, commandLine);
+        scenes.clear();
+        // The grid density knob (OceanDesc::effectGrids): its error and its cost.
+        writeGridReport(outDir, gridKnob(timer, targets, frames, quick), info, timer, width, height, frames);
         return 0;
     } catch (const gl::ContextError& e) {
         std::cerr << "pacifica-bench-effects: no GL context: " << e.what() << "\n";
