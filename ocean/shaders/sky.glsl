@@ -5,6 +5,7 @@
 // of the fog and foam formulas are in ocean/include/ocean/Lighting.h (fogOpticalDepth, foamAlpha).
 
 uniform vec3 uSunDir; // towards the sun, world ENU, normalised
+uniform vec3 uWaterColor; // LightingDesc::waterColor: the water body straight down under the default sky
 uniform float uSkyIntensity;
 uniform float uSunIntensity;
 
@@ -196,7 +197,7 @@ vec3 sunLightAt(float z) {
 // Light scattered up out of the water body toward the eye (seed 004's "dull colour", made view dependent):
 // the view ray refracts into the water (Snell, n = WATER_IOR) and crosses the sunlit layer of depth D over
 // D / cos(theta_t), gathering scatter (1 - e^(-sigma D / cos theta_t)). Scaled so that looking straight down
-// gives DEEP_WATER_COLOR under the default sky; oblique views see more (bluer) scattering. The light in the
+// gives uWaterColor (LightingDesc::waterColor, default DEEP_WATER_COLOR) under the default sky; oblique views see more (bluer) scattering. The light in the
 // water follows the sky's irradiance and the sun's elevation.
 vec3 waterBody(vec3 v, vec3 n) {
     vec3 t = refract(-v, n, 1.0 / WATER_IOR);
@@ -207,7 +208,7 @@ vec3 waterBody(vec3 v, vec3 n) {
     vec3 reference = PI * mix(SKY_ZENITH, SKY_HORIZON, SKY_HORIZON_WEIGHT); // skyIrradiance(), default sky
     float light =
         dot(skyIrradiance(), vec3(0.2126, 0.7152, 0.0722)) / dot(reference, vec3(0.2126, 0.7152, 0.0722));
-    return vec3(DEEP_WATER_R, DEEP_WATER_G, DEEP_WATER_B) * (along / nadir) * light *
+    return uWaterColor * (along / nadir) * light *
            (0.6 + 0.4 * max(uSunDir.z, 0.0)) * 4.0;
 }
 

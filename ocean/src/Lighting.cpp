@@ -270,6 +270,10 @@ void validateLighting(const LightingDesc& l) {
         fail("skyIntensity must be finite and >= 0, got " + std::to_string(l.skyIntensity));
     if (!finite(l.fogDensity) || l.fogDensity < 0.0f)
         fail("fogDensity must be finite and >= 0, got " + std::to_string(l.fogDensity));
+    for (int i = 0; i < 3; ++i)
+        if (!finite(l.waterColor[i]) || l.waterColor[i] < 0.0f)
+            fail("waterColor must be finite and >= 0 in each channel, got " +
+                 std::to_string(l.waterColor[i]));
     if (!finite(l.normalTilt) || l.normalTilt < 0.0f || l.normalTilt > 1.0f)
         fail("normalTilt must be in [0, 1], got " + std::to_string(l.normalTilt));
     if (l.environment) {

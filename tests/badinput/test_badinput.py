@@ -130,6 +130,8 @@ def make_cases(inputs, demo):
         ("--fog-color 1,2", [demo], QUICK + ["--fog-color", "1,2"], {}, 2, ["--fog-color", "R,G,B", "'1,2'"], []),
         ("--foam-height-full below --foam-height-start", [demo], QUICK + ["--foam-height-full", "1"], {}, 2,
          ["--foam-height-full (1 m) must be > --foam-height-start (1.6 m)"], []),
+        ("--water-color -1,0,0", [demo], QUICK + ["--water-color", "-1,0,0"], {}, 2,
+         ["--water-color: expected R,G,B", "'-1,0,0'"], []),
         ("--octaves 9", [demo], QUICK + ["--octaves", "9"], {}, 2, ["--octaves must be in [1, 5], got 9"], []),
         # FFT spectrum options (tools/src/OceanOptions.cpp applyFftSpectrum).
         ("--wind-speed -1", [demo], QUICK + ["--model", "fft", "--wind-speed", "-1"], {}, 2,

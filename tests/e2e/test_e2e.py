@@ -488,6 +488,13 @@ def case_ocean_options(c, exe, source_dir, tmp):
     c.check(frame_s["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "sun options change the EXR pixels",
             frame_s["exr_pixel_hash"])
 
+    print("[water] --water-color 0.03,0.005,0.002 (a red-brown water body)")
+    out_w, frame_w = run("water", ["--water-color", "0.03,0.005,0.002"])
+    mean_w = exr_mean_rgb(out_w, frame_w["exr"])
+    print(f"    mean RGB {mean_w}")
+    c.check(frame_w["exr_pixel_hash"] != frame_d["exr_pixel_hash"] and mean_w[0] > mean_d[0],
+            "--water-color changes the EXR pixels and adds red", f"{mean_w} vs {mean_d}")
+
     print("[octaves] --octaves 2 --displaced-octaves 1")
     _, frame_o = run("octaves", ["--octaves", "2", "--displaced-octaves", "1"])
     c.check(frame_o["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "octave count options change the EXR pixels",

@@ -217,6 +217,9 @@ TEST(LightingValidation, NamesTheField) {
     l.foamHeightFull = l.foamHeightStart - 1.0f;
     EXPECT_NE(message(l).find("OceanDesc.lighting.foamHeightFull"), std::string::npos) << message(l);
     l = {};
+    l.waterColor = {0.01f, -0.1f, 0.02f};
+    EXPECT_NE(message(l).find("OceanDesc.lighting.waterColor"), std::string::npos) << message(l);
+    l = {};
     l.fogNoise = 2.0f;
     EXPECT_NE(message(l).find("OceanDesc.lighting.fogNoise"), std::string::npos) << message(l);
     l = {};

@@ -34,9 +34,10 @@ float checked(const std::optional<double>& v, const char* option, double lo, dou
     throw UsageError(std::string(option) + " must be " + range + unit + ", got " + text(*v));
 }
 
-glm::vec3 parseColor(const std::string& value) {
+glm::vec3 parseColor(const std::string& value, const char* option = "--fog-color") {
     auto bad = [&] {
-        return UsageError("--fog-color: expected R,G,B with finite scene-linear values >= 0 (e.g. "
+        return UsageError(std::string(option) +
+                          ": expected R,G,B with finite scene-linear values >= 0 (e.g. "
                           "0.6,0.7,0.8), got '" +
                           value + "'");
     };
@@ -91,6 +92,8 @@ void applyLighting(const OceanOptions& o, ocean::LightingDesc& l) {
         l.fogNoise = checked(o.fogNoise, "--fog-noise", 0.0, 1.0);
     if (!o.fogColor.empty())
         l.fogColor = parseColor(o.fogColor);
+    if (!o.waterColor.empty())
+        l.waterColor = parseColor(o.waterColor, "--water-color");
     if (o.foamHeightStart)
         l.foamHeightStart = checked(o.foamHeightStart, "--foam-height-start", -INF, INF, " metres");
     if (o.foamHeightFull)
@@ -201,6 +204,8 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
                    "fog scale height, m; 0 = uniform (default 600)");
     app.add_option("--fog-noise", o.fogNoise, "fog density noise amplitude, 0..1 (default 0.2)");
     app.add_option("--fog-color", o.fogColor, "fog colour R,G,B scene-linear (default: the sky's horizon)");
+    app.add_option("--water-color", o.waterColor,
+                   "water body colour R,G,B scene-linear, straight down (default 0.0045,0.019,0.032)");
     app.add_option("--foam-height-start", o.foamHeightStart, "foam starts at this height, m (default 1.6)");
     app.add_option("--foam-height-full", o.foamHeightFull, "foam is full at this height, m (default 3.2)");
     app.add_option("--foam-jacobian", o.foamJacobian, "folding foam below this Jacobian (default 0.3)");

@@ -47,6 +47,7 @@ struct OceanOptions {
     std::optional<double> fogHeightFalloff; ///< scale height, m (0 = uniform)
     std::optional<double> fogNoise;         ///< [0, 1]
     std::string fogColor;                   ///< "R,G,B" scene-linear; empty = the sky's horizon
+    std::string waterColor;                 ///< "R,G,B" scene-linear; empty = DEEP_WATER_COLOR
     std::optional<double> foamHeightStart, foamHeightFull, foamJacobian, foamIntensity;
     std::optional<double> normalTilt; ///< [0, 1]
 };

@@ -127,6 +127,9 @@ struct LightingDesc {
     /// (Tessendorf 2001 §4.4); only models that provide modelFoamInputs() report J (others: J = 1).
     float foamJacobianThreshold = 0.3f;
     float foamIntensity = 1.0f; ///< scales the foam coverage; 0 disables foam
+    /// Upwelling radiance of the water body seen straight down under the default sky (seed 004's "dull
+    /// colour"; oblique views and other skies scale it, sky.glsl waterBody), scene-linear, each >= 0.
+    glm::vec3 waterColor{DEEP_WATER_COLOR[0], DEEP_WATER_COLOR[1], DEEP_WATER_COLOR[2]};
 };
 
 /// Throws std::invalid_argument naming the first bad field ("OceanDesc.lighting.fogDensity must be ...").

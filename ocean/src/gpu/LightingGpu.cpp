@@ -164,6 +164,7 @@ void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& 
     glProgramUniform1f(prog, loc("uFoamIntensity"), l.foamIntensity);
 
     glProgramUniform1f(prog, loc("uFogDensity"), l.fogDensity);
+    glProgramUniform3f(prog, loc("uWaterColor"), l.waterColor.r, l.waterColor.g, l.waterColor.b);
     glProgramUniform1f(prog, loc("uFogHeightFalloff"), l.fogHeightFalloff);
     glProgramUniform1f(prog, loc("uFogNoise"), l.fogNoise);
     const glm::dvec2 fogXY = (glm::dvec2(cam) - l.fogWind * time) / FOG_NOISE_TILE;
