@@ -123,7 +123,7 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
     for (int j = 0; j < 2; ++j) {
         float tt = roots[j];
         float k = c.k0 * (1.0 + tt * tt);
-        float fade = 1.0 - smoothstep(0.5 * kMax, kMax, k);
+        float fade = (1.0 - smoothstep(0.5 * kMax, kMax, k)) * exp(-x * k / (EFFECT_TWO_PI * KELVIN_DECAY_WAVELENGTHS));
         if (fade <= 0.0)
             continue;
         float phase = c.k0 * sqrt(1.0 + tt * tt) * (x + y * tt);

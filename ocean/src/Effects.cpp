@@ -231,7 +231,9 @@ double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, doub
     for (int j = 0; j < 2; ++j) {
         const double tt = roots[j];
         const double k = c.k0 * (1.0 + tt * tt);
-        const double fade = 1.0 - smoothstep(0.5 * kMax, kMax, k);
+        const double fade =
+            (1.0 - smoothstep(0.5 * kMax, kMax, k)) *
+            std::exp(-x * k / (TWO_PI * KELVIN_DECAY_WAVELENGTHS)); // short waves fade first (Effects.h)
         if (fade <= 0.0)
             continue;
         const double phase = c.k0 * std::sqrt(1.0 + tt * tt) * (x + y * tt);

@@ -71,8 +71,8 @@ std::string effectConstantDefines() {
     std::snprintf(
         buf, sizeof buf,
         "#define EFFECT_HEIGHT_LIMIT %.9g\n#define MAX_WAKE_POINTS %d\n#define EFFECT_MIN_WAVELENGTH %.9g\n"
-        "#define KELVIN_TAN2 %.9g\n",
-        EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH, KELVIN_TAN2);
+        "#define KELVIN_TAN2 %.9g\n#define KELVIN_DECAY_WAVELENGTHS %.9g\n",
+        EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH, KELVIN_TAN2, KELVIN_DECAY_WAVELENGTHS);
     return buf;
 }
 

@@ -39,6 +39,11 @@ inline constexpr double KELVIN_TAN2 = 1.0 / 8.0;
 /// Shortest wave a secondary grid resolves, metres: components of the wake (the divergent waves near the
 /// track have unbounded wave number) fade out between twice this and this wavelength.
 inline constexpr double EFFECT_MIN_WAVELENGTH = 3.0;
+/// A wake component of wavelength lambda decays as e^(-x / (KELVIN_DECAY_WAVELENGTHS lambda)) with the
+/// distance x behind the ship: the short divergent waves break and fade within tens of their wavelengths
+/// while the long transverse ones run on (heuristic; viscous damping, 2 nu k^2 (Lamb 1932 §348), alone is far
+/// weaker). It also keeps the far wake within what its grid can carry.
+inline constexpr double KELVIN_DECAY_WAVELENGTHS = 25.0;
 
 // ---- Explosion ------------------------------------------------------------------------------------------
 
