@@ -24,13 +24,36 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace pacifica::ocean {
 
+namespace {
+
+void validateEffectGrids(const EffectGridDesc& g) {
+    auto check = [](bool ok, const std::string& what) {
+        if (!ok)
+            throw std::invalid_argument("OceanDesc.effectGrids." + what);
+    };
+    for (const auto& [name, rings, segments, exponent] :
+         {std::tuple{"explosion", g.explosionRings, g.explosionSegments, g.explosionExponent},
+          std::tuple{"wake", g.wakeRings, g.wakeSegments, g.wakeExponent}}) {
+        check(rings >= 1 && rings <= 1024,
+              std::string(name) + "Rings must be in [1, 1024], got " + std::to_string(rings));
+        check(segments >= 3 && segments <= 4096,
+              std::string(name) + "Segments must be in [3, 4096], got " + std::to_string(segments));
+        check(std::isfinite(exponent) && exponent >= 0.25 && exponent <= 8.0,
+              std::string(name) + "Exponent must be in [0.25, 8], got " + std::to_string(exponent));
+    }
+}
+
+} // namespace
+
 OceanComponent makeOcean(const OceanDesc& desc) {
     validateLighting(desc.lighting); // names the field (ocean/include/ocean/Lighting.h)
-    (void)RadialGrid(desc.grid);     // validates the grid description, naming the field
+    validateEffectGrids(desc.effectGrids);
+    (void)RadialGrid(desc.grid); // validates the grid description, naming the field
     OceanComponent c;
     c.desc = desc;
     c.surface = makeSurfaceModel(desc);

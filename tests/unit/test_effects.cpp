@@ -4,6 +4,7 @@
 // bad data rejected without throwing).
 #include "engine/Ecs.h"
 #include "ocean/Effects.h"
+#include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
 
 #include <gtest/gtest.h>
@@ -184,6 +185,27 @@ TEST(Wake, TightCircleStaysFinite) {
             ASSERT_TRUE(std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z)) << x << "," << y;
             ASSERT_LT(std::abs(w.x), 5.0);
         }
+}
+
+TEST(EffectGrids, BadDescriptionsNameTheField) {
+    auto message = [](const OceanDesc& d) {
+        try {
+            (void)makeOcean(d);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("(accepted)");
+    };
+    EXPECT_EQ(message(OceanDesc{}), "(accepted)");
+    OceanDesc d;
+    d.effectGrids.explosionSegments = 0;
+    EXPECT_EQ(message(d), "OceanDesc.effectGrids.explosionSegments must be in [3, 4096], got 0");
+    d = {};
+    d.effectGrids.wakeRings = -3;
+    EXPECT_EQ(message(d), "OceanDesc.effectGrids.wakeRings must be in [1, 1024], got -3");
+    d = {};
+    d.effectGrids.wakeExponent = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_NE(message(d).find("OceanDesc.effectGrids.wakeExponent must be in [0.25, 8]"), std::string::npos);
 }
 
 TEST(EffectsSystem, StoppedShipsWakeEndsWithAnEvent) {
