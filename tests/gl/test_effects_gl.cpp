@@ -294,7 +294,8 @@ TEST_F(EffectsGl, NoGapBetweenTheBaseGridAndTheEffectGrids) {
             for (int x = 0; x < W; ++x)
                 if (rgba[(static_cast<size_t>(y) * W + x) * 4] <= -999.0f) {
                     if (gaps == 0)
-                        std::printf("[%s] first gap at pixel (%d, %d), rows from %d\n", v.name, x, y, firstRow);
+                        std::printf("[%s] first gap at pixel (%d, %d), rows from %d\n", v.name, x, y,
+                                    firstRow);
                     ++gaps;
                 }
         EXPECT_EQ(gaps, 0u) << v.name << ": pixels left at the marker colour";
