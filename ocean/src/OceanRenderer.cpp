@@ -162,11 +162,11 @@ void buildGrid(OceanRenderer::Gpu& gpu, const OceanDesc& desc) {
     uploadMesh(gpu, grid.vertices(), grid.indices());
 }
 
-/// Per-frame uniforms of the sea's vertex stage: the model's (wrapped in double), the camera-relative
-/// transform, the camera height, the curvature drop.
-/// Returns false when the sea is not in view at all (projected grid: nothing of the wave volume on screen).
-bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
-                    const OceanFrame& frame) {
+/// The uniforms every displaced-grid vertex stage shares (ocean.vert, ocean_projected.vert, effects.vert):
+/// the model's (wrapped in double), the camera-relative transform, the camera height, the displaced radius,
+/// the curvature drop.
+void setSurfaceUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
+                        const OceanFrame& frame) {
     gpu.model->bind(prog, 0, frame.time, frame.camera.origin);
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE,
                               glm::value_ptr(frame.camera.viewProj));
@@ -176,6 +176,13 @@ bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
                        static_cast<float>(ocean.desc.grid.rMax * 1.0001));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
                        ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
+}
+
+/// Per-frame uniforms of the sea's vertex stage: setSurfaceUniforms(), the view sector and the cull test.
+/// Returns false when the sea is not in view at all (projected grid: nothing of the wave volume on screen).
+bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
+                    const OceanFrame& frame) {
+    setSurfaceUniforms(prog, ocean, gpu, frame);
     // Horizontal displacement (Gerstner, FFT) can move a vertex from outside the sector into view: widen the
     // sector near the camera by asin(guard / r) (whole circle within guard), guard = 2 Hs, and the cull test
     // by the displacement bound.
@@ -222,20 +229,6 @@ void countEffectUploads(const EffectsGpu& fx, OceanStats& stats) {
     stats.wakes.drawn = fx.drawn(EffectKind::Wake);
     stats.wakes.uploads = fx.uploads(EffectKind::Wake);
     stats.uploads += stats.explosions.uploads + stats.wakes.uploads;
-}
-
-/// The effect grids' vertex uniforms (effects.vert): the model's, the transform, camera height, curvature.
-void setEffectUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
-                       const OceanFrame& frame) {
-    gpu.model->bind(prog, 0, frame.time, frame.camera.origin);
-    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE,
-                              glm::value_ptr(frame.camera.viewProj));
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uCameraHeight"),
-                       static_cast<float>(frame.camera.origin.z));
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uDisplaceRadius"),
-                       static_cast<float>(ocean.desc.grid.rMax * 1.0001));
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
-                       ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
 }
 
 } // namespace
@@ -386,7 +379,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             return;
         const GLuint fx = effectProgram(gpu, false);
         glUseProgram(fx);
-        setEffectUniforms(fx, ocean, gpu, frame);
+        setSurfaceUniforms(fx, ocean, gpu, frame);
         mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
         mEffects->bind(fx);
         for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {
@@ -468,7 +461,7 @@ std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Regi
     const GLuint prog = effectProgram(gpu, true);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
     glUseProgram(prog);
-    setEffectUniforms(prog, *ocean, gpu, frame);
+    setSurfaceUniforms(prog, *ocean, gpu, frame);
     mEffects->bind(prog);
     const size_t count = static_cast<size_t>(mEffects->gridVertices(kind) * mEffects->drawn(kind));
     static_assert(sizeof(EffectVertex) == 5 * sizeof(float), "interleaved vRel, vLocal");
