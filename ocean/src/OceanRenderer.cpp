@@ -8,6 +8,7 @@
 #include "engine/gl/GlObjects.h"
 #include "engine/gl/Shader.h"
 #include "gpu/EffectsGpu.h"
+#include "gpu/GridMesh.h"
 #include "gpu/LightingGpu.h"
 #include "gpu/SurfaceGpuFactory.h"
 #include "ocean/OceanConstants.h"
@@ -78,10 +79,7 @@ struct OceanRenderer::Gpu {
     GridKind gridKind = GridKind::Radial;
     RadialGridDesc gridDesc;
     std::unique_ptr<ProjectedGrid> projected; // when gridKind == Projected
-    gl::Buffer vertices, indices;
-    gl::VertexArray vao;
-    GLsizei indexCount = 0;
-    long long vertexCount = 0;
+    GridMesh mesh; // the grid's vertices (RadialGrid or ProjectedGrid), uploaded when the grid changes
 };
 
 namespace {
@@ -134,32 +132,17 @@ bool sameProjected(const ProjectedGridDesc& a, const ProjectedGridDesc& b) {
            a.maxDisplacement == b.maxDisplacement && a.guardBand == b.guardBand;
 }
 
-void uploadMesh(OceanRenderer::Gpu& gpu, const std::vector<float>& vertices,
-                const std::vector<uint32_t>& indices) {
-    gpu.vertices = gl::Buffer::create(vertices.size() * sizeof(float), vertices.data());
-    gpu.indices = gl::Buffer::create(indices.size() * sizeof(uint32_t), indices.data());
-    gpu.vao = gl::VertexArray::create();
-    const GLuint vao = gpu.vao.id();
-    glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, 2 * sizeof(float));
-    glVertexArrayElementBuffer(vao, gpu.indices.id());
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 0, 0);
-    gpu.indexCount = static_cast<GLsizei>(indices.size());
-    gpu.vertexCount = static_cast<long long>(vertices.size() / 2);
-}
-
 void buildGrid(OceanRenderer::Gpu& gpu, const OceanDesc& desc) {
     gpu.gridKind = desc.gridKind;
     gpu.gridDesc = desc.grid;
     if (desc.gridKind == GridKind::Projected) {
         gpu.projected = std::make_unique<ProjectedGrid>(desc.projectedGrid);
-        uploadMesh(gpu, gpu.projected->vertices(), gpu.projected->indices());
+        gpu.mesh = GridMesh::upload(gpu.projected->vertices(), gpu.projected->indices());
         return;
     }
     gpu.projected.reset();
     const RadialGrid grid(desc.grid);
-    uploadMesh(gpu, grid.vertices(), grid.indices());
+    gpu.mesh = GridMesh::upload(grid.vertices(), grid.indices());
 }
 
 /// The uniforms every displaced-grid vertex stage shares (ocean.vert, ocean_projected.vert, effects.vert):
@@ -248,7 +231,7 @@ OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& 
         gpu->surface = ocean.surface;
         gpu->programKey = joined(gpu->model->glslFiles());
     }
-    const bool gridChanged = !gpu->vao || gpu->gridKind != ocean.desc.gridKind ||
+    const bool gridChanged = !gpu->mesh.vao || gpu->gridKind != ocean.desc.gridKind ||
                              (ocean.desc.gridKind == GridKind::Radial
                                   ? !sameGrid(gpu->gridDesc, ocean.desc.grid)
                                   : !sameProjected(gpu->projected->desc(), ocean.desc.projectedGrid));
@@ -368,11 +351,11 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
-        glBindVertexArray(gpu.vao.id());
-        glDrawElements(GL_TRIANGLES, gpu.indexCount, GL_UNSIGNED_INT, nullptr);
+        glBindVertexArray(gpu.mesh.vao.id());
+        glDrawElements(GL_TRIANGLES, gpu.mesh.indexCount, GL_UNSIGNED_INT, nullptr);
         mStats.passes += 1;
         mStats.draws += 1;
-        mStats.vertices += gpu.vertexCount;
+        mStats.vertices += gpu.mesh.vertexCount;
 
         // The secondary grids, one instanced draw per kind in view (after the base grid: same depth test).
         if (!holes)
@@ -422,12 +405,12 @@ OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity, co
     const GLuint prog = program.id();
     glUseProgram(prog);
     (void)setSeaUniforms(prog, *ocean, gpu, frame);
-    const size_t count = static_cast<size_t>(gpu.vertexCount);
+    const size_t count = static_cast<size_t>(gpu.mesh.vertexCount);
     static_assert(sizeof(DisplacedVertex) == 5 * sizeof(float), "interleaved vRel, vGrid");
     gl::Buffer captured = gl::Buffer::create(count * sizeof(DisplacedVertex), nullptr);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
     glEnable(GL_RASTERIZER_DISCARD);
-    glBindVertexArray(gpu.vao.id());
+    glBindVertexArray(gpu.mesh.vao.id());
     glBeginTransformFeedback(GL_POINTS);
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count));
     glEndTransformFeedback();

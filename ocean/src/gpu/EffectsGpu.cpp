@@ -114,17 +114,7 @@ void EffectsGpu::ensureMesh(Mesh& mesh, int rings, int segments, double exponent
     for (int j = 0; j < segments; ++j)
         idx.insert(idx.end(), {at(rings, j), at(rings + 1, j), at(rings + 1, j + 1), at(rings, j),
                                at(rings + 1, j + 1), at(rings, j + 1)});
-    mesh.vertices = gl::Buffer::create(v.size() * sizeof(float), v.data());
-    mesh.indices = gl::Buffer::create(idx.size() * sizeof(uint32_t), idx.data());
-    mesh.vao = gl::VertexArray::create();
-    const GLuint vao = mesh.vao.id();
-    glVertexArrayVertexBuffer(vao, 0, mesh.vertices.id(), 0, 2 * sizeof(float));
-    glVertexArrayElementBuffer(vao, mesh.indices.id());
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 0, 0);
-    mesh.indexCount = static_cast<int>(idx.size());
-    mesh.vertexCount = static_cast<int>(v.size() / 2);
+    static_cast<GridMesh&>(mesh) = GridMesh::upload(v, idx);
     mesh.skirtCount = segments;
     mesh.rings = rings;
     mesh.segments = segments;

@@ -7,6 +7,7 @@
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/gl/GlObjects.h"
+#include "gpu/GridMesh.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 
@@ -43,10 +44,7 @@ public:
     long long gridVertices(EffectKind kind) const;
 
 private:
-    struct Mesh {
-        gl::Buffer vertices, indices;
-        gl::VertexArray vao;
-        int indexCount = 0, vertexCount = 0;
+    struct Mesh : GridMesh {
         int skirtCount = 0; ///< the last vertices: the rim's skirt (not part of the surface)
         int rings = 0, segments = 0;
     };
