@@ -24,7 +24,9 @@
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
 
+#include "BenchText.h"
 #include <CLI/CLI.hpp>
+
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -51,6 +53,9 @@
 using namespace pacifica;
 
 namespace {
+
+using bench::csvQuote;
+using bench::num;
 
 constexpr double TIME = 12.3; // the brief's fixed simulation time for the error measurements
 constexpr double FOV_Y_DEG = 60.0;
@@ -447,24 +452,6 @@ void markPareto(std::vector<Result>& rs) {
             }
         }
     }
-}
-
-std::string num(double v, int precision = 6) {
-    if (std::isinf(v))
-        return v > 0 ? "inf" : "-inf";
-    std::ostringstream s;
-    s << std::setprecision(precision) << v;
-    return s.str();
-}
-
-std::string csvQuote(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"')
-            out += '"';
-        out += c;
-    }
-    return out + "\"";
 }
 
 // gnuplot double-quoted string literal: backslash and quote escaped, a newline in s written as \n.

@@ -20,6 +20,8 @@
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 
+#include "BenchText.h"
+
 #include <epoxy/gl.h>
 #include <nlohmann/json.hpp>
 
@@ -44,6 +46,9 @@
 using namespace pacifica;
 
 namespace {
+
+using bench::csvQuote;
+using bench::num;
 
 constexpr double T0 = 100.0;            // simulation time of the first frame, s
 constexpr double FRAME_DT = 1.0 / 60.0; // simulation time between frames, s
@@ -98,30 +103,12 @@ double quantile(std::vector<double> v, double q) {
     return v[q == 0.5 ? v.size() / 2 : i];
 }
 
-std::string num(double v, int precision = 6) {
-    if (std::isnan(v))
-        return "nan";
-    std::ostringstream s;
-    s << std::setprecision(precision) << v;
-    return s.str();
-}
-
 std::string fixed(double v, int decimals) {
     if (std::isnan(v))
         return "–";
     std::ostringstream s;
     s << std::fixed << std::setprecision(decimals) << v;
     return s.str();
-}
-
-std::string csvQuote(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"')
-            out += '"';
-        out += c;
-    }
-    return out + "\"";
 }
 
 // Halton radical inverse: well-spread points whose first N are spread for every N (so 1, 4, 16 and 64
