@@ -256,7 +256,10 @@ bool insideWakeBox(const WakeState& s, const glm::dvec2& q) {
 glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q) {
     if (!insideWakeBox(s, q))
         return glm::dvec3(0.0);
-    const WakeCoords c = wakeCoords(s, q);
+    return wakeWaveAt(s, wakeCoords(s, q));
+}
+
+glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c) {
     const double h = kelvinHeight(s, c, c.behind, c.lateral);
     // Slope by central differences in the path's frame (e = 0.1 m: 0.2% error at the shortest 3 m wave),
     // turned into world axes: d(behind)/dq = -direction, d(lateral)/dq = the left normal. Where all four
@@ -312,8 +315,9 @@ FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double 
         const glm::dvec2 q = xy - s.ship;
         if (!insideWakeBox(s, q))
             return;
-        f.wave += wakeWave(s, q);
-        f.foam = std::max(f.foam, wakeFoam(s, wakeCoords(s, q)));
+        const WakeCoords c = wakeCoords(s, q); // one path walk for both
+        f.wave += wakeWaveAt(s, c);
+        f.foam = std::max(f.foam, wakeFoam(s, c));
     });
     return f;
 }

@@ -170,6 +170,9 @@ WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q);
 double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral);
 /// (h, dh/dx, dh/dy) of the wake at q (relative to the ship).
 glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q);
+/// The same from the point's path coordinates (wakeCoords), for a caller that also needs them (foam); no box
+/// test.
+glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c);
 /// Wake foam in [0, 1]: the turbulent strip behind the stern, exp(-(y / w)^2), w = beam (1 + x / 400 m),
 /// times its growth/decay over the path's age.
 double wakeFoam(const WakeState& s, const WakeCoords& c);
