@@ -1,0 +1,482 @@
+// Tacview ACMI 2.x text parser, streaming (Tacview's "ACMI 2.2 file format" reference; the edge cases seen in
+// real DCS exports are listed in ../shared/NOTES-flights.md). Lines are joined before they are classified
+// (a line ending in an odd number of '\' continues on the next one), so a continued Comments or Briefing
+// block is never mistaken for a frame, a removal or an object. Numbers go through std::from_chars (no
+// locale). Properties the replay does not use are skipped without being copied; unknown ones are never
+// fatal. Memory: the tracks kept plus the current line.
+#include "recording/Recording.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <unordered_map>
+
+namespace pacifica::recording {
+
+namespace {
+
+constexpr std::string_view UTF8_BOM = "\xEF\xBB\xBF";
+
+bool parseHexId(std::string_view s, uint64_t& id) {
+    if (s.size() > 2 && s[0] == '0' && (s[1] == 'x' || s[1] == 'X'))
+        s.remove_prefix(2);
+    if (s.empty() || s.size() > 16)
+        return false;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), id, 16);
+    return ec == std::errc() && ptr == s.data() + s.size();
+}
+
+/// Removes the ACMI escapes: "\," -> ",", "\\" -> "\" (a joined continuation is already a newline).
+std::string unescape(std::string_view v) {
+    std::string out;
+    out.reserve(v.size());
+    for (size_t i = 0; i < v.size(); ++i) {
+        if (v[i] == '\\' && i + 1 < v.size() && (v[i + 1] == ',' || v[i + 1] == '\\'))
+            ++i;
+        out.push_back(v[i]);
+    }
+    return out;
+}
+
+struct State {
+    double lon = 0, lat = 0, alt = 0, roll = 0, pitch = 0, yaw = 0;
+};
+
+} // namespace
+
+struct AcmiParser::Impl {
+    std::string source;
+    Recording rec;
+    std::string carry;   // an incomplete physical line from the previous chunk
+    std::string logical; // continued lines joined so far
+    bool continuing = false;
+    long long lineNo = 0;       // physical line of the text just read
+    long long logicalStart = 0; // physical line where the current logical line began
+    bool sawFileType = false, sawVersion = false, firstBytes = true;
+    double now = 0.0;
+    std::unordered_map<uint64_t, uint32_t> index; // id -> objects[] of the live object
+    std::vector<State> states;                    // parallel to rec.objects
+    std::vector<bool> anyAttitude;
+
+    [[noreturn]] void fail(const std::string& field, const std::string& message) const {
+        throw RecordingError(source, logicalStart, field, message);
+    }
+
+    double number(std::string_view s, const char* field) const {
+        double v = 0.0;
+        if (!s.empty() && s.front() == '+')
+            s.remove_prefix(1);
+        const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+        if (ec != std::errc() || ptr != s.data() + s.size())
+            fail(field, "expected a number, got '" + std::string(s.substr(0, 40)) + "'");
+        if (!std::isfinite(v) || std::abs(v) > 1e9)
+            fail(field, "value '" + std::string(s.substr(0, 40)) + "' is not finite or out of range");
+        return v;
+    }
+
+    void feed(std::string_view chunk) {
+        rec.bytes += chunk.size();
+        if (firstBytes) {
+            // The BOM may arrive split over chunks only for absurd chunk sizes; keep it simple and exact.
+            carry.append(chunk);
+            if (carry.size() < UTF8_BOM.size() && carry == UTF8_BOM.substr(0, carry.size()))
+                return;
+            firstBytes = false;
+            std::string head;
+            head.swap(carry);
+            std::string_view h = head;
+            if (h.substr(0, 3) == UTF8_BOM)
+                h.remove_prefix(3);
+            consume(h);
+            return;
+        }
+        consume(chunk);
+    }
+
+    void consume(std::string_view chunk) {
+        size_t pos = 0;
+        if (!carry.empty()) {
+            const size_t nl = chunk.find('\n');
+            if (nl == std::string_view::npos) {
+                carry.append(chunk);
+                return;
+            }
+            carry.append(chunk.substr(0, nl));
+            std::string line;
+            line.swap(carry);
+            physicalLine(line);
+            pos = nl + 1;
+        }
+        while (pos < chunk.size()) {
+            const size_t nl = chunk.find('\n', pos);
+            if (nl == std::string_view::npos) {
+                carry.assign(chunk.substr(pos));
+                return;
+            }
+            physicalLine(chunk.substr(pos, nl - pos));
+            pos = nl + 1;
+        }
+    }
+
+    void physicalLine(std::string_view line) {
+        ++lineNo;
+        ++rec.lines;
+        if (!line.empty() && line.back() == '\r')
+            line.remove_suffix(1);
+        size_t slashes = 0;
+        while (slashes < line.size() && line[line.size() - 1 - slashes] == '\\')
+            ++slashes;
+        const bool continues = slashes % 2 == 1;
+        if (continuing) {
+            logical.append(line.substr(0, continues ? line.size() - 1 : line.size()));
+            if (continues) {
+                logical.push_back('\n');
+                return;
+            }
+            continuing = false;
+            std::string joined;
+            joined.swap(logical);
+            logicalLine(joined);
+            return;
+        }
+        logicalStart = lineNo;
+        if (continues) {
+            continuing = true;
+            logical.assign(line.substr(0, line.size() - 1));
+            logical.push_back('\n');
+            return;
+        }
+        logicalLine(line);
+    }
+
+    void logicalLine(std::string_view line) {
+        if (line.empty())
+            return;
+        if (!sawFileType) {
+            if (line.substr(0, 9) != "FileType=")
+                fail("", "not a Tacview ACMI file: the first line must be 'FileType=text/acmi/tacview'");
+            if (line.substr(9) != "text/acmi/tacview")
+                fail("FileType",
+                     "expected 'text/acmi/tacview', got '" + std::string(line.substr(9, 40)) + "'");
+            sawFileType = true;
+            return;
+        }
+        if (!sawVersion) {
+            if (line.substr(0, 12) != "FileVersion=")
+                fail("FileVersion", "expected 'FileVersion=2.x' on the second line");
+            const std::string_view v = line.substr(12);
+            if (v.substr(0, 2) != "2.")
+                fail("FileVersion", "unsupported version '" + std::string(v.substr(0, 20)) +
+                                        "' (Tacview ACMI 2.x is supported)");
+            rec.fileVersion = std::string(v);
+            sawVersion = true;
+            return;
+        }
+        if (line.size() >= 2 && line[0] == '/' && line[1] == '/')
+            return;
+        if (line[0] == '#') {
+            now = number(line.substr(1), "frame time");
+            return;
+        }
+        if (line[0] == '-') {
+            uint64_t id = 0;
+            if (!parseHexId(line.substr(1), id))
+                fail("object id",
+                     "expected a hexadecimal id after '-', got '" + std::string(line.substr(1, 20)) + "'");
+            const auto it = index.find(id);
+            if (it != index.end()) { // removing an unknown id is harmless (trimmed recordings)
+                rec.objects[it->second].removedAt = now;
+                index.erase(it);
+            }
+            return;
+        }
+        objectLine(line);
+    }
+
+    /// Next property: up to the first unescaped comma. Returns false at the end.
+    static bool nextProperty(std::string_view& rest, std::string_view& prop, bool& escaped) {
+        if (rest.empty())
+            return false;
+        escaped = false;
+        size_t i = 0;
+        for (; i < rest.size(); ++i) {
+            if (rest[i] == '\\' && i + 1 < rest.size()) {
+                escaped = true;
+                ++i;
+                continue;
+            }
+            if (rest[i] == ',')
+                break;
+        }
+        prop = rest.substr(0, i);
+        rest = i < rest.size() ? rest.substr(i + 1) : std::string_view{};
+        return true;
+    }
+
+    void objectLine(std::string_view line) {
+        const size_t comma = line.find(',');
+        const std::string_view idText = line.substr(0, comma);
+        uint64_t id = 0;
+        if (!parseHexId(idText, id))
+            fail("object id", "expected a hexadecimal object id, a '#' frame time or a '-' removal, got '" +
+                                  std::string(idText.substr(0, 20)) + "'");
+        std::string_view rest = comma == std::string_view::npos ? std::string_view{} : line.substr(comma + 1);
+        if (id == 0) {
+            globalLine(rest);
+            return;
+        }
+        uint32_t obj = 0;
+        const auto it = index.find(id);
+        if (it == index.end()) {
+            obj = static_cast<uint32_t>(rec.objects.size());
+            RecordedObject o;
+            o.id = id;
+            o.line = logicalStart;
+            rec.objects.push_back(std::move(o));
+            states.emplace_back();
+            anyAttitude.push_back(false);
+            index.emplace(id, obj);
+        } else {
+            obj = it->second;
+        }
+        RecordedObject& o = rec.objects[obj];
+        std::string_view prop;
+        bool escaped = false;
+        while (nextProperty(rest, prop, escaped)) {
+            const size_t eq = prop.find('=');
+            if (eq == std::string_view::npos)
+                continue; // not a property; never fatal
+            const std::string_view key = prop.substr(0, eq), value = prop.substr(eq + 1);
+            if (key == "T") {
+                transform(obj, value);
+                continue;
+            }
+            std::string* field = nullptr;
+            if (key == "Type")
+                field = &o.type;
+            else if (key == "Name")
+                field = &o.name;
+            else if (key == "Pilot")
+                field = &o.pilot;
+            else if (key == "CallSign")
+                field = &o.callsign;
+            else if (key == "Coalition")
+                field = &o.coalition;
+            else if (key == "Color")
+                field = &o.color;
+            else if (key == "Group")
+                field = &o.group;
+            else if (key == "Length") {
+                double v = 0.0;
+                const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+                if (ec == std::errc() && ptr == value.data() + value.size() && std::isfinite(v) && v > 0.0 &&
+                    v < 2000.0)
+                    o.length = v;
+                continue;
+            }
+            if (field)
+                *field = escaped ? unescape(value) : std::string(value);
+        }
+    }
+
+    void transform(uint32_t obj, std::string_view value) {
+        std::string_view f[9];
+        int n = 0;
+        size_t start = 0;
+        while (true) {
+            const size_t bar = value.find('|', start);
+            if (n == 9)
+                fail("T", "expected 3, 5, 6 or 9 '|'-separated fields, got more than 9");
+            f[n++] =
+                value.substr(start, bar == std::string_view::npos ? std::string_view::npos : bar - start);
+            if (bar == std::string_view::npos)
+                break;
+            start = bar + 1;
+        }
+        if (n != 3 && n != 5 && n != 6 && n != 9)
+            fail("T", "expected 3, 5, 6 or 9 '|'-separated fields, got " + std::to_string(n));
+        State& s = states[obj];
+        static const char* names[] = {"T longitude", "T latitude", "T altitude", "T roll",   "T pitch",
+                                      "T yaw",       "T U",        "T V",        "T heading"};
+        if (!f[0].empty())
+            s.lon = number(f[0], names[0]);
+        if (!f[1].empty())
+            s.lat = number(f[1], names[1]);
+        if (!f[2].empty())
+            s.alt = number(f[2], names[2]);
+        if (std::abs(s.lon) > 360.0)
+            fail(names[0], "longitude offset " + std::to_string(s.lon) + " is out of range");
+        if (std::abs(s.lat) > 180.0)
+            fail(names[1], "latitude offset " + std::to_string(s.lat) + " is out of range");
+        if (n >= 6) {
+            // 5 fields are lon|lat|alt|U|V: no attitude (a reader taking fields 3-5 as angles misreads them).
+            for (int k = 3; k < 6; ++k)
+                if (!f[k].empty()) {
+                    const double v = number(f[k], names[k]);
+                    (k == 3 ? s.roll : k == 4 ? s.pitch : s.yaw) = v;
+                    anyAttitude[obj] = true;
+                }
+        }
+        for (int k = 6; k < n; ++k) // U, V, heading: validated, not kept (the replay uses the sphere)
+            if (!f[k].empty())
+                number(f[k], names[k]);
+        RecordedObject& o = rec.objects[obj];
+        ObjectSample sample{now,
+                            s.lon,
+                            s.lat,
+                            s.alt,
+                            static_cast<float>(s.roll),
+                            static_cast<float>(s.pitch),
+                            static_cast<float>(s.yaw)};
+        if (!o.track.empty() && o.track.back().time == now)
+            o.track.back() = sample;
+        else {
+            o.track.push_back(sample);
+            ++rec.samples;
+        }
+    }
+
+    void globalLine(std::string_view rest) {
+        std::string_view prop;
+        bool escaped = false;
+        while (nextProperty(rest, prop, escaped)) {
+            const size_t eq = prop.find('=');
+            if (eq == std::string_view::npos)
+                continue;
+            const std::string_view key = prop.substr(0, eq), value = prop.substr(eq + 1);
+            if (key == "ReferenceLongitude")
+                rec.referenceLongitude = number(value, "ReferenceLongitude");
+            else if (key == "ReferenceLatitude")
+                rec.referenceLatitude = number(value, "ReferenceLatitude");
+            else if (key == "ReferenceTime") {
+                rec.referenceTime = std::string(value);
+                rec.referenceUnix = parseIsoUtc(value);
+            } else if (key == "Title")
+                rec.title = escaped ? unescape(value) : std::string(value);
+            else if (key == "Event")
+                event(escaped ? unescape(value) : std::string(value));
+        }
+    }
+
+    void event(const std::string& value) {
+        // Event=Type|ObjectId|...|Text: the first field is the type, the last the text, ids between.
+        RecordedEvent e;
+        e.time = now;
+        e.line = logicalStart;
+        std::vector<std::string_view> parts;
+        std::string_view v = value;
+        size_t start = 0;
+        while (true) {
+            const size_t bar = v.find('|', start);
+            parts.push_back(
+                v.substr(start, bar == std::string_view::npos ? std::string_view::npos : bar - start));
+            if (bar == std::string_view::npos)
+                break;
+            start = bar + 1;
+        }
+        e.type = std::string(parts.front());
+        if (e.type.empty())
+            fail("Event", "missing the event type");
+        for (size_t i = 1; i < parts.size(); ++i) {
+            uint64_t id = 0;
+            if (i + 1 < parts.size() || parts.size() == 2) {
+                if (parseHexId(parts[i], id)) {
+                    e.objects.push_back(id);
+                    continue;
+                }
+            }
+            if (i + 1 == parts.size())
+                e.text = std::string(parts[i]);
+        }
+        if (e.type == "Destroyed")
+            for (uint64_t id : e.objects) {
+                const auto it = index.find(id);
+                if (it != index.end() && !rec.objects[it->second].destroyedAt)
+                    rec.objects[it->second].destroyedAt = now;
+            }
+        rec.events.push_back(std::move(e));
+    }
+
+    Recording finish() {
+        if (firstBytes && !carry.empty()) { // the whole input was shorter than a BOM
+            firstBytes = false;
+            std::string head;
+            head.swap(carry);
+            consume(head);
+        }
+        if (!carry.empty()) {
+            std::string line;
+            line.swap(carry);
+            physicalLine(line);
+        }
+        if (continuing) {
+            continuing = false;
+            std::string joined;
+            joined.swap(logical);
+            logicalLine(joined);
+        }
+        if (!sawFileType || !sawVersion) {
+            logicalStart = 0;
+            fail("",
+                 "not a Tacview ACMI file: missing the 'FileType=text/acmi/tacview' and 'FileVersion=2.x' "
+                 "header");
+        }
+        rec.source = source;
+        bool any = false;
+        double lo = 0.0, hi = 0.0;
+        auto extend = [&](double t) {
+            lo = any ? std::min(lo, t) : t;
+            hi = any ? std::max(hi, t) : t;
+            any = true;
+        };
+        for (size_t i = 0; i < rec.objects.size(); ++i) {
+            RecordedObject& o = rec.objects[i];
+            std::stable_sort(o.track.begin(), o.track.end(),
+                             [](const ObjectSample& a, const ObjectSample& b) { return a.time < b.time; });
+            for (ObjectSample& s : o.track) {
+                s.lon += rec.referenceLongitude;
+                s.lat += rec.referenceLatitude;
+                if (s.lon > 180.0)
+                    s.lon -= 360.0;
+                if (s.lon < -180.0)
+                    s.lon += 360.0;
+                if (std::abs(s.lat) > 90.0)
+                    throw RecordingError(source, o.line, "T latitude",
+                                         "object " + o.describe() + " has latitude " + std::to_string(s.lat) +
+                                             " (reference + offset) outside [-90, 90]");
+            }
+            if (!o.track.empty()) {
+                extend(o.track.front().time);
+                extend(o.track.back().time);
+            }
+            if (anyAttitude[i])
+                o.attitude = "recorded";
+            else
+                deriveAttitude(o);
+        }
+        std::stable_sort(rec.events.begin(), rec.events.end(),
+                         [](const RecordedEvent& a, const RecordedEvent& b) { return a.time < b.time; });
+        for (const RecordedEvent& e : rec.events)
+            extend(e.time);
+        rec.startTime = lo;
+        rec.endTime = hi;
+        return std::move(rec);
+    }
+};
+
+AcmiParser::AcmiParser(std::string sourceName) : mImpl(new Impl) {
+    mImpl->source = std::move(sourceName);
+}
+AcmiParser::~AcmiParser() {
+    delete mImpl;
+}
+void AcmiParser::feed(std::string_view chunk) {
+    mImpl->feed(chunk);
+}
+Recording AcmiParser::finish() {
+    Recording r = mImpl->finish();
+    r.format = "acmi-text";
+    return r;
+}
+
+} // namespace pacifica::recording
