@@ -146,6 +146,11 @@ WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t) {
     double sigma = 0.0;
     for (size_t i = 0; i < n; ++i) {
         const WakePoint& pt = trail.history[i];
+        // When the head was just frozen into a kept point (EffectsSystem::update, step 4) the two coincide in
+        // place and time: a zero-length first segment has no direction, and the path walk would then run
+        // the wake near the ship along +x. Leave the copy out.
+        if (i > 0 && pt.time == trail.history[i - 1].time && pt.position == trail.history[i - 1].position)
+            continue;
         if (i > 0)
             sigma += glm::length(pt.position - trail.history[i - 1].position);
         const double u = pt.speed;

@@ -170,6 +170,40 @@ TEST(Wake, TurningShipLeavesACurvedWake) {
     EXPECT_LT(wakeFoam(s, wakeCoords(s, straight - s.ship)), 1e-3);
 }
 
+TEST(Wake, FrameOnAKeptPointKeepsTheTravelDirection) {
+    // Regression: when a frame lands exactly where the head is frozen into a kept point, the head and the
+    // point coincide; the zero-length first segment used to send the wake near the ship along +x (a kink
+    // seen in replays of recorded ships). A ship going south-east at ~9.8 m/s keeps a point every ~5 s.
+    ecs::Registry reg;
+    ecs::EventQueue ev;
+    EffectsSystem fx(reg, ev);
+    const ecs::Entity e = reg.create();
+    reg.emplace<Ship>(e, Ship{{0.0, 0.0}, 60.0});
+    ev.enqueue(AttachShipTrail{e, WakeParams{}});
+    for (double t = 0.0; t <= 120.0; t += 0.5) {
+        reg.get<Ship>(e).position = {7.4 * t, -6.4 * t};
+        ev.dispatch();
+        fx.update(t, {0.0, 0.0, 100.0});
+    }
+    const ShipTrail& trail = reg.get<ShipTrail>(e);
+    ASSERT_GE(trail.history.size(), 3u);
+    ASSERT_EQ(trail.history[0].position, trail.history[1].position); // the case: a point kept at t = 120
+    const WakeState s = wakeState(reg.get<Ship>(e), trail, 120.0);
+    const glm::dvec2 travel = glm::normalize(glm::dvec2(7.4, -6.4));
+    for (double behind : {5.0, 30.0, 200.0}) {
+        const WakeCoords c = wakeCoords(s, -behind * travel);
+        EXPECT_NEAR(glm::dot(c.direction, travel), 1.0, 1e-9) << behind;
+        EXPECT_NEAR(c.behind, behind, 1e-6) << behind;
+        EXPECT_NEAR(c.lateral, 0.0, 1e-6) << behind;
+    }
+    // 40 m east of the ship is ahead of it and to its left, not on the track (the old path walk said
+    // behind = 0, lateral = 0 there: the foam strip ran east from the ship).
+    const glm::dvec2 q(40.0, 0.0);
+    const WakeCoords ahead = wakeCoords(s, q);
+    EXPECT_NEAR(ahead.behind, -glm::dot(q, travel), 1e-6);
+    EXPECT_NEAR(std::abs(ahead.lateral), std::abs(travel.x * q.y - travel.y * q.x), 1e-6);
+}
+
 TEST(Wake, TightCircleStaysFinite) {
     ecs::Registry reg;
     ecs::EventQueue events;
