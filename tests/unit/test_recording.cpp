@@ -265,6 +265,10 @@ TEST(Igc, DateSpellingsRolloverAndDerivedAttitude) {
     EXPECT_EQ(err("AXXX\nB1200004600000N00700000EA0100001000\nB1200104600000X00700000EA0100001000\n"),
               "g.igc:3: B latitude: expected DDMMmmmN/S, got '4600000X'");
     EXPECT_EQ(err("AXXX\nB120000\n"), "g.igc:2: B record: a fix needs at least 35 characters, got 7");
+    // Found by fuzz_igc: headers shorter than their key are ignored, not read past their end.
+    const Recording shortHeaders = parseIgc(
+        "AXXX\nH\nHF\nB1200004600000N00700000EA0100001000\nB1200014600010N00700000EA0100101010\n", "g.igc");
+    EXPECT_EQ(shortHeaders.objects.at(0).track.size(), 2u);
     EXPECT_EQ(err("AXXX\nB1200004600000N00700000EA0100001000\n"),
               "g.igc: B record: an IGC flight needs at least 2 fixes, got 1");
 }

@@ -3,6 +3,8 @@
 #include "Replay.h"
 
 #include "FlightPath.h"
+#include "ReplayInput.h"
+#include "VideoWriter.h"
 #include "engine/Ecs.h"
 #include "engine/Log.h"
 #include "engine/Space.h"
@@ -37,6 +39,12 @@ double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
 }
 
 std::string hex64(uint64_t v) {
@@ -188,19 +196,37 @@ void runReplay(const ReplayOptions& o) {
         throw UsageError("--fps must be in (0, 1000], got " + std::to_string(o.fps));
     if (!std::isfinite(o.fovYDeg) || o.fovYDeg < 1.0f || o.fovYDeg > 170.0f)
         throw UsageError("--fov must be in [1, 170] degrees, got " + std::to_string(o.fovYDeg));
-    if (o.outDir.empty())
-        throw UsageError("--out: an output directory is required");
+    if (!std::isfinite(o.speed) || o.speed <= 0.0 || o.speed > 1e6)
+        throw UsageError("--speed must be in (0, 1e6], got " + std::to_string(o.speed));
+    if (o.maxFrames < 1)
+        throw UsageError("--max-frames must be >= 1, got " + std::to_string(o.maxFrames));
+    if (o.outDir.empty() && !o.video)
+        throw UsageError("--out: an output directory is required (or --video FILE alone)");
+    const bool writeImages = o.writeImages && !o.outDir.empty(); // --video without --out: the video only
 
     // 1. Everything that can be checked without touching the output directory.
-    const FlightPath flight = FlightPath::load(o.flight);
-    const double start = o.start.value_or(flight.startTime());
-    const double end = o.end.value_or(flight.endTime());
-    if (!std::isfinite(start) || start < flight.startTime() || start > flight.endTime())
+    const ReplayInput input = loadReplayInput(o.flight, o.rigs, o.width, o.height, o.fovYDeg);
+    const double start =
+        o.start ? parseTimeArgument(*o.start, input.referenceUnix, "--start") : input.startTime;
+    const double end = o.end ? parseTimeArgument(*o.end, input.referenceUnix, "--end") : input.endTime;
+    if (!std::isfinite(start) || start < input.startTime || start > input.endTime)
         throw UsageError("--start " + std::to_string(start) + " is outside the flight [" +
-                         std::to_string(flight.startTime()) + ", " + std::to_string(flight.endTime()) + "]");
-    if (!std::isfinite(end) || end < start || end > flight.endTime())
+                         std::to_string(input.startTime) + ", " + std::to_string(input.endTime) + "]");
+    if (!std::isfinite(end) || end < start || end > input.endTime)
         throw UsageError("--end " + std::to_string(end) + " must be within [--start, " +
-                         std::to_string(flight.endTime()) + "]");
+                         std::to_string(input.endTime) + "]");
+    const double frameStep = o.speed / o.fps; // recording seconds per frame
+    const double frameCountD = std::floor((end - start) / frameStep + 1e-9) + 1.0;
+    if (frameCountD > static_cast<double>(o.maxFrames))
+        throw UsageError("the run would render " + std::to_string(static_cast<long long>(frameCountD)) +
+                         " frames (" + shortNumber(end - start) + " s at --fps " + shortNumber(o.fps) +
+                         ", --speed " + shortNumber(o.speed) + "), more than --max-frames " +
+                         std::to_string(o.maxFrames) +
+                         "; shorten --start/--end, lower --fps, raise --speed, or "
+                         "allow it with --max-frames");
+    const long long frameCount = static_cast<long long>(frameCountD);
+    if (o.video)
+        VideoWriter::findFfmpeg(*o.video); // extension and ffmpeg checked before anything is written
     ocean::OceanDesc oceanDesc = o.ocean;
     nlohmann::json environmentJson = nullptr; // summary.json: null = the procedural sky
     if (o.environment) {
@@ -220,29 +246,34 @@ void runReplay(const ReplayOptions& o) {
     colour.select(o.display, o.view);
     std::unique_ptr<gl::GlContext> context = gl::createHeadlessContext();
 
-    // 2. Scene: one ocean entity; the GL resources.
+    // 2. Scene: one ocean entity; the GL resources (one set of frame targets per view).
     ecs::Registry registry;
     const ecs::Entity oceanEntity = registry.create();
     registry.emplace<ocean::OceanComponent>(oceanEntity, ocean::makeOcean(oceanDesc));
     ocean::OceanRenderer renderer;
-    gl::FrameTargets targets(o.width, o.height);
+    std::vector<std::unique_ptr<gl::FrameTargets>> targets;
+    for (const ReplayView& v : input.views)
+        targets.push_back(std::make_unique<gl::FrameTargets>(v.width, v.height));
     color::Tonemapper tonemapper(colour);
     gl::GpuTimer gpuTimer(context->info());
 
     // Events (Effects.h): ships are entities whose position follows their track; explosions are spawned
     // by events when the clock passes them. The ships' wakes are built from their path before the first
     // frame (0.5 s steps from the earliest ship sample), so a ship that sailed before --start has a wake.
+    // The simulation advances once per frame; every view renders that same state.
     ecs::EventQueue events;
     ocean::EffectsSystem effects(registry, events);
     std::vector<ecs::Entity> shipEntities;
     size_t nextExplosion = 0;
     const std::vector<ExplosionEvent> noExplosions;
     const std::vector<ShipTrack> noShips;
-    const std::vector<ExplosionEvent>& explosionEvents = o.events ? flight.explosions() : noExplosions;
-    const std::vector<ShipTrack>& shipTracks = o.events ? flight.ships() : noShips;
-    for (const ShipTrack& track : shipTracks) {
+    const std::vector<ExplosionEvent>& explosionEvents = o.events ? input.explosions : noExplosions;
+    const std::vector<ShipTrack>& shipTracks = o.events ? input.ships : noShips;
+    for (size_t i = 0; i < shipTracks.size(); ++i) {
+        const ShipTrack& track = shipTracks[i];
         const ecs::Entity e = registry.create();
-        registry.emplace<ocean::Ship>(e, ocean::Ship{track.positionAt(track.startTime()), 60.0});
+        registry.emplace<ocean::Ship>(e,
+                                      ocean::Ship{track.positionAt(track.startTime()), input.shipLengths[i]});
         events.enqueue(ocean::AttachShipTrail{e, ocean::WakeParams{}});
         shipEntities.push_back(e);
     }
@@ -261,14 +292,21 @@ void runReplay(const ReplayOptions& o) {
         double warm = start;
         for (const ShipTrack& track : shipTracks)
             warm = std::min(warm, track.startTime());
-        const glm::dvec3 camera = flight.poseAt(start).position;
+        // Wakes older than their foam life are gone anyway: warm up at most 600 s of ship history.
+        warm = std::max(warm, start - 600.0);
+        const glm::dvec3 camera = input.views.front().camera(start).position;
         for (double tw = warm; tw < start; tw += 0.5)
             advanceEffects(tw, camera);
     }
 
-    const long long frameCount = static_cast<long long>(std::floor((end - start) * o.fps + 1e-9)) + 1;
-    OutputTransaction out(o.outDir);
-    nlohmann::json frames = nlohmann::json::array();
+    std::optional<OutputTransaction> out;
+    if (!o.outDir.empty())
+        out.emplace(o.outDir);
+    std::unique_ptr<VideoWriter> video;
+    if (o.video)
+        video = std::make_unique<VideoWriter>(*o.video, input.views.front().width, input.views.front().height,
+                                              o.fps);
+    std::vector<nlohmann::json> viewFrames(input.views.size(), nlohmann::json::array());
     std::vector<float> scene, display;
     std::vector<double> frameWallMs;
     double firstFrameSeconds = 0.0;
@@ -276,92 +314,116 @@ void runReplay(const ReplayOptions& o) {
 
     for (long long k = 0; k < frameCount; ++k) {
         const auto f0 = std::chrono::steady_clock::now();
-        // Frame time from the index (not accumulated): frame k is exactly start + k / fps.
-        const double t = std::min(end, start + static_cast<double>(k) / o.fps);
-        const Pose pose = flight.poseAt(t);
-        ocean::OceanFrame frame;
-        frame.camera = makeCameraFrame(pose, o.fovYDeg * static_cast<float>(std::numbers::pi / 180.0),
-                                       static_cast<float>(o.width) / static_cast<float>(o.height), 0.05f);
-        frame.time = t;
-        frame.targetFramebuffer = targets.sceneFramebuffer().id();
-        frame.width = o.width;
-        frame.height = o.height;
+        // Frame time from the index (not accumulated): frame k is exactly start + k * speed / fps.
+        const double t = std::min(end, start + static_cast<double>(k) * frameStep);
+        advanceEffects(t, input.views.front().camera(t).position);
+        for (size_t vi = 0; vi < input.views.size(); ++vi) {
+            const ReplayView& view = input.views[vi];
+            gl::FrameTargets& target = *targets[vi];
+            const Pose pose = view.camera(t);
+            ocean::OceanFrame frame;
+            frame.camera =
+                makeCameraFrame(pose, view.fovYDeg * static_cast<float>(std::numbers::pi / 180.0),
+                                static_cast<float>(view.width) / static_cast<float>(view.height), 0.05f);
+            frame.time = t;
+            frame.targetFramebuffer = target.sceneFramebuffer().id();
+            frame.width = view.width;
+            frame.height = view.height;
 
-        advanceEffects(t, pose.position);
-        gpuTimer.begin();
-        renderer.render(registry, frame);
-        tonemapper.run(targets.sceneColor(), targets.displayFramebuffer(), o.width, o.height);
-        gpuTimer.end();
-        targets.readScene(scene);
-        targets.readDisplay(display);
+            gpuTimer.begin();
+            renderer.render(registry, frame);
+            tonemapper.run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
+            gpuTimer.end();
+            target.readScene(scene);
+            target.readDisplay(display);
 
-        char name[32];
-        std::snprintf(name, sizeof name, "frame_%05lld", k);
-        const std::string exrName = std::string(name) + ".exr", pngName = std::string(name) + ".png";
-        uint64_t hash = 0;
-        if (o.writeImages) {
-            capture::Metadata meta;
-            meta.numbers = {{"frame", static_cast<double>(k)},   {"time_s", t},
-                            {"camera_x_m", pose.position.x},     {"camera_y_m", pose.position.y},
-                            {"camera_z_m", pose.position.z},     {"camera_heading_deg", pose.headingDeg},
-                            {"camera_pitch_deg", pose.pitchDeg}, {"camera_roll_deg", pose.rollDeg}};
-            meta.strings = {
-                {"ocio_config", colour.configDescription()}, {"ocio_display", colour.selectedDisplay()},
-                {"ocio_view", colour.selectedView()},        {"gl_renderer", context->info().renderer},
-                {"flight", o.flight.filename().string()},    {"environment", environmentName}};
-            hash = capture::writeExrHalf(out.staged(exrName), o.width, o.height, 4, scene.data(), meta);
-            capture::writePng8(out.staged(pngName), o.width, o.height, 4, display.data());
-        } else {
-            const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
-            hash = capture::hashHalfPixels(half.data(), half.size());
+            char name[96];
+            std::snprintf(name, sizeof name, "%s%sframe_%05lld", view.name.c_str(),
+                          view.name.empty() ? "" : "_", k);
+            const std::string exrName = std::string(name) + ".exr", pngName = std::string(name) + ".png";
+            uint64_t hash = 0;
+            if (writeImages) {
+                capture::Metadata meta;
+                meta.numbers = {{"frame", static_cast<double>(k)},   {"time_s", t},
+                                {"camera_x_m", pose.position.x},     {"camera_y_m", pose.position.y},
+                                {"camera_z_m", pose.position.z},     {"camera_heading_deg", pose.headingDeg},
+                                {"camera_pitch_deg", pose.pitchDeg}, {"camera_roll_deg", pose.rollDeg}};
+                meta.strings = {{"ocio_config", colour.configDescription()},
+                                {"ocio_display", colour.selectedDisplay()},
+                                {"ocio_view", colour.selectedView()},
+                                {"gl_renderer", context->info().renderer},
+                                {"flight", o.flight.filename().string()},
+                                {"rig", view.rig},
+                                {"environment", environmentName}};
+                hash = capture::writeExrHalf(out->staged(exrName), view.width, view.height, 4, scene.data(),
+                                             meta);
+                capture::writePng8(out->staged(pngName), view.width, view.height, 4, display.data());
+            } else {
+                const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
+                hash = capture::hashHalfPixels(half.data(), half.size());
+            }
+            if (video && vi == 0)
+                video->addFrame(display.data());
+
+            nlohmann::json fj;
+            fj["index"] = k;
+            fj["time_s"] = t;
+            fj["pose"] = {{"x_m", pose.position.x},     {"y_m", pose.position.y},
+                          {"z_m", pose.position.z},     {"heading_deg", pose.headingDeg},
+                          {"pitch_deg", pose.pitchDeg}, {"roll_deg", pose.rollDeg}};
+            if (writeImages) {
+                fj["exr"] = exrName;
+                fj["png"] = pngName;
+            }
+            fj["exr_pixel_hash"] = hex64(hash);
+            // What the frame cost and did (OceanStats, EffectCounters): absent effects show zeros.
+            const ocean::OceanStats& st = renderer.lastStats();
+            const ocean::EffectCounters& fx = effects.counters();
+            auto kindJson = [](const ocean::EffectKindStats& ks) {
+                return nlohmann::json{{"active", ks.active},   {"drawn", ks.drawn},
+                                      {"passes", ks.passes},   {"draws", ks.draws},
+                                      {"uploads", ks.uploads}, {"vertices", ks.vertices}};
+            };
+            fj["counters"] = {{"passes", st.passes},
+                              {"draws", st.draws},
+                              {"uploads", st.uploads},
+                              {"vertices", st.vertices},
+                              {"programs_built", st.programsBuilt},
+                              {"explosions", kindJson(st.explosions)},
+                              {"wakes", kindJson(st.wakes)},
+                              {"explosions_spawned", fx.spawned},
+                              {"effects_ended", fx.ended},
+                              {"explosions_dropped", fx.droppedExplosions},
+                              {"wakes_dropped", fx.droppedWakes},
+                              {"events_rejected", fx.rejected}};
+            viewFrames[vi].push_back(std::move(fj));
         }
         const auto f1 = std::chrono::steady_clock::now();
         frameWallMs.push_back(std::chrono::duration<double, std::milli>(f1 - f0).count());
         if (k == 0)
             firstFrameSeconds = std::chrono::duration<double>(f1 - t0).count();
-
-        nlohmann::json fj;
-        fj["index"] = k;
-        fj["time_s"] = t;
-        fj["pose"] = {{"x_m", pose.position.x},     {"y_m", pose.position.y},
-                      {"z_m", pose.position.z},     {"heading_deg", pose.headingDeg},
-                      {"pitch_deg", pose.pitchDeg}, {"roll_deg", pose.rollDeg}};
-        if (o.writeImages) {
-            fj["exr"] = exrName;
-            fj["png"] = pngName;
+        if (tty) {
+            const double elapsed = std::chrono::duration<double>(f1 - t0).count() - firstFrameSeconds;
+            const double eta =
+                k > 0 ? elapsed / static_cast<double>(k) * static_cast<double>(frameCount - k - 1) : 0.0;
+            const int width = 24;
+            const int filled = static_cast<int>(width * (k + 1) / frameCount);
+            std::fprintf(stderr, "\rpacifica replay [%.*s%*s] %lld/%lld  t=%.2f s  ETA %d:%02d   ", filled,
+                         "########################", width - filled, "", k + 1, frameCount, t,
+                         static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
         }
-        fj["exr_pixel_hash"] = hex64(hash);
-        // What the frame cost and did (OceanStats, EffectCounters): absent effects show zeros.
-        const ocean::OceanStats& st = renderer.lastStats();
-        const ocean::EffectCounters& fx = effects.counters();
-        auto kindJson = [](const ocean::EffectKindStats& ks) {
-            return nlohmann::json{{"active", ks.active}, {"drawn", ks.drawn},     {"passes", ks.passes},
-                                  {"draws", ks.draws},   {"uploads", ks.uploads}, {"vertices", ks.vertices}};
-        };
-        fj["counters"] = {{"passes", st.passes},
-                          {"draws", st.draws},
-                          {"uploads", st.uploads},
-                          {"vertices", st.vertices},
-                          {"programs_built", st.programsBuilt},
-                          {"explosions", kindJson(st.explosions)},
-                          {"wakes", kindJson(st.wakes)},
-                          {"explosions_spawned", fx.spawned},
-                          {"effects_ended", fx.ended},
-                          {"explosions_dropped", fx.droppedExplosions},
-                          {"wakes_dropped", fx.droppedWakes},
-                          {"events_rejected", fx.rejected}};
-        frames.push_back(std::move(fj));
-        if (tty)
-            std::fprintf(stderr, "\rpacifica replay: frame %lld/%lld  t=%.2f s  alt=%.0f m   ", k + 1,
-                         frameCount, t, pose.position.z);
     }
     if (tty)
         std::fprintf(stderr, "\n");
+    if (video)
+        video->finish(); // the video is in place only now; a failure before leaves none
 
     gpuTimer.drain(); // timer queries of the last frames are still in flight on real GPUs
     const double totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     nlohmann::json summary;
     summary["flight"] = o.flight.string();
+    summary["format"] = input.format;
+    summary["recording"] = input.summary;
     summary["gl"] = {{"vendor", context->info().vendor},
                      {"renderer", context->info().renderer},
                      {"version", context->info().version},
@@ -370,28 +432,44 @@ void runReplay(const ReplayOptions& o) {
                        {"display", colour.selectedDisplay()},
                        {"view", colour.selectedView()}};
     summary["environment"] = environmentJson;
-    summary["size"] = {o.width, o.height};
+    summary["size"] = {input.views.front().width, input.views.front().height};
     summary["fps"] = o.fps;
+    summary["speed"] = o.speed;
     summary["start_s"] = start;
     summary["end_s"] = end;
-    summary["images_written"] = o.writeImages;
+    summary["images_written"] = writeImages;
+    summary["video"] = o.video ? nlohmann::json{{"file", o.video->string()}, {"frames", video->frames()}}
+                               : nlohmann::json(nullptr);
     summary["hash"] = "XXH64 of the scene-linear half-float RGBA pixels, rows top-down";
     summary["events"] = {{"applied", o.events},
                          {"explosions", explosionEvents.size()},
                          {"ships", shipTracks.size()},
                          {"explosions_dropped_total", effects.counters().totalDroppedExplosions}};
-    summary["frames"] = std::move(frames);
-    summary["timings"] = {{"gpu_clock", gpuTimer.clockName()},
-                          {"gpu_ms_median", median(gpuTimer.samples())},
-                          {"frame_wall_clock", "steady_clock, whole frame incl. readback and image writes"},
-                          {"frame_wall_ms_median", median(frameWallMs)},
-                          {"time_to_first_frame_s", firstFrameSeconds},
-                          {"total_s", totalSeconds},
-                          {"frames_per_second_overall", static_cast<double>(frameCount) / totalSeconds},
-                          {"frames_per_second_steady", 1000.0 / std::max(median(frameWallMs), 1e-9)}};
-    out.commit(summary);
+    // One entry per view with its frames; "frames" repeats the first view's, for single-view readers.
+    nlohmann::json views = nlohmann::json::array();
+    for (size_t vi = 0; vi < input.views.size(); ++vi) {
+        const ReplayView& v = input.views[vi];
+        views.push_back({{"name", v.name},
+                         {"rig", v.rig},
+                         {"size", {v.width, v.height}},
+                         {"fov_deg", v.fovYDeg},
+                         {"frames", viewFrames[vi]}});
+    }
+    summary["views"] = std::move(views);
+    summary["frames"] = std::move(viewFrames.front());
+    summary["timings"] = {
+        {"gpu_clock", gpuTimer.clockName()},
+        {"gpu_ms_median", median(gpuTimer.samples())},
+        {"frame_wall_clock", "steady_clock, whole frame (all views) incl. readback and image writes"},
+        {"frame_wall_ms_median", median(frameWallMs)},
+        {"time_to_first_frame_s", firstFrameSeconds},
+        {"total_s", totalSeconds},
+        {"frames_per_second_overall", static_cast<double>(frameCount) / totalSeconds},
+        {"frames_per_second_steady", 1000.0 / std::max(median(frameWallMs), 1e-9)}};
+    if (out)
+        out->commit(summary);
     logInfo("replay: " + std::to_string(frameCount) + " frames in " + std::to_string(totalSeconds) +
-            " s -> " + o.outDir.string());
+            " s -> " + (o.outDir.empty() ? o.video->string() : o.outDir.string()));
 }
 
 } // namespace pacifica::tools

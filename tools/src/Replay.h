@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace pacifica::tools {
 
@@ -24,10 +25,18 @@ struct ReplayOptions {
     double fps = 10.0;
     int width = 640;
     int height = 360;
-    std::optional<double> start; ///< seconds; default: the flight's first sample
-    std::optional<double> end;   ///< seconds; default: the flight's last sample
-    std::string display;         ///< empty = the config's default display
-    std::string view;            ///< empty = the display's default view
+    /// --start/--end: seconds on the flight's clock or UTC timestamps (parseTimeArgument, ReplayInput.h);
+    /// default: the flight's (CSV) or the first rig's object's (recording) first and last sample.
+    std::optional<std::string> start;
+    std::optional<std::string> end;
+    /// --rig, repeated: one view each (ReplayInput.h, recording/CameraRig.h); empty = the default view.
+    std::vector<std::string> rigs;
+    /// --video FILE.mp4|.mov: the first view's tonemapped frames, encoded by ffmpeg (VideoWriter.h).
+    std::optional<std::filesystem::path> video;
+    double speed = 1.0;           ///< --speed: recording seconds per real second (time-lapse > 1)
+    long long maxFrames = 100000; ///< --max-frames: a run with more frames is refused before it starts
+    std::string display;          ///< empty = the config's default display
+    std::string view;             ///< empty = the display's default view
     std::optional<std::filesystem::path> ocioConfig;
     bool writeImages = true; ///< false: render, tonemap and read back, but write no images (benchmarks)
     bool progress = true;    ///< progress line when stderr is a TTY

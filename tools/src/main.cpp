@@ -5,30 +5,53 @@
 // partial output behind.
 #include "OceanOptions.h"
 #include "Replay.h"
+#include "ReplayInput.h"
+
+#include <recording/Recording.h>
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
 
 int main(int argc, char** argv) {
+    std::signal(SIGPIPE, SIG_IGN); // a dying ffmpeg (--video) must give an error, not kill the process
     CLI::App app{"pacifica: Pacifica ocean tools (replay flights into headless EGL captures)"};
     app.require_subcommand(1);
 
     pacifica::tools::ReplayOptions replay;
-    std::string flight, outDir, size = "640x360", ocioConfig;
-    double start = 0.0, end = 0.0;
+    std::string flight, outDir, size = "640x360", ocioConfig, start, end, video;
     bool noImages = false, noProgress = false;
-    CLI::App* rp =
-        app.add_subcommand("replay", "render a flight path (CSV, docs/FLIGHT_FORMAT.md) to EXR + PNG frames");
-    rp->add_option("flight", flight, "flight-path CSV file")->required();
-    rp->add_option("--out", outDir, "output directory (created if missing)")->required();
+    CLI::App* rp = app.add_subcommand(
+        "replay", "render a flight (Tacview ACMI text/zip, IGC, or the CSV of docs/FLIGHT_FORMAT.md) "
+                  "to EXR + PNG frames");
+    rp->add_option("flight", flight, "flight file: Tacview ACMI (text or zip), IGC, or flight CSV")
+        ->required();
+    rp->add_option("--out", outDir, "output directory (created if missing)");
+    bool listObjects = false;
+    rp->add_flag("--list-objects", listObjects,
+                 "print the recording's objects (id, type, name, pilot, time span, altitudes) and exit");
+    rp->add_option(
+          "--rig", replay.rigs,
+          "camera rig KIND:OBJECT[,key=value...] (cockpit, chase, orbit, fixed, lookat; size=WxH, fov=DEG, "
+          "name=N); repeat for several views; CSV flights: path")
+        ->expected(1)
+        ->take_all();
+    CLI::Option* videoOpt = rp->add_option("--video", video,
+                                           "also encode the first view as FILE.mp4 (H.264) or .mov "
+                                           "(ProRes) with ffmpeg");
+    rp->add_option("--speed", replay.speed, "recording seconds per video second (time-lapse)")
+        ->default_val(1.0);
+    rp->add_option("--max-frames", replay.maxFrames, "refuse runs with more frames than this")
+        ->default_val(100000);
     rp->add_option("--fps", replay.fps, "frames per simulated second")->default_val(10.0);
     rp->add_option("--size", size, "frame size WxH")->default_val("640x360");
-    CLI::Option* startOpt =
-        rp->add_option("--start", start, "first frame time, seconds (default: flight start)");
-    CLI::Option* endOpt = rp->add_option("--end", end, "last frame time, seconds (default: flight end)");
+    CLI::Option* startOpt = rp->add_option(
+        "--start", start, "first frame time: seconds or UTC YYYY-MM-DDTHH:MM:SSZ (default: flight start)");
+    CLI::Option* endOpt =
+        rp->add_option("--end", end, "last frame time: seconds or UTC timestamp (default: flight end)");
     rp->add_option("--display", replay.display, "OCIO display (default: the config's default)");
     rp->add_option("--view", replay.view, "OCIO view (default: the display's default)");
     CLI::Option* ocioOpt = rp->add_option("--ocio-config", ocioConfig, "OCIO config file (overrides $OCIO)");
@@ -60,8 +83,15 @@ int main(int argc, char** argv) {
     }
 
     try {
+        if (rp->parsed() && listObjects) {
+            const pacifica::recording::Recording rec = pacifica::recording::readRecording(flight);
+            std::fputs(pacifica::tools::listObjects(rec).c_str(), stdout);
+            return 0;
+        }
         if (rp->parsed()) {
             replay.flight = flight;
+            if (videoOpt->count())
+                replay.video = video;
             replay.outDir = outDir;
             replay.events = !noEvents;
             pacifica::tools::parseSize(size, replay.width, replay.height);

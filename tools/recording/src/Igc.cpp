@@ -141,12 +141,16 @@ Recording parseIgc(std::string_view text, const std::string& source) {
                 std::snprintf(iso, sizeof iso, "%04d-%02d-%02dT00:00:00Z", yy < 80 ? 2000 + yy : 1900 + yy,
                               mm, dd);
                 dayUnix = parseIsoUtc(iso);
-            } else if (line.substr(2, 3) == "PLT")
-                o.pilot = headerValue(line);
-            else if (line.substr(2, 3) == "GTY")
-                o.name = headerValue(line);
-            else if (line.substr(2, 3) == "CID" || (line.substr(2, 3) == "GID" && o.callsign.empty()))
-                o.callsign = headerValue(line);
+            } else {
+                // HxPLT, HxGTY, ... (a header shorter than its key is ignored, like any unknown header)
+                const std::string_view tag = line.size() >= 5 ? line.substr(2, 3) : std::string_view{};
+                if (tag == "PLT")
+                    o.pilot = headerValue(line);
+                else if (tag == "GTY")
+                    o.name = headerValue(line);
+                else if (tag == "CID" || (tag == "GID" && o.callsign.empty()))
+                    o.callsign = headerValue(line);
+            }
             continue;
         }
         if (kind != 'B')

@@ -203,9 +203,12 @@ void deriveAttitude(RecordedObject& o, double smoothing) {
         std::vector<double> out(n);
         size_t lo = 0, hi = 0;
         for (size_t i = 0; i < n; ++i) {
-            while (t[i] - t[lo] > 3 * sigma)
+            // +-3 sigma, at most 256 samples each side (a burst of samples at nearly one time stays linear).
+            while (t[i] - t[lo] > 3 * sigma || i - lo > 256)
                 ++lo;
-            while (hi + 1 < n && t[hi + 1] - t[i] <= 3 * sigma)
+            if (hi < i)
+                hi = i;
+            while (hi + 1 < n && t[hi + 1] - t[i] <= 3 * sigma && hi + 1 - i <= 256)
                 ++hi;
             double sw = 0.0, s = 0.0;
             for (size_t j = lo; j <= hi; ++j) {

@@ -1,0 +1,294 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `pacifica replay` on recorded flights (tools/recording): the real DCS recording of an
+F-14B over the Black Sea (../shared/data/flights, Tacview ACMI 2.2 text) and files this script makes from it
+(a zip of it) or writes itself (an IGC glider flight, malformed recordings).
+
+Cases (chosen with --case, one ctest test each):
+  acmi-rigs    chase and cockpit rigs on the F-14B: frame count, recording summary (objects per type, the 6
+               ships, the navaids left out and why), chase pitch atan(8/40), cockpit pose against the recorded
+               altitude; --list-objects lists the F-14B with its pilot.
+  acmi-ships   an orbit of the carrier group: every ship's wake is active, the group's are drawn, and the wakes
+               change and brighten the frame against --no-events.
+  acmi-views   two views in one run (chase + a named orbit with its own size and fov): each its own image
+               sequence and summary entry; the effects were simulated once per frame (same counters).
+  acmi-video   --video .mp4 (H.264) and .mov (ProRes): ffprobe reads back the codec and the frame count.
+  formats      the same slice from a zip of the recording (same pixel hashes as the text: the zip is streamed
+               through the same parser), the text twice (deterministic), and a generated IGC flight with a
+               chase rig (derived attitude: the camera follows the glider's turn).
+  bad-input    malformed ACMI (file:line and field named), unknown and ambiguous objects (candidates
+               listed), a bad rig kind, too many frames (the count named), a bad --video name, ffmpeg
+               missing: each exits non-zero with one 'pacifica: error:' line and leaves no output behind.
+
+Usage: test_recordings.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library + ffprobe)
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import zipfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_e2e import E2eChecks, CaseAborted, child_env, exr_mean_rgb  # noqa: E402
+
+RUN_TIMEOUT_S = 240
+SMALL = ["--size", "160x90", "--no-progress"]
+
+
+def shared_dir(source_dir):
+    return os.environ.get("PACIFICA_SHARED_DIR", os.path.join(source_dir, "..", "shared"))
+
+
+def recording(source_dir):
+    return os.path.join(shared_dir(source_dir), "data", "flights", "dcs-blacksea-f14b.txt.acmi")
+
+
+def run(exe, args, env=None):
+    cmd = [exe, "replay", *args]
+    print("  $ " + " ".join(f"'{a}'" if (" " in a or not a) else a for a in cmd))
+    t = time.monotonic()
+    p = subprocess.run(cmd, env=child_env(env), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    print(f"    exit {p.returncode} after {time.monotonic() - t:.1f} s")
+    return p
+
+
+def replay(c, exe, args, out, env=None):
+    p = run(exe, [*args, "--out", out], env)
+    c.require(p.returncode == 0, f"replay {' '.join(args[1:4])}... succeeds", p.stderr[-800:])
+    with open(os.path.join(out, "summary.json"), encoding="utf-8") as f:
+        return json.load(f)
+
+
+def acmi_track(path, object_id):
+    """(time, alt) of every T= line of one object in an ACMI text file (altitude carried over when empty)."""
+    out, t, alt = [], 0.0, None
+    with open(path, encoding="utf-8-sig") as f:
+        for line in f:
+            line = line.rstrip("\r\n")
+            if line.startswith("#"):
+                t = float(line[1:])
+            elif line.startswith(object_id + ",T="):
+                fields = line.split(",")[1][2:].split("|")
+                if fields[2]:
+                    alt = float(fields[2])
+                out.append((t, alt))
+    return out
+
+
+def case_acmi_rigs(c, exe, source_dir, tmp):
+    acmi = recording(source_dir)
+    p = run(exe, [acmi, "--list-objects"])
+    c.require(p.returncode == 0, "--list-objects succeeds", p.stderr[-500:])
+    f14 = [line for line in p.stdout.splitlines() if line.startswith("d01 ")]
+    c.check(len(f14) == 1 and "F-14B" in f14[0] and "Nuevo apodo" in f14[0], "--list-objects lists the F-14B",
+            p.stdout[:400])
+    c.check(len(p.stdout.splitlines()) == 15, "--list-objects: a header and 14 objects", str(len(p.stdout.splitlines())))
+
+    s = replay(c, exe, [acmi, "--rig", "chase:F-14B", "--start", "100", "--end", "102", "--fps", "1", *SMALL],
+               os.path.join(tmp, "chase"))
+    c.check(s["format"] == "acmi-text" and len(s["frames"]) == 3, "chase: 3 frames of an acmi-text flight",
+            f"{s['format']} {len(s['frames'])}")
+    rec = s["recording"]
+    by = rec["by_type"]
+    c.check(by["Sea+Watercraft+Warship"]["ships"] == 5 and by["Sea+Watercraft+AircraftCarrier"]["ships"] == 1,
+            "summary: 5 warships and 1 carrier became ships", json.dumps(by)[:300])
+    c.check(by["Navaid+Static+Bullseye"]["left_out"] == {"not a ship, weapon or aircraft": 3},
+            "summary: the 3 bullseyes are left out, with the reason", str(by["Navaid+Static+Bullseye"]))
+    c.check(by["Air+FixedWing"]["read"] == 4 and by["Air+FixedWing"]["explosions"] == 0,
+            "summary: 4 aircraft read, none exploded (nothing ends at the sea)", str(by["Air+FixedWing"]))
+    c.check(rec["rigs"][0]["object"].startswith("d01 Air+FixedWing 'F-14B'"), "the rig follows d01",
+            str(rec["rigs"]))
+    # Chase: 40 m behind, 8 m above, looking at the aircraft: pitch -atan(8/40) = -11.3 deg.
+    pitches = [f["pose"]["pitch_deg"] for f in s["frames"]]
+    c.check(all(-11.6 < p < -11.0 for p in pitches), "chase camera looks down atan(8/40) at the F-14B",
+            str(pitches))
+    c.check(all(f["counters"]["wakes"]["active"] == 6 for f in s["frames"]), "every frame has 6 active wakes",
+            str([f["counters"]["wakes"] for f in s["frames"]]))
+
+    s = replay(c, exe, [acmi, "--rig", "cockpit:d01", "--start", "50", "--end", "50", *SMALL],
+               os.path.join(tmp, "cockpit"))
+    track = acmi_track(acmi, "d01")
+    before = [a for (t, a) in track if t <= 50.0 and a is not None][-1]
+    after = [a for (t, a) in track if t >= 50.0 and a is not None][0]
+    z = s["frames"][0]["pose"]["z_m"]
+    # The eye is 1 m above the aircraft's origin (body up axis); the recorded altitude brackets it.
+    c.check(min(before, after) - 2.0 <= z <= max(before, after) + 2.0,
+            "cockpit eye at the recorded altitude (within 2 m)", f"z {z}, recorded {before}..{after}")
+
+
+def case_acmi_ships(c, exe, source_dir, tmp):
+    acmi = recording(source_dir)
+    args = [acmi, "--rig", "orbit:Stennis,distance=1800,elevation=35,rate=0,azimuth=315", "--start", "120",
+            "--end", "120", "--size", "320x180", "--no-progress"]
+    s = replay(c, exe, args, os.path.join(tmp, "fx"))
+    w = s["frames"][0]["counters"]["wakes"]
+    c.check(w["active"] == 6, "all 6 ships have an active wake", str(w))
+    c.check(w["drawn"] >= 3, "the carrier group's wakes are drawn (>= 3)", str(w))
+    plain = replay(c, exe, args + ["--no-events"], os.path.join(tmp, "plain"))
+    c.check(plain["frames"][0]["counters"]["wakes"]["active"] == 0, "--no-events: no wake", "")
+    c.check(plain["frames"][0]["exr_pixel_hash"] != s["frames"][0]["exr_pixel_hash"],
+            "the wakes change the pixels", "")
+    lum = lambda rgb: 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]  # noqa: E731
+    fx = lum(exr_mean_rgb(os.path.join(tmp, "fx"), "frame_00000.exr"))
+    base = lum(exr_mean_rgb(os.path.join(tmp, "plain"), "frame_00000.exr"))
+    c.check(fx > base * 1.01, "the wakes' foam brightens the frame by > 1%", f"{fx:.5f} vs {base:.5f}")
+
+
+def case_acmi_views(c, exe, source_dir, tmp):
+    acmi = recording(source_dir)
+    out = os.path.join(tmp, "views")
+    s = replay(c, exe, [acmi, "--rig", "chase:F-14B,size=192x108", "--rig",
+                        "orbit:Stennis,size=160x120,fov=40,name=carrier", "--start", "10", "--end", "11",
+                        "--fps", "1", "--no-progress"], out)
+    names = sorted(os.listdir(out))
+    want = ["carrier_frame_00000.exr", "carrier_frame_00000.png", "carrier_frame_00001.exr",
+            "carrier_frame_00001.png", "summary.json", "view0-chase_frame_00000.exr", "view0-chase_frame_00000.png",
+            "view0-chase_frame_00001.exr", "view0-chase_frame_00001.png"]
+    c.check(names == want, "one image sequence per view, named by the view", str(names))
+    v = s["views"]
+    c.check(len(v) == 2 and v[0]["size"] == [192, 108] and v[1]["size"] == [160, 120] and v[1]["fov_deg"] == 40,
+            "summary: two views with their own size and fov", json.dumps([{k: x[k] for k in ("name", "size",
+                                                                                              "fov_deg")} for x in v]))
+    c.check(all(len(x["frames"]) == 2 for x in v), "each view has 2 frames", "")
+    for k in range(2):
+        a, b = v[0]["frames"][k]["counters"], v[1]["frames"][k]["counters"]
+        c.check(a["explosions_spawned"] == b["explosions_spawned"] and a["wakes"]["active"] == b["wakes"]["active"],
+                f"frame {k}: both views see the same simulated effects", f"{a['wakes']} / {b['wakes']}")
+    c.check(v[0]["frames"][0]["pose"] != v[1]["frames"][0]["pose"], "the views have their own cameras", "")
+
+
+def ffprobe(path):
+    p = subprocess.run(["ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
+                        "stream=codec_name,nb_read_frames,width,height", "-of", "json", path],
+                       capture_output=True, text=True, timeout=120)
+    if p.returncode != 0:
+        return {}
+    return json.loads(p.stdout)["streams"][0]
+
+
+def case_acmi_video(c, exe, source_dir, tmp):
+    acmi = recording(source_dir)
+    for ext, codec in ((".mp4", "h264"), (".mov", "prores")):
+        video = os.path.join(tmp, "flight" + ext)
+        out = os.path.join(tmp, "frames" + ext)
+        s = replay(c, exe, [acmi, "--rig", "chase:F-14B", "--start", "30", "--end", "32", "--fps", "5",
+                            "--size", "160x90", "--video", video, "--no-images", "--no-progress"], out)
+        info = ffprobe(video)
+        c.check(info.get("codec_name") == codec, f"{ext}: ffprobe reads a {codec} stream", str(info))
+        c.check(info.get("nb_read_frames") == "11" and s["video"]["frames"] == 11,
+                f"{ext}: 11 frames (2 s at 5 fps)", str(info))
+        c.check(info.get("width") == 160 and info.get("height") == 90, f"{ext}: 160x90", str(info))
+        leftovers = [n for n in os.listdir(tmp) if n.startswith(".flight")]
+        c.check(not leftovers, f"{ext}: no temporary video left beside it", str(leftovers))
+    # --speed 10: 20 recording seconds in 2 video seconds at 5 fps.
+    s = replay(c, exe, [acmi, "--rig", "chase:F-14B", "--start", "30", "--end", "50", "--fps", "5", "--speed",
+                        "10", *SMALL, "--no-images"], os.path.join(tmp, "lapse"))
+    times = [f["time_s"] for f in s["frames"]]
+    c.check(len(times) == 11 and abs(times[1] - times[0] - 2.0) < 1e-9, "--speed 10: 11 frames 2 s apart",
+            str(times[:3]))
+
+
+def write_igc(path):
+    """A glider over the Black Sea: 60 s straight east at 30 m/s, then a steady right turn (6 deg/s)."""
+    lat0, lon0 = 44.5, 37.0
+    lines = ["AXXXPACIFICA", "HFDTEDATE:010820,01", "HFPLTPILOTINCHARGE:Test Pilot", "HFGTYGLIDERTYPE:Duo Discus"]
+    x = y = 0.0
+    heading = 90.0
+    for k in range(181):
+        if k > 0:
+            if k > 60:
+                heading += 6.0
+            x += 30.0 * math.sin(math.radians(heading))
+            y += 30.0 * math.cos(math.radians(heading))
+        lat = lat0 + y / 111195.0
+        lon = lon0 + x / (111195.0 * math.cos(math.radians(lat0)))
+        secs = 12 * 3600 + k
+        lat_m = round((lat - int(lat)) * 60000)
+        lon_m = round((lon - int(lon)) * 60000)
+        lines.append(f"B{secs // 3600:02d}{secs // 60 % 60:02d}{secs % 60:02d}{int(lat):02d}{lat_m:05d}N"
+                     f"{int(lon):03d}{lon_m:05d}EA{800:05d}{810:05d}")
+    with open(path, "w", encoding="ascii") as f:
+        f.write("\r\n".join(lines) + "\r\n")
+
+
+def case_formats(c, exe, source_dir, tmp):
+    acmi = recording(source_dir)
+    zipped = os.path.join(tmp, "blacksea.zip.acmi")
+    with zipfile.ZipFile(zipped, "w", zipfile.ZIP_DEFLATED) as z:
+        z.write(acmi, "dcs-blacksea-f14b.txt.acmi")
+    args = ["--rig", "chase:F-14B", "--start", "60", "--end", "61", "--fps", "1", *SMALL]
+    a = replay(c, exe, [acmi, *args], os.path.join(tmp, "text1"))
+    b = replay(c, exe, [acmi, *args], os.path.join(tmp, "text2"))
+    z = replay(c, exe, [zipped, *args], os.path.join(tmp, "zip"))
+    ha = [f["exr_pixel_hash"] for f in a["frames"]]
+    c.check(ha == [f["exr_pixel_hash"] for f in b["frames"]], "the same recording twice: identical hashes", "")
+    c.check(z["format"] == "acmi-zip" and ha == [f["exr_pixel_hash"] for f in z["frames"]],
+            "the zip replays to the same pixels as the text", f"{z['format']}")
+
+    igc = os.path.join(tmp, "glider.igc")
+    write_igc(igc)
+    s = replay(c, exe, [igc, "--rig", "chase:Test Pilot,smoothing=0", "--start", "30", "--end", "150", "--fps",
+                        "0.05", *SMALL], os.path.join(tmp, "igc"))
+    c.check(s["format"] == "igc" and len(s["frames"]) == 7, "IGC: 7 frames 20 s apart", f"{s['format']}")
+    heads = [f["pose"]["heading_deg"] for f in s["frames"]]
+    c.check(abs(heads[0] - 90.0) < 1.5, "IGC chase: heading east on the straight leg", str(heads))
+    # In the turn the heading grows 6 deg/s: 20 s between frames = 120 deg (mod 360).
+    d = (heads[4] - heads[3]) % 360.0
+    c.check(abs(d - 120.0) < 5.0, "IGC chase: the camera follows the turn (120 deg per 20 s)", str(heads))
+
+
+def case_bad_input(c, exe, source_dir, tmp):
+    acmi = recording(source_dir)
+    bad = os.path.join(tmp, "bad.acmi")
+    with open(bad, "w", encoding="utf-8") as f:
+        f.write("FileType=text/acmi/tacview\nFileVersion=2.2\n#0\n1,T=1|2|3,Type=Air\n#1\n1,T=1|zz|3\n")
+    ffmpeg_missing = {"PACIFICA_FFMPEG": os.path.join(tmp, "no-ffmpeg")}
+    cases = [
+        ("malformed ACMI", [bad], {}, [f"{bad}:6:", "T latitude", "'zz'"]),
+        ("unknown object", [acmi, "--rig", "chase:Tomcat"], {}, ["no object 'Tomcat'", "F-14B"]),
+        ("ambiguous object", [acmi, "--rig", "chase:ALBATROS"], {}, ["ambiguous", "101 ", "201 "]),
+        ("bad rig kind", [acmi, "--rig", "dolly:F-14B"], {}, ["unknown rig kind 'dolly'", "chase"]),
+        ("too many frames", [acmi, "--fps", "1000"], {}, ["220921 frames (220.92 s at --fps 1000", "--max-frames 100000"]),
+        ("bad video name", [acmi, "--video", os.path.join(tmp, "v.avi")], {}, ["--video", ".mp4"]),
+        ("ffmpeg missing", [acmi, "--video", os.path.join(tmp, "v.mp4")], ffmpeg_missing, ["PACIFICA_FFMPEG"]),
+        ("UTC start before the flight", [acmi, "--start", "1990-05-01T05:00:00Z"], {}, ["--start", "outside"]),
+    ]
+    for name, args, env, must in cases:
+        out = os.path.join(tmp, "out-" + name.replace(" ", "-"))
+        p = run(exe, [*args, "--out", out, "--size", "160x90", "--no-progress"], env)
+        err = [line for line in p.stderr.splitlines() if line.startswith("pacifica: error: ")]
+        text = "\n".join(p.stderr.splitlines()[-12:])
+        c.check(p.returncode != 0, f"{name}: non-zero exit", str(p.returncode))
+        c.check(bool(err) and all(m in p.stderr for m in must), f"{name}: error names {must}", text)
+        c.check(not os.path.exists(out), f"{name}: no output folder", "")
+    c.check(not os.path.exists(os.path.join(tmp, "v.mp4")), "no video file was written", "")
+
+
+CASES = {"acmi-rigs": case_acmi_rigs, "acmi-ships": case_acmi_ships, "acmi-views": case_acmi_views,
+         "acmi-video": case_acmi_video, "formats": case_formats, "bad-input": case_bad_input}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--case", choices=sorted(CASES), required=True)
+    ap.add_argument("pacifica_exe")
+    ap.add_argument("source_dir")
+    ns = ap.parse_args()
+    c = E2eChecks()
+    tmp = tempfile.mkdtemp(prefix=f"pacifica-rec-{ns.case}-")
+    t0 = time.monotonic()
+    print(f"recordings case '{ns.case}': {ns.pacifica_exe} (temp dir {tmp})")
+    try:
+        CASES[ns.case](c, ns.pacifica_exe, os.path.abspath(ns.source_dir), tmp)
+    except CaseAborted as e:
+        if not c.failed:
+            c.failed.append(str(e))
+        print(f"  case aborted: {e}")
+    return c.finish(f"recordings/{ns.case}", t0, tmp)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

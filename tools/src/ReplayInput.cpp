@@ -1,0 +1,260 @@
+// ReplayInput: flight file -> views, ships, explosions (ReplayInput.h).
+#include "ReplayInput.h"
+
+#include "Replay.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace pacifica::tools {
+
+namespace {
+
+std::string hexId(uint64_t id) {
+    char b[24];
+    std::snprintf(b, sizeof b, "%llx", static_cast<unsigned long long>(id));
+    return b;
+}
+
+/// Applies the view keys of a rig spec (size, fov, name) to a view.
+void applyViewKeys(const recording::RigSpec& spec, ReplayView& view) {
+    for (const auto& [k, v] : spec.params) {
+        if (k == "size") {
+            try {
+                parseSize(v, view.width, view.height);
+            } catch (const UsageError&) {
+                throw UsageError("--rig " + spec.text + ": size must be WxH with 16 <= W,H <= 8192, got '" +
+                                 v + "'");
+            }
+        } else if (k == "fov") {
+            float f = 0.0f;
+            const auto [ptr, ec] = std::from_chars(v.data(), v.data() + v.size(), f);
+            if (ec != std::errc() || ptr != v.data() + v.size() || !(f >= 1.0f && f <= 170.0f))
+                throw UsageError("--rig " + spec.text + ": fov must be in [1, 170] degrees, got '" + v + "'");
+            view.fovYDeg = f;
+        } else if (k == "name") {
+            if (v.empty() ||
+                v.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+                    std::string::npos)
+                throw UsageError("--rig " + spec.text + ": name must be letters, digits, '_' or '-', got '" +
+                                 v + "'");
+            view.name = v;
+        }
+    }
+}
+
+const recording::RecordedObject* defaultFocus(const recording::Recording& rec) {
+    const recording::RecordedObject* firstAir = nullptr;
+    const recording::RecordedObject* first = nullptr;
+    for (const recording::RecordedObject& o : rec.objects) {
+        if (o.track.empty() || o.hasTag("Navaid"))
+            continue;
+        if (!first)
+            first = &o;
+        if (o.hasTag("Air")) {
+            if (!o.pilot.empty())
+                return &o;
+            if (!firstAir)
+                firstAir = &o;
+        }
+    }
+    return firstAir ? firstAir : first;
+}
+
+} // namespace
+
+double parseTimeArgument(const std::string& text, const std::optional<double>& referenceUnix,
+                         const std::string& option) {
+    double v = 0.0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec == std::errc() && ptr == text.data() + text.size()) {
+        if (!std::isfinite(v))
+            throw UsageError(option + ": expected finite seconds, got '" + text + "'");
+        return v;
+    }
+    const std::optional<double> utc = recording::parseIsoUtc(text);
+    if (!utc)
+        throw UsageError(option + ": expected seconds or a UTC time YYYY-MM-DDTHH:MM:SS[.f]Z, got '" + text +
+                         "'");
+    if (!referenceUnix)
+        throw UsageError(option + " " + text + ": this flight has no reference time; give seconds instead");
+    return *utc - *referenceUnix;
+}
+
+std::string listObjects(const recording::Recording& rec) {
+    std::string out;
+    char line[512];
+    std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9s %9s %8s %8s %7s\n", "id", "type", "name",
+                  "pilot", "start_s", "end_s", "alt_min", "alt_max", "at_sea");
+    out += line;
+    for (const recording::RecordedObject& o : rec.objects) {
+        if (o.track.empty())
+            continue;
+        double lo = o.track.front().alt, hi = lo;
+        size_t sea = 0;
+        for (const recording::ObjectSample& s : o.track) {
+            lo = std::min(lo, s.alt);
+            hi = std::max(hi, s.alt);
+            sea += std::abs(s.alt) <= recording::SEA_CONTACT_M ? 1 : 0;
+        }
+        std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9.2f %9.2f %8.0f %8.0f %6.0f%%\n",
+                      hexId(o.id).c_str(), o.type.substr(0, 36).c_str(), o.name.substr(0, 16).c_str(),
+                      o.pilot.substr(0, 16).c_str(), o.startTime(), o.endTime(), lo, hi,
+                      100.0 * static_cast<double>(sea) / static_cast<double>(o.track.size()));
+        out += line;
+    }
+    return out;
+}
+
+ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vector<std::string>& rigs,
+                            int defaultWidth, int defaultHeight, float defaultFov) {
+    ReplayInput in;
+    std::error_code ec;
+    // A missing file goes to the CSV reader, whose error names it ("cannot open flight file").
+    const std::string format =
+        std::filesystem::is_regular_file(flight, ec) ? recording::detectFormat(flight) : "csv";
+    in.format = format;
+    if (format == "csv" || format.empty()) {
+        // The project's CSV (also for unrecognised text: FlightPath names the line that is wrong).
+        if (format.empty()) {
+            // Only fall back to the CSV reader for text that could be CSV; otherwise list the formats.
+            try {
+                in.csv = std::make_shared<const FlightPath>(FlightPath::load(flight));
+            } catch (const FlightError& e) {
+                throw recording::RecordingError(flight.string(), 0, "",
+                                                "unrecognised flight file format (as CSV: " + e.message() +
+                                                    "); supported: " + recording::supportedFormats());
+            }
+        } else {
+            in.csv = std::make_shared<const FlightPath>(FlightPath::load(flight));
+        }
+        in.format = "csv";
+        for (const std::string& r : rigs)
+            if (r != "path")
+                throw UsageError("--rig " + r +
+                                 ": a CSV flight is its own camera path (--rig path); rigs over "
+                                 "objects need a recording (Tacview ACMI or IGC)");
+        ReplayView v;
+        v.rig = "path";
+        v.width = defaultWidth;
+        v.height = defaultHeight;
+        v.fovYDeg = defaultFov;
+        std::shared_ptr<const FlightPath> csv = in.csv;
+        v.camera = [csv](double t) { return csv->poseAt(t); };
+        in.views.push_back(std::move(v));
+        in.startTime = in.csv->startTime();
+        in.endTime = in.csv->endTime();
+        in.ships = in.csv->ships();
+        in.shipLengths.assign(in.ships.size(), 60.0);
+        in.explosions = in.csv->explosions();
+        in.summary = nullptr;
+        return in;
+    }
+
+    auto rec = std::make_shared<const recording::Recording>(recording::readRecording(flight));
+    in.recording = rec;
+    in.referenceUnix = rec->referenceUnix;
+    std::vector<recording::RigSpec> specs;
+    for (const std::string& r : rigs) {
+        if (r == "path")
+            throw UsageError(
+                "--rig path: a recording has no camera path of its own; use cockpit, chase, orbit, "
+                "fixed or lookat over one of its objects");
+        specs.push_back(recording::parseRigSpec(r));
+    }
+    if (specs.empty()) {
+        const recording::RecordedObject* focus = defaultFocus(*rec);
+        if (!focus)
+            throw recording::RecordingError(flight.string(), 0, "",
+                                            "the recording has no object with a position");
+        specs.push_back(recording::parseRigSpec("chase:" + hexId(focus->id)));
+    }
+    // The world origin: the first view's object where the replay starts (near the action).
+    const recording::RecordedObject& focus = recording::selectObject(*rec, specs.front().object);
+    in.frame = std::make_shared<const recording::EarthFrame>(
+        recording::chooseFrame(*rec, &focus, focus.startTime()));
+    nlohmann::json rigsJson = nlohmann::json::array();
+    for (size_t i = 0; i < specs.size(); ++i) {
+        std::shared_ptr<const recording::CameraRig> rig = recording::makeRig(specs[i], *rec, *in.frame);
+        ReplayView v;
+        v.rig = specs[i].text;
+        v.width = defaultWidth;
+        v.height = defaultHeight;
+        v.fovYDeg = defaultFov;
+        if (specs.size() > 1)
+            v.name = "view" + std::to_string(i) + "-" + specs[i].kind;
+        applyViewKeys(specs[i], v);
+        v.camera = [rig](double t) { return rig->poseAt(t); };
+        if (i == 0) {
+            in.startTime = rig->startTime();
+            in.endTime = rig->endTime();
+        }
+        rigsJson.push_back({{"spec", specs[i].text},
+                            {"kind", specs[i].kind},
+                            {"object", rig->object().describe()},
+                            {"view", v.name}});
+        in.rigs.push_back(rig);
+        in.views.push_back(std::move(v));
+    }
+    for (size_t i = 0; i < in.views.size(); ++i)
+        for (size_t j = 0; j < i; ++j)
+            if (in.views[i].name == in.views[j].name)
+                throw UsageError("--rig: two views are named '" + in.views[i].name +
+                                 "'; give each its own name=");
+
+    const recording::SeaDrivers drivers = recording::seaDrivers(*rec, *in.frame);
+    for (const recording::SeaShip& s : drivers.ships) {
+        ShipTrack t;
+        t.id = hexId(s.id);
+        for (const glm::dvec3& p : s.samples)
+            t.samples.push_back({p.x, p.y, p.z});
+        in.ships.push_back(std::move(t));
+        in.shipLengths.push_back(s.length);
+    }
+    for (const recording::SeaImpact& x : drivers.impacts)
+        in.explosions.push_back({x.time, x.position.x, x.position.y, x.strength, 0});
+
+    nlohmann::json types = nlohmann::json::object();
+    for (const auto& [type, tally] : drivers.byType) {
+        nlohmann::json left = nlohmann::json::object();
+        for (const auto& [why, n] : tally.leftOut)
+            left[why] = n;
+        types[type] = {{"read", tally.read},
+                       {"ships", tally.ships},
+                       {"explosions", tally.explosions},
+                       {"left_out", left}};
+    }
+    nlohmann::json impacts = nlohmann::json::array();
+    for (const recording::SeaImpact& x : drivers.impacts)
+        impacts.push_back({{"id", hexId(x.id)},
+                           {"type", x.type},
+                           {"time_s", x.time},
+                           {"x_m", x.position.x},
+                           {"y_m", x.position.y},
+                           {"strength", x.strength},
+                           {"cause", x.cause}});
+    nlohmann::json ships = nlohmann::json::array();
+    for (const recording::SeaShip& s : drivers.ships)
+        ships.push_back({{"id", hexId(s.id)}, {"object", s.label}, {"length_m", s.length}});
+    in.summary = {{"format", rec->format},
+                  {"file_version", rec->fileVersion},
+                  {"title", rec->title},
+                  {"reference_time", rec->referenceTime},
+                  {"objects", rec->objects.size()},
+                  {"samples", rec->samples},
+                  {"events", rec->events.size()},
+                  {"time_span_s", {rec->startTime, rec->endTime}},
+                  {"origin",
+                   {{"latitude_deg", in.frame->originLatitude()},
+                    {"longitude_deg", in.frame->originLongitude()},
+                    {"frame", "WGS84 azimuthal equidistant (GeographicLib), z = altitude MSL"}}},
+                  {"rigs", rigsJson},
+                  {"by_type", types},
+                  {"ships", ships},
+                  {"explosions", impacts}};
+    return in;
+}
+
+} // namespace pacifica::tools
