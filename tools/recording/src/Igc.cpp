@@ -137,7 +137,7 @@ Recording parseIgc(std::string_view text, const std::string& source) {
                     !digits(d.substr(4, 2), yy) || dd < 1 || dd > 31 || mm < 1 || mm > 12)
                     throw fail("HFDTE",
                                "expected the date as DDMMYY, got '" + std::string(line.substr(5, 20)) + "'");
-                char iso[32];
+                char iso[48];
                 std::snprintf(iso, sizeof iso, "%04d-%02d-%02dT00:00:00Z", yy < 80 ? 2000 + yy : 1900 + yy,
                               mm, dd);
                 dayUnix = parseIsoUtc(iso);
