@@ -18,8 +18,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             parser.feed(text.substr(i, chunk));
         const pacifica::recording::Recording r = parser.finish();
         for (const auto& o : r.objects)
-            if (!o.track.empty())
+            if (!o.track.empty()) {
                 (void)o.sampleAt(0.5 * (o.startTime() + o.endTime()));
+                pacifica::recording::RecordedObject derived = o; // what a rig does for 3/5-field tracks
+                pacifica::recording::deriveAttitude(derived);
+            }
     } catch (const pacifica::recording::RecordingError&) {
     }
     return 0;

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <zip.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -92,6 +93,31 @@ TEST(Acmi, TransformFormsAndEmptyFields) {
     EXPECT_DOUBLE_EQ(r.startTime, 1.0);
     EXPECT_DOUBLE_EQ(r.endTime, 4.0);
     EXPECT_EQ(acmiError(text), "t.acmi:12: T: expected 3, 5, 6 or 9 '|'-separated fields, got 7");
+}
+
+TEST(Acmi, NumbersReadExactlyAsFromChars) {
+    // The reader's fast decimal path (Clinger) must give the same doubles as std::from_chars.
+    std::string text = std::string(HEADER);
+    std::vector<std::string> alts;
+    uint64_t state = 7;
+    for (int i = 0; i < 2000; ++i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        const int decimals = static_cast<int>((state >> 20) % 12);
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%s%.*f", (state >> 40) % 3 == 0 ? "-" : "", decimals,
+                      static_cast<double>(state >> 24) / 1e6);
+        alts.push_back(buf);
+        text += "#" + std::to_string(i) + "\n1,T=0|0|" + alts.back() + "\n";
+    }
+    alts.push_back("1e3");
+    text += "#2000\n1,T=0|0|1e3\n";
+    const Recording r = acmi(text);
+    ASSERT_EQ(r.objects.at(0).track.size(), alts.size());
+    for (size_t i = 0; i < alts.size(); ++i) {
+        double want = 0.0;
+        std::from_chars(alts[i].data(), alts[i].data() + alts[i].size(), want);
+        ASSERT_EQ(r.objects[0].track[i].alt, want) << alts[i];
+    }
 }
 
 TEST(Acmi, BomCrlfCommentsEscapesContinuationsRemovalsEvents) {
@@ -446,6 +472,13 @@ TEST(CameraRig, SelectionErrorsAndPoses) {
         EXPECT_NE(std::string(e.what()).find("unknown key 'radius' for orbit"), std::string::npos);
     }
     EXPECT_THROW(makeRig(parseRigSpec("chase:d01,distance=nan"), r, frame), RigError);
+    // A bomb recorded with 3-field T= only: no angles until a rig derives them from its track (falling
+    // 898 m while drifting 55.6 m north in 10 s: heading north, pitch atan2(-89.8, 5.56) = -86.5 deg).
+    EXPECT_EQ(selectObject(r, "Mk-82").attitude, "none");
+    auto bomb = makeRig(parseRigSpec("cockpit:Mk-82,up=0"), r, frame);
+    const Pose b = bomb->poseAt(5.0);
+    EXPECT_NEAR(b.pitchDeg, std::atan2(-89.8, 5.56) * 180.0 / M_PI, 0.5);
+    EXPECT_NEAR(std::abs(std::remainder(b.headingDeg, 360.0)), 0.0, 1.0);
     auto fixed = makeRig(parseRigSpec("fixed:d01,east=100,north=0,up=0"), r, frame);
     EXPECT_NEAR(fixed->poseAt(0.0).headingDeg, 270.0, 0.01);
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <unordered_map>
 
 namespace pacifica::recording {
@@ -22,8 +23,21 @@ bool parseHexId(std::string_view s, uint64_t& id) {
         s.remove_prefix(2);
     if (s.empty() || s.size() > 16)
         return false;
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), id, 16);
-    return ec == std::errc() && ptr == s.data() + s.size();
+    uint64_t v = 0;
+    for (const char c : s) {
+        unsigned d = 0;
+        if (c >= '0' && c <= '9')
+            d = static_cast<unsigned>(c - '0');
+        else if (c >= 'a' && c <= 'f')
+            d = static_cast<unsigned>(c - 'a' + 10);
+        else if (c >= 'A' && c <= 'F')
+            d = static_cast<unsigned>(c - 'A' + 10);
+        else
+            return false;
+        v = v << 4 | d;
+    }
+    id = v;
+    return true;
 }
 
 /// Removes the ACMI escapes: "\," -> ",", "\\" -> "\" (a joined continuation is already a newline).
@@ -36,6 +50,39 @@ std::string unescape(std::string_view v) {
         out.push_back(v[i]);
     }
     return out;
+}
+
+/// "[-]digits[.digits]" with at most 15 significant digits and 22 decimals: the mantissa and 10^k are exact
+/// doubles, so one division is correctly rounded and equals std::from_chars (Clinger 1990, "How to read
+/// floating point numbers accurately", the fast path). ACMI numbers are nearly all of this form; anything
+/// else (exponents, long mantissas, nan) returns false and goes through from_chars.
+bool fastDecimal(std::string_view s, double& out) {
+    static constexpr double POW10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                       1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const char* p = s.data();
+    const char* const end = p + s.size();
+    const bool negative = p != end && *p == '-';
+    if (negative)
+        ++p;
+    const char* const start = p;
+    uint64_t mantissa = 0;
+    while (p != end && static_cast<unsigned>(*p - '0') < 10u)
+        mantissa = mantissa * 10 + static_cast<uint64_t>(*p++ - '0');
+    const size_t whole = static_cast<size_t>(p - start);
+    size_t decimals = 0;
+    if (p != end && *p == '.') {
+        const char* const frac = ++p;
+        while (p != end && static_cast<unsigned>(*p - '0') < 10u)
+            mantissa = mantissa * 10 + static_cast<uint64_t>(*p++ - '0');
+        decimals = static_cast<size_t>(p - frac);
+    }
+    // At most 19 digits (no uint64 overflow), an exactly representable mantissa, 10^decimals exact.
+    if (p != end || whole + decimals == 0 || whole + decimals > 19 || decimals > 22 ||
+        mantissa > (uint64_t(1) << 53))
+        return false;
+    const double v = static_cast<double>(mantissa) / POW10[decimals];
+    out = negative ? -v : v;
+    return true;
 }
 
 struct State {
@@ -66,6 +113,8 @@ struct AcmiParser::Impl {
         double v = 0.0;
         if (!s.empty() && s.front() == '+')
             s.remove_prefix(1);
+        if (fastDecimal(s, v))
+            return v;
         const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
         if (ec != std::errc() || ptr != s.data() + s.size())
             fail(field, "expected a number, got '" + std::string(s.substr(0, 40)) + "'");
@@ -198,6 +247,15 @@ struct AcmiParser::Impl {
         if (rest.empty())
             return false;
         escaped = false;
+        // Fast path: no backslash before the next comma (memchr is vectorised).
+        const void* commaPtr = std::memchr(rest.data(), ',', rest.size());
+        const size_t comma =
+            commaPtr ? static_cast<size_t>(static_cast<const char*>(commaPtr) - rest.data()) : rest.size();
+        if (!std::memchr(rest.data(), '\\', comma)) {
+            prop = rest.substr(0, comma);
+            rest = comma < rest.size() ? rest.substr(comma + 1) : std::string_view{};
+            return true;
+        }
         size_t i = 0;
         for (; i < rest.size(); ++i) {
             if (rest[i] == '\\' && i + 1 < rest.size()) {
@@ -317,9 +375,8 @@ struct AcmiParser::Impl {
                     anyAttitude[obj] = true;
                 }
         }
-        for (int k = 6; k < n; ++k) // U, V, heading: validated, not kept (the replay uses the sphere)
-            if (!f[k].empty())
-                number(f[k], names[k]);
+        // U, V (DCS's flat-world metres) and Heading (relative to that flat world's north) are not used --
+        // the replay places objects on the ellipsoid -- so they are not read either.
         RecordedObject& o = rec.objects[obj];
         ObjectSample sample{now,
                             s.lon,
@@ -449,10 +506,9 @@ struct AcmiParser::Impl {
                 extend(o.track.front().time);
                 extend(o.track.back().time);
             }
-            if (anyAttitude[i])
-                o.attitude = "recorded";
-            else
-                deriveAttitude(o);
+            // Attitude from the track is derived when a rig needs it (WorldTrack), not for the thousands of
+            // shells and flares a busy recording holds.
+            o.attitude = anyAttitude[i] ? "recorded" : "none";
         }
         std::stable_sort(rec.events.begin(), rec.events.end(),
                          [](const RecordedEvent& a, const RecordedEvent& b) { return a.time < b.time; });

@@ -255,7 +255,13 @@ const RecordedObject& selectObject(const Recording& rec, const std::string& quer
                    "; candidates:" + list);
 }
 
-WorldTrack::WorldTrack(const RecordedObject& o, const EarthFrame& frame) {
+WorldTrack::WorldTrack(const RecordedObject& recorded, const EarthFrame& frame) {
+    RecordedObject derived;
+    if (recorded.attitude == "none") { // no recorded angles: derive them from the track (Recording.h)
+        derived = recorded;
+        deriveAttitude(derived);
+    }
+    const RecordedObject& o = recorded.attitude == "none" ? derived : recorded;
     mTimes.reserve(o.track.size());
     mPoses.reserve(o.track.size());
     for (const ObjectSample& s : o.track) {

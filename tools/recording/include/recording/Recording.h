@@ -61,8 +61,9 @@ struct RecordedObject {
     std::optional<double> removedAt;   ///< time of the `-id` line
     std::optional<double> destroyedAt; ///< time of the first Destroyed event naming it
     /// Where roll/pitch/yaw came from: "recorded" (ACMI 6/9-field T=), "derived" (from the track:
-    /// heading from velocity, pitch from climb, coordinated-turn bank; deriveAttitude()).
-    std::string attitude = "derived";
+    /// heading from velocity, pitch from climb, coordinated-turn bank; deriveAttitude(), as for IGC), or
+    /// "none" (ACMI 3/5-field T= only: angles 0 until deriveAttitude() is called; WorldTrack does).
+    std::string attitude = "none";
     long long line = 0; ///< 1-based line of the object's first appearance
 
     /// Whether `tag` is one of the '+'-separated tags of type (case-sensitive, as ACMI writes them).
