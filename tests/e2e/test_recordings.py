@@ -6,7 +6,8 @@ F-14B over the Black Sea (../shared/data/flights, Tacview ACMI 2.2 text) and fil
 Cases (chosen with --case, one ctest test each):
   acmi-rigs    chase and cockpit rigs on the F-14B: frame count, recording summary (objects per type, the 6
                ships, the navaids left out and why), chase pitch atan(8/40), cockpit pose against the recorded
-               altitude; --list-objects lists the F-14B with its pilot.
+               altitude; the followed aircraft drawn by the chase, not by the cockpit, none with --no-objects;
+               --list-objects lists the F-14B with its pilot.
   acmi-ships   an orbit of the carrier group: every ship's wake is active, the group's are drawn, and the wakes
                change and brighten the frame against --no-events.
   acmi-views   two views in one run (chase + a named orbit with its own size and fov): each its own image
@@ -108,8 +109,21 @@ def case_acmi_rigs(c, exe, source_dir, tmp):
     c.check(all(f["counters"]["wakes"]["active"] == 6 for f in s["frames"]), "every frame has 6 active wakes",
             str([f["counters"]["wakes"] for f in s["frames"]]))
 
+    c.check(all(f["counters"]["objects_drawn"] >= 1 for f in s["frames"]), "chase: the F-14B itself is drawn",
+            str([f["counters"]["objects_drawn"] for f in s["frames"]]))
+    bare = replay(c, exe, [acmi, "--rig", "chase:F-14B", "--start", "100", "--end", "100", "--no-objects", *SMALL],
+                  os.path.join(tmp, "bare"))
+    c.check(bare["frames"][0]["counters"]["objects_drawn"] == 0 and
+            bare["frames"][0]["exr_pixel_hash"] != s["frames"][0]["exr_pixel_hash"],
+            "--no-objects: nothing drawn, and the frame differs", "")
+
+    chase50 = replay(c, exe, [acmi, "--rig", "chase:d01", "--start", "50", "--end", "50", *SMALL],
+                     os.path.join(tmp, "chase50"))
     s = replay(c, exe, [acmi, "--rig", "cockpit:d01", "--start", "50", "--end", "50", *SMALL],
                os.path.join(tmp, "cockpit"))
+    c.check(s["frames"][0]["counters"]["objects_drawn"] == chase50["frames"][0]["counters"]["objects_drawn"] - 1,
+            "cockpit: the aircraft the eye sits in is not drawn",
+            f"{s['frames'][0]['counters']['objects_drawn']} vs chase {chase50['frames'][0]['counters']['objects_drawn']}")
     track = acmi_track(acmi, "d01")
     before = [a for (t, a) in track if t <= 50.0 and a is not None][-1]
     after = [a for (t, a) in track if t >= 50.0 and a is not None][0]

@@ -3,6 +3,7 @@
 #include "Replay.h"
 
 #include "FlightPath.h"
+#include "ObjectRenderer.h"
 #include "ReplayInput.h"
 #include "VideoWriter.h"
 #include "engine/Ecs.h"
@@ -16,6 +17,7 @@
 #include "engine/gl/GpuTimer.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
+#include "ocean/OceanConstants.h"
 
 #include <nlohmann/json.hpp>
 
@@ -256,6 +258,12 @@ void runReplay(const ReplayOptions& o) {
         targets.push_back(std::make_unique<gl::FrameTargets>(v.width, v.height));
     color::Tonemapper tonemapper(colour);
     gl::GpuTimer gpuTimer(context->info());
+    const std::vector<ReplayObject> objects =
+        o.objects ? replayObjects(input, start, end) : std::vector<ReplayObject>{};
+    std::unique_ptr<ObjectRenderer> objectRenderer;
+    if (!objects.empty())
+        objectRenderer = std::make_unique<ObjectRenderer>();
+    const double drawEarthRadius = oceanDesc.earthCurvature ? ocean::EARTH_RADIUS : 0.0;
 
     // Events (Effects.h): ships are entities whose position follows their track; explosions are spawned
     // by events when the clock passes them. The ships' wakes are built from their path before the first
@@ -330,8 +338,17 @@ void runReplay(const ReplayOptions& o) {
             frame.width = view.width;
             frame.height = view.height;
 
+            std::vector<DrawnObject> drawn;
+            for (const ReplayObject& obj : objects)
+                if (t >= obj.start && t <= obj.end && obj.id != view.hiddenObject.value_or(~uint64_t(0)))
+                    drawn.push_back({obj.shape, obj.length, obj.track->poseAt(t)});
             gpuTimer.begin();
             renderer.render(registry, frame);
+            const int objectsDrawn =
+                objectRenderer
+                    ? objectRenderer->draw(drawn, frame.camera, target.sceneFramebuffer().id(), view.width,
+                                           view.height, oceanDesc.lighting.sunDirection, drawEarthRadius)
+                    : 0;
             tonemapper.run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
             gpuTimer.end();
             target.readScene(scene);
@@ -395,7 +412,8 @@ void runReplay(const ReplayOptions& o) {
                               {"effects_ended", fx.ended},
                               {"explosions_dropped", fx.droppedExplosions},
                               {"wakes_dropped", fx.droppedWakes},
-                              {"events_rejected", fx.rejected}};
+                              {"events_rejected", fx.rejected},
+                              {"objects_drawn", objectsDrawn}};
             viewFrames[vi].push_back(std::move(fj));
         }
         const auto f1 = std::chrono::steady_clock::now();

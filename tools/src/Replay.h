@@ -49,6 +49,8 @@ struct ReplayOptions {
     /// Apply the flight file's events (explosions, ships with their wakes; docs/FLIGHT_FORMAT.md).
     /// false (--no-events): the plain ocean, for comparisons and benchmarks.
     bool events = true;
+    /// Draw the recording's aircraft, ships and weapons (ObjectRenderer.h); false: --no-objects.
+    bool objects = true;
 };
 
 /// Parses "WxH" (e.g. "640x360"); throws UsageError naming --size.

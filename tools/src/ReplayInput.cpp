@@ -65,6 +65,47 @@ const recording::RecordedObject* defaultFocus(const recording::Recording& rec) {
 
 } // namespace
 
+std::vector<ReplayObject> replayObjects(const ReplayInput& in, double start, double end) {
+    std::vector<ReplayObject> out;
+    if (!in.recording)
+        return out;
+    const recording::Recording& rec = *in.recording;
+    for (const recording::RecordedObject& o : rec.objects) {
+        if (o.track.empty() || o.hasTag("Parachutist") || o.hasTag("Shell") || o.hasTag("Decoy"))
+            continue;
+        ReplayObject r;
+        r.id = o.id;
+        if (o.hasTag("Watercraft")) {
+            r.shape = o.hasTag("AircraftCarrier") ? ObjectShape::Carrier : ObjectShape::Ship;
+            r.length = o.length > 0.0                ? o.length
+                       : o.hasTag("AircraftCarrier") ? 330.0
+                       : o.hasTag("Warship")         ? 150.0
+                                                     : 60.0;
+        } else if (o.hasTag("Rotorcraft")) {
+            r.shape = ObjectShape::Rotorcraft;
+            r.length = o.length > 0.0 ? o.length : 18.0;
+        } else if (o.hasTag("Air")) {
+            r.shape = ObjectShape::Aircraft;
+            r.length = o.length > 0.0 ? o.length : 19.0;
+        } else if (o.hasTag("Weapon")) {
+            r.shape = ObjectShape::Weapon;
+            r.length = o.length > 0.0        ? o.length
+                       : o.hasTag("Torpedo") ? 6.0
+                       : o.hasTag("Missile") ? 4.0
+                                             : 3.0;
+        } else {
+            continue;
+        }
+        r.start = o.startTime();
+        r.end = o.removedAt ? *o.removedAt : std::max(o.endTime(), rec.endTime);
+        if (r.end < start || r.start > end)
+            continue;
+        r.track = std::make_shared<const recording::WorldTrack>(o, *in.frame);
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
 double parseTimeArgument(const std::string& text, const std::optional<double>& referenceUnix,
                          const std::string& option) {
     double v = 0.0;
@@ -187,6 +228,8 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
             v.name = "view" + std::to_string(i) + "-" + specs[i].kind;
         applyViewKeys(specs[i], v);
         v.camera = [rig](double t) { return rig->poseAt(t); };
+        if (specs[i].kind == "cockpit")
+            v.hiddenObject = rig->object().id;
         if (i == 0) {
             in.startTime = rig->startTime();
             in.endTime = rig->endTime();

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "FlightPath.h"
+#include "ObjectRenderer.h"
 
 #include <recording/CameraRig.h>
 #include <recording/EarthFrame.h>
@@ -27,6 +28,16 @@ struct ReplayView {
     int width = 640, height = 360;
     float fovYDeg = 60.0f;
     std::function<Pose(double)> camera;
+    std::optional<uint64_t> hiddenObject; ///< a cockpit view does not draw the object it sits in
+};
+
+/// A recorded object drawn in the frames (ObjectRenderer), alive over [start, end].
+struct ReplayObject {
+    uint64_t id = 0;
+    ObjectShape shape = ObjectShape::Aircraft;
+    double length = 19.0;
+    double start = 0.0, end = 0.0;
+    std::shared_ptr<const recording::WorldTrack> track;
 };
 
 struct ReplayInput {
@@ -51,6 +62,10 @@ struct ReplayInput {
 /// unless its spec says size=WxH / fov=DEG. Throws FlightError, RecordingError, RigError or UsageError.
 ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vector<std::string>& rigs,
                             int defaultWidth, int defaultHeight, float defaultFov);
+
+/// The recording's aircraft, ships and weapons (not shells, decoys, ground units or navaids) alive at some
+/// time in [start, end], with their world tracks. Empty for a CSV flight.
+std::vector<ReplayObject> replayObjects(const ReplayInput& input, double start, double end);
 
 /// `--list-objects`: one line per object with a track: id, type, name, pilot, time span, altitude range and
 /// the share of its samples at the sea surface (|alt| <= 5 m; recordings carry no land mask).

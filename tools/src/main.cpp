@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
     CLI::Option* ocioOpt = rp->add_option("--ocio-config", ocioConfig, "OCIO config file (overrides $OCIO)");
     rp->add_flag("--no-images", noImages, "render and read back but write no images (benchmarking)");
     rp->add_flag("--no-progress", noProgress, "no progress line");
-    bool noEvents = false;
+    bool noEvents = false, noObjects = false;
+    rp->add_flag("--no-objects", noObjects, "do not draw the recording's aircraft, ships and weapons");
     rp->add_flag("--no-events", noEvents,
                  "ignore the flight file's explosions and ships (the plain ocean, for comparisons)");
     rp->add_option("--fov", replay.fovYDeg, "vertical field of view, degrees")->default_val(60.0f);
@@ -94,6 +95,7 @@ int main(int argc, char** argv) {
                 replay.video = video;
             replay.outDir = outDir;
             replay.events = !noEvents;
+            replay.objects = !noObjects;
             pacifica::tools::parseSize(size, replay.width, replay.height);
             if (startOpt->count())
                 replay.start = start;
