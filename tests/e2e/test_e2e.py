@@ -579,19 +579,21 @@ CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options"
          "effects": case_effects}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--case", choices=sorted(CASES), required=True)
+def main(cases=None, label="e2e", doc=None):
+    """Runs one --case of `cases` (this file's CASES by default); shared by test_recordings.py."""
+    cases = cases or CASES
+    ap = argparse.ArgumentParser(description=doc or __doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--case", choices=sorted(cases), required=True)
     ap.add_argument("pacifica_exe")
     ap.add_argument("source_dir")
     ns = ap.parse_args()
 
     c = E2eChecks()
-    tmp = tempfile.mkdtemp(prefix=f"pacifica-e2e-{ns.case}-")
+    tmp = tempfile.mkdtemp(prefix=f"pacifica-{label}-{ns.case}-")
     t0 = time.monotonic()
-    print(f"e2e case '{ns.case}': {ns.pacifica_exe} (temp dir {tmp})")
+    print(f"{label} case '{ns.case}': {ns.pacifica_exe} (temp dir {tmp})")
     try:
-        CASES[ns.case](c, ns.pacifica_exe, os.path.abspath(ns.source_dir), tmp)
+        cases[ns.case](c, ns.pacifica_exe, os.path.abspath(ns.source_dir), tmp)
     except CaseAborted as e:
         if not c.failed:
             c.failed.append(str(e))
@@ -599,7 +601,7 @@ def main():
     except subprocess.TimeoutExpired as e:
         c.failed.append(f"timed out: {e}")
         print(f"  FAIL  timed out: {e}")
-    return c.finish(f"e2e/{ns.case}", t0, tmp)
+    return c.finish(f"{label}/{ns.case}", t0, tmp)
 
 
 if __name__ == "__main__":

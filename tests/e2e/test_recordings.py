@@ -22,18 +22,17 @@ Cases (chosen with --case, one ctest test each):
 
 Usage: test_recordings.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library + ffprobe)
 """
-import argparse
 import json
 import math
 import os
 import subprocess
 import sys
-import tempfile
 import time
 import zipfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_e2e import E2eChecks, CaseAborted, child_env, exr_mean_rgb  # noqa: E402
+import test_e2e  # noqa: E402
+from test_e2e import child_env, exr_mean_rgb  # noqa: E402
 
 RUN_TIMEOUT_S = 240
 SMALL = ["--size", "160x90", "--no-progress"]
@@ -285,24 +284,5 @@ CASES = {"acmi-rigs": case_acmi_rigs, "acmi-ships": case_acmi_ships, "acmi-views
          "acmi-video": case_acmi_video, "formats": case_formats, "bad-input": case_bad_input}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--case", choices=sorted(CASES), required=True)
-    ap.add_argument("pacifica_exe")
-    ap.add_argument("source_dir")
-    ns = ap.parse_args()
-    c = E2eChecks()
-    tmp = tempfile.mkdtemp(prefix=f"pacifica-rec-{ns.case}-")
-    t0 = time.monotonic()
-    print(f"recordings case '{ns.case}': {ns.pacifica_exe} (temp dir {tmp})")
-    try:
-        CASES[ns.case](c, ns.pacifica_exe, os.path.abspath(ns.source_dir), tmp)
-    except CaseAborted as e:
-        if not c.failed:
-            c.failed.append(str(e))
-        print(f"  case aborted: {e}")
-    return c.finish(f"recordings/{ns.case}", t0, tmp)
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(test_e2e.main(CASES, "recordings", __doc__))
