@@ -246,6 +246,17 @@ def case_formats(c, exe, source_dir, tmp):
     s = replay(c, exe, [igc, "--rig", "chase:Test Pilot,smoothing=0", "--start", "30", "--end", "150", "--fps",
                         "0.05", *SMALL], os.path.join(tmp, "igc"))
     c.check(s["format"] == "igc" and len(s["frames"]) == 7, "IGC: 7 frames 20 s apart", f"{s['format']}")
+    # `pacifica convert` writes the IGC flight as ACMI: it lists and replays to the same frames.
+    converted = os.path.join(tmp, "glider.txt.acmi")
+    p = subprocess.run([exe, "convert", igc, converted], env=child_env(), capture_output=True, text=True,
+                       timeout=RUN_TIMEOUT_S)
+    c.check(p.returncode == 0 and os.path.exists(converted), "convert IGC -> ACMI succeeds", p.stderr[-300:])
+    s2 = replay(c, exe, [converted, "--rig", "chase:Test Pilot,smoothing=0", "--start", "30", "--end", "150",
+                         "--fps", "0.05", *SMALL], os.path.join(tmp, "igc2"))
+    h0 = [f["pose"]["heading_deg"] for f in s["frames"]]
+    h1 = [f["pose"]["heading_deg"] for f in s2["frames"]]
+    c.check(s2["format"] == "acmi-text" and len(h1) == len(h0) and all(abs(a - b) < 0.2 for a, b in zip(h0, h1)),
+            "the converted flight replays with the same camera (within 0.2 deg)", f"{h0} vs {h1}")
     heads = [f["pose"]["heading_deg"] for f in s["frames"]]
     c.check(abs(heads[0] - 90.0) < 1.5, "IGC chase: heading east on the straight leg", str(heads))
     # In the turn the heading grows 6 deg/s: 20 s between frames = 120 deg (mod 360).

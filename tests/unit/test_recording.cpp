@@ -4,6 +4,7 @@
 // local ENU, camera rigs and object selection, and which recorded objects drive the sea. The real DCS
 // recording in
 // ../shared/data/flights is read too.
+#include <recording/AcmiWriter.h>
 #include <recording/CameraRig.h>
 #include <recording/EarthFrame.h>
 #include <recording/Recording.h>
@@ -18,6 +19,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 namespace {
@@ -483,6 +485,58 @@ TEST(CameraRig, SelectionErrorsAndPoses) {
     EXPECT_NEAR(fixed->poseAt(0.0).headingDeg, 270.0, 0.01);
 }
 
+void expectSameRecording(const Recording& a, const Recording& b) {
+    ASSERT_EQ(a.objects.size(), b.objects.size());
+    EXPECT_EQ(a.title, b.title);
+    EXPECT_EQ(a.referenceTime, b.referenceTime);
+    ASSERT_EQ(a.events.size(), b.events.size());
+    for (size_t i = 0; i < a.objects.size(); ++i) {
+        const RecordedObject& x = a.objects[i];
+        const RecordedObject& y = b.objects[i];
+        EXPECT_EQ(x.id, y.id);
+        EXPECT_EQ(x.type, y.type);
+        EXPECT_EQ(x.name, y.name);
+        EXPECT_EQ(x.pilot, y.pilot);
+        EXPECT_EQ(x.attitude, y.attitude);
+        EXPECT_EQ(x.removedAt, y.removedAt);
+        EXPECT_EQ(x.destroyedAt, y.destroyedAt);
+        ASSERT_EQ(x.track.size(), y.track.size()) << x.describe();
+        for (size_t k = 0; k < x.track.size(); ++k) {
+            const ObjectSample &p = x.track[k], &q = y.track[k];
+            ASSERT_NEAR(p.time, q.time, 5e-4);
+            ASSERT_NEAR(p.lon, q.lon, 6e-8); // 7 decimals of a degree: ~1 cm
+            ASSERT_NEAR(p.lat, q.lat, 6e-8);
+            ASSERT_NEAR(p.alt, q.alt, 5e-3);
+            ASSERT_NEAR(p.roll, q.roll, 0.051);
+            ASSERT_NEAR(p.pitch, q.pitch, 0.051);
+            ASSERT_NEAR(p.yaw, q.yaw, 0.051);
+        }
+    }
+}
+
+TEST(AcmiWriter, RoundTripsEscapesEventsRemovalsAndPositionOnlyTracks) {
+    const Recording a = scene();
+    std::ostringstream text;
+    writeAcmi(a, text);
+    const Recording b = acmi(text.str());
+    expectSameRecording(a, b);
+    // Escapes survive, and a NaN is refused rather than written.
+    std::ostringstream out;
+    AcmiWriter w(out, {"2024-01-01T00:00:00Z", 36, 44, "a, b\nc"});
+    w.frame(0.0);
+    w.object(0x10, {{"Name", "Tom, \"Maverick\"\nMitchell"}});
+    w.transform(0x10, 36.5, 44.5, 100.0, 1.0, 2.0, 3.0);
+    w.frame(1.0);
+    w.transform(0x10, 36.5, 44.6, 100.0, 1.0, 2.0, 3.0);
+    EXPECT_THROW(w.transform(0x10, NAN, 44.6, 100.0, 1.0, 2.0, 3.0), std::invalid_argument);
+    EXPECT_THROW(w.frame(0.5), std::invalid_argument);
+    EXPECT_NE(out.str().find("10,T=|0.6||||\n"), std::string::npos) << out.str(); // only latitude changed
+    const Recording c = acmi(out.str());
+    EXPECT_EQ(c.title, "a, b\nc");
+    EXPECT_EQ(c.objects.at(0).name, "Tom, \"Maverick\"\nMitchell");
+    EXPECT_DOUBLE_EQ(c.objects[0].track[1].lat, 44.6);
+}
+
 TEST(RealRecording, DcsBlackSeaF14) {
     const char* shared = std::getenv("PACIFICA_SHARED_DIR");
     const fs::path file = fs::path(shared ? shared : "../shared") / "data/flights/dcs-blacksea-f14b.txt.acmi";
@@ -511,6 +565,10 @@ TEST(RealRecording, DcsBlackSeaF14) {
     EXPECT_EQ(d.byType.at("Navaid+Static+Bullseye").leftOut.at("not a ship, weapon or aircraft"), 3);
     for (const SeaShip& s : d.ships)
         EXPECT_GE(s.samples.size(), 2u) << s.label;
+    // Written back as ACMI and read again: the same objects, tracks (to the written precision) and events.
+    std::ostringstream text;
+    writeAcmi(r, text);
+    expectSameRecording(r, acmi(text.str()));
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 #include "Replay.h"
 #include "ReplayInput.h"
 
+#include <recording/AcmiWriter.h>
 #include <recording/Recording.h>
 
 #include <CLI/CLI.hpp>
@@ -14,7 +15,9 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <fstream>
 #include <string>
+#include <unistd.h>
 
 int main(int argc, char** argv) {
     std::signal(SIGPIPE, SIG_IGN); // a dying ffmpeg (--video) must give an error, not kill the process
@@ -69,6 +72,12 @@ int main(int argc, char** argv) {
     pacifica::tools::OceanOptions oceanOptions;
     pacifica::tools::addOceanOptions(*rp, oceanOptions);
 
+    std::string convertIn, convertOut;
+    CLI::App* cv = app.add_subcommand("convert", "write a recording (Tacview ACMI text/zip, IGC) as Tacview "
+                                                 "ACMI 2.2 text, e.g. an IGC flight for Tacview");
+    cv->add_option("input", convertIn, "recording to read")->required();
+    cv->add_option("output", convertOut, "ACMI text file to write (.txt.acmi)")->required();
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -84,6 +93,29 @@ int main(int argc, char** argv) {
     }
 
     try {
+        if (cv->parsed()) {
+            const pacifica::recording::Recording rec = pacifica::recording::readRecording(convertIn);
+            // Written beside the target and renamed on success: never a half-written file.
+            const std::string tmp = convertOut + ".tmp-" + std::to_string(getpid());
+            {
+                std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+                if (!out)
+                    throw std::runtime_error(convertOut + ": cannot write");
+                pacifica::recording::writeAcmi(rec, out);
+                out.flush();
+                if (!out) {
+                    std::remove(tmp.c_str());
+                    throw std::runtime_error(convertOut + ": write failed");
+                }
+            }
+            if (std::rename(tmp.c_str(), convertOut.c_str()) != 0) {
+                std::remove(tmp.c_str());
+                throw std::runtime_error(convertOut + ": cannot move the file into place");
+            }
+            std::fprintf(stderr, "pacifica: wrote %zu objects (%lld samples) to %s\n", rec.objects.size(),
+                         rec.samples, convertOut.c_str());
+            return 0;
+        }
         if (rp->parsed() && listObjects) {
             const pacifica::recording::Recording rec = pacifica::recording::readRecording(flight);
             std::fputs(pacifica::tools::listObjects(rec).c_str(), stdout);
