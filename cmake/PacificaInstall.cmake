@@ -1,9 +1,10 @@
 # Install rules and the package config, so an outside project can
 #   find_package(Pacifica CONFIG REQUIRED)
-#   target_link_libraries(app PRIVATE Pacifica::ocean)   # and/or Pacifica::engine, Pacifica::capture
+#   target_link_libraries(app PRIVATE Pacifica::ocean)   # and/or Pacifica::engine, Pacifica::capture,
+#                                                        # Pacifica::recording
 include(CMakePackageConfigHelpers)
 
-set(PACIFICA_EXPORTED_TARGETS pacifica_engine pacifica_ocean)
+set(PACIFICA_EXPORTED_TARGETS pacifica_engine pacifica_ocean pacifica_recording)
 if(PACIFICA_WITH_OIIO)
     list(APPEND PACIFICA_EXPORTED_TARGETS pacifica_capture)
 endif()
@@ -12,6 +13,7 @@ install(TARGETS ${PACIFICA_EXPORTED_TARGETS} EXPORT PacificaTargets
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/ ${PROJECT_SOURCE_DIR}/ocean/include/
+                  ${PROJECT_SOURCE_DIR}/tools/recording/include/
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
 set(PACIFICA_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Pacifica)

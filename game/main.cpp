@@ -3,8 +3,12 @@
 // circles ahead of the start, leaving its wake (ocean/Effects.h: effects are created by events). The
 // simulation runs on a fixed step in double precision; the camera starts far from the origin (10^6 m) to
 // exercise camera-relative rendering.
-//   pacifica-game [--frames N]   N > 0: fly a scripted manoeuvre for N frames, check the image, exit
-//                                (0 = rendered finite, non-black frames; 1 = not).
+//   pacifica-game [--frames N] [--record FILE.txt.acmi]
+//     --frames N   N > 0: fly a scripted manoeuvre for N frames, check the image, exit
+//                  (0 = rendered finite, non-black frames; 1 = not).
+//     --record F   write the session as Tacview ACMI 2.2 (the player, the ship, bombs and their impacts) for
+//                  `pacifica replay F` or Tacview; the world is placed on the Earth at MAP_ORIGIN
+//                  (EarthFrame).
 #include <engine/Ecs.h>
 #include <engine/Log.h>
 #include <engine/Space.h>
@@ -15,6 +19,8 @@
 #include <engine/gl/GlContext.h>
 #include <ocean/Effects.h>
 #include <ocean/Ocean.h>
+#include <recording/AcmiWriter.h>
+#include <recording/EarthFrame.h>
 
 #include <epoxy/gl.h>
 // GLFW only for its key codes: the window itself comes from engine's GlContext.
@@ -26,8 +32,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -68,11 +77,97 @@ void step(Aircraft& a, const Controls& c, double dt) {
     a.pose.position.z = std::max(a.pose.position.z, 2.0); // do not fly into the sea
 }
 
+/// Where the game's flat world sits on the Earth, for recordings: the world point MAP_ORIGIN_WORLD (the
+/// start, far from the world origin to exercise camera-relative rendering) is at MAP_ORIGIN_LAT/LON (the
+/// Black Sea).
+constexpr double MAP_ORIGIN_LAT = 44.5, MAP_ORIGIN_LON = 37.0;
+const glm::dvec3 MAP_ORIGIN_WORLD{1.0e6, -2.0e6, 0.0};
+/// Recording time = game time + this, so the ship's history before the first frame has positive times.
+constexpr double RECORD_OFFSET_S = 180.0;
+
+/// Writes the session as ACMI: world poses -> WGS84 through the EarthFrame, grid headings -> true headings.
+class SessionRecorder {
+public:
+    explicit SessionRecorder(const std::string& file)
+        : mFile(file), mTmp(file + ".tmp"), mOut(mTmp, std::ios::binary | std::ios::trunc),
+          mFrame(MAP_ORIGIN_LAT, MAP_ORIGIN_LON),
+          mWriter(mOut, {"2024-06-01T10:00:00Z", MAP_ORIGIN_LON, MAP_ORIGIN_LAT, "Pacifica game session"}) {
+        if (!mOut)
+            throw std::runtime_error(file + ": cannot write the recording");
+    }
+    void pose(double t, uint64_t id, const pacifica::Pose& p, bool declare, const char* props) {
+        double lat = 0, lon = 0, alt = 0;
+        mFrame.toGeodetic(p.position - MAP_ORIGIN_WORLD, lat, lon, alt);
+        const double trueYaw = p.headingDeg - mFrame.gridHeading(lat, lon, 0.0); // grid -> true north
+        mWriter.frame(t + RECORD_OFFSET_S);
+        if (declare)
+            mWriter.object(id, parse(props));
+        mWriter.transform(id, lon, lat, alt, p.rollDeg, p.pitchDeg, std::fmod(trueYaw + 360.0, 360.0));
+    }
+    /// A bomb meeting the sea at world (x, y) at time t: a bomb object there, removed at once (replay turns a
+    /// weapon removed at sea level into an explosion at that place and time).
+    void impact(double t, const glm::dvec2& at) {
+        pacifica::Pose p;
+        p.position = {at.x, at.y, 0.0};
+        const uint64_t id = 0x300 + mBombs++;
+        pose(t, id, p, true, "Type=Weapon+Bomb|Name=Mk-82");
+        mWriter.remove(id);
+        double lat = 0, lon = 0, alt = 0;
+        mFrame.toGeodetic(p.position - MAP_ORIGIN_WORLD, lat, lon, alt);
+        std::printf("pacifica-game: impact t=%.6f lat=%.9f lon=%.9f\n", t + RECORD_OFFSET_S, lat, lon);
+    }
+    /// Prints where the ship is at the end (lat/lon), for the record -> replay test.
+    void report(double t, const glm::dvec2& ship) const {
+        double lat = 0, lon = 0, alt = 0;
+        mFrame.toGeodetic(glm::dvec3(ship, 0.0) - MAP_ORIGIN_WORLD, lat, lon, alt);
+        std::printf("pacifica-game: ship t=%.6f lat=%.9f lon=%.9f\n", t + RECORD_OFFSET_S, lat, lon);
+    }
+    /// Closes the file and moves it into place (a failed session leaves no half-written recording).
+    void finish() {
+        mOut.flush();
+        if (!mOut)
+            throw std::runtime_error(mFile + ": write failed");
+        mOut.close();
+        std::rename(mTmp.c_str(), mFile.c_str());
+        mDone = true;
+    }
+    ~SessionRecorder() {
+        if (!mDone)
+            std::remove(mTmp.c_str());
+    }
+
+private:
+    static std::vector<std::pair<std::string, std::string>> parse(const std::string& props) {
+        std::vector<std::pair<std::string, std::string>> out;
+        size_t start = 0;
+        while (start < props.size()) {
+            const size_t bar = props.find('|', start);
+            const std::string kv =
+                props.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
+            const size_t eq = kv.find('=');
+            out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+            start = bar == std::string::npos ? props.size() : bar + 1;
+        }
+        return out;
+    }
+    std::string mFile, mTmp;
+    std::ofstream mOut;
+    pacifica::recording::EarthFrame mFrame;
+    pacifica::recording::AcmiWriter mWriter;
+    int mBombs = 0;
+    bool mDone = false;
+};
+
 } // namespace
 
 int main(int argc, char** argv) {
     long long scriptedFrames = 0;
+    std::string recordFile;
     for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--record") == 0 && i + 1 < argc) {
+            recordFile = argv[++i];
+            continue;
+        }
         if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
             scriptedFrames = std::atoll(argv[++i]);
             if (scriptedFrames <= 0) {
@@ -80,7 +175,7 @@ int main(int argc, char** argv) {
                 return 2;
             }
         } else {
-            std::fprintf(stderr, "usage: pacifica-game [--frames N]\n");
+            std::fprintf(stderr, "usage: pacifica-game [--frames N] [--record FILE.txt.acmi]\n");
             return 2;
         }
     }
@@ -98,7 +193,7 @@ int main(int argc, char** argv) {
         pacifica::ocean::EffectsSystem effects(registry, events);
 
         Aircraft plane;
-        plane.pose.position = {1.0e6, -2.0e6, 60.0};
+        plane.pose.position = MAP_ORIGIN_WORLD + glm::dvec3(0.0, 0.0, 60.0);
         plane.pose.headingDeg = 80.0;
         plane.pose.pitchDeg = -3.0;
 
@@ -114,10 +209,24 @@ int main(int argc, char** argv) {
         const pacifica::ecs::Entity ship = registry.create();
         registry.emplace<pacifica::ocean::Ship>(ship, pacifica::ocean::Ship{shipAt(-180.0), 80.0});
         events.enqueue(pacifica::ocean::AttachShipTrail{ship, pacifica::ocean::WakeParams{}});
+        std::optional<SessionRecorder> recorder;
+        if (!recordFile.empty())
+            recorder.emplace(recordFile);
+        auto shipPose = [&](double t) {
+            const double a = 12.0 / 600.0 * t;
+            pacifica::Pose p;
+            p.position = glm::dvec3(shipAt(t), 0.0);
+            p.headingDeg =
+                std::fmod(std::atan2(-std::sin(a), std::cos(a)) * 180.0 / std::numbers::pi + 360.0, 360.0);
+            return p;
+        };
+        constexpr const char* SHIP_PROPS = "Type=Sea+Watercraft+Warship|Name=Circling Ship|Length=80";
         for (double t = -180.0; t < 0.0; t += 0.5) {
             registry.get<pacifica::ocean::Ship>(ship).position = shipAt(t);
             events.dispatch();
             effects.update(t, plane.pose.position);
+            if (recorder)
+                recorder->pose(t, 0x200, shipPose(t), t == -180.0, SHIP_PROPS);
         }
         bool bombKeyWasDown = false;
         pacifica::FixedStepClock clock(1.0 / 120.0);
@@ -142,12 +251,20 @@ int main(int argc, char** argv) {
             const bool bombKey = scriptedFrames ? frame == 1 : ctx->keyDown(GLFW_KEY_B);
             if (bombKey && !bombKeyWasDown) {
                 const double h = glm::radians(plane.pose.headingDeg);
-                events.enqueue(pacifica::ocean::SpawnExplosion{
-                    glm::dvec2(plane.pose.position) + 400.0 * glm::dvec2(std::sin(h), std::cos(h)),
-                    clock.time(), 1.0});
+                const glm::dvec2 at =
+                    glm::dvec2(plane.pose.position) + 400.0 * glm::dvec2(std::sin(h), std::cos(h));
+                // Strength 1 = a 500 kg bomb: what replay gives a recorded Weapon+Bomb (SeaDrivers.h).
+                events.enqueue(pacifica::ocean::SpawnExplosion{at, clock.time(), 1.0});
+                if (recorder)
+                    recorder->impact(clock.time(), at);
             }
             bombKeyWasDown = bombKey;
             registry.get<pacifica::ocean::Ship>(ship).position = shipAt(clock.time());
+            if (recorder) {
+                recorder->pose(clock.time(), 0x100, plane.pose, frame == 0,
+                               "Type=Air+FixedWing|Name=Pacifica Jet|Pilot=Player|CallSign=Pacifica1");
+                recorder->pose(clock.time(), 0x200, shipPose(clock.time()), false, SHIP_PROPS);
+            }
             events.dispatch();
             effects.update(clock.time(), plane.pose.position);
 
@@ -178,6 +295,10 @@ int main(int argc, char** argv) {
             ++frame;
             if (scriptedFrames && frame >= scriptedFrames)
                 break;
+        }
+        if (recorder) {
+            recorder->finish();
+            recorder->report(clock.time(), shipAt(clock.time()));
         }
         if (scriptedFrames) {
             const pacifica::ocean::OceanStats& st = renderer.lastStats();

@@ -5,6 +5,7 @@
 #include <engine/gl/FrameTargets.h>
 #include <engine/gl/GlContext.h>
 #include <ocean/Ocean.h>
+#include <recording/EarthFrame.h>
 
 #include <epoxy/gl.h>
 
@@ -17,6 +18,13 @@ int main() {
     if (std::abs(grid.radius(grid.desc().rings - 1) - 40000.0) > 0.04) {
         std::fprintf(stderr, "consumer: radial grid r_max %.6f != 40000\n",
                      grid.radius(grid.desc().rings - 1));
+        return 1;
+    }
+    // Pacifica::recording: a point 1 km north of the frame's origin is 1 km up its y axis.
+    const pacifica::recording::EarthFrame earth(44.5, 37.0);
+    const glm::dvec3 north = earth.toWorld(44.5 + 1000.0 / 111132.0, 37.0, 0.0);
+    if (std::abs(north.y - 1000.0) > 2.0 || std::abs(north.x) > 1e-6) {
+        std::fprintf(stderr, "consumer: EarthFrame put 1 km north at (%f, %f)\n", north.x, north.y);
         return 1;
     }
     auto context = pacifica::gl::createHeadlessContext();

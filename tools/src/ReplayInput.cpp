@@ -270,14 +270,19 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
                        {"left_out", left}};
     }
     nlohmann::json impacts = nlohmann::json::array();
-    for (const recording::SeaImpact& x : drivers.impacts)
+    for (const recording::SeaImpact& x : drivers.impacts) {
+        double lat = 0.0, lon = 0.0, alt = 0.0;
+        in.frame->toGeodetic({x.position.x, x.position.y, 0.0}, lat, lon, alt);
         impacts.push_back({{"id", hexId(x.id)},
+                           {"latitude_deg", lat},
+                           {"longitude_deg", lon},
                            {"type", x.type},
                            {"time_s", x.time},
                            {"x_m", x.position.x},
                            {"y_m", x.position.y},
                            {"strength", x.strength},
                            {"cause", x.cause}});
+    }
     nlohmann::json ships = nlohmann::json::array();
     for (const recording::SeaShip& s : drivers.ships)
         ships.push_back({{"id", hexId(s.id)}, {"object", s.label}, {"length_m", s.length}});
