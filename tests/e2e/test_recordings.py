@@ -85,7 +85,12 @@ def case_acmi_rigs(c, exe, source_dir, tmp):
     f14 = [line for line in p.stdout.splitlines() if line.startswith("d01 ")]
     c.check(len(f14) == 1 and "F-14B" in f14[0] and "Nuevo apodo" in f14[0], "--list-objects lists the F-14B",
             p.stdout[:400])
-    c.check(len(p.stdout.splitlines()) == 15, "--list-objects: a header and 14 objects", str(len(p.stdout.splitlines())))
+    rows = [line for line in p.stdout.splitlines()[1:] if not line.startswith("(")]
+    c.check(len(rows) == 14, "--list-objects: 14 objects", str(len(rows)))
+    c.check("over_sea" in p.stdout.splitlines()[0] and "binned_GSHHS" in p.stdout,
+            "--list-objects: the share over the sea by the GSHHG shorelines", p.stdout[-300:])
+    share = float(f14[0].split()[-1].rstrip("%")) if f14 else -1.0
+    c.check(50.0 <= share <= 75.0, "the F-14B flies over the sea part of the time (coast near Anapa)", str(share))
 
     s = replay(c, exe, [acmi, "--rig", "chase:F-14B", "--start", "100", "--end", "102", "--fps", "1", *SMALL],
                os.path.join(tmp, "chase"))
@@ -99,6 +104,8 @@ def case_acmi_rigs(c, exe, source_dir, tmp):
             "summary: the 3 bullseyes are left out, with the reason", str(by["Navaid+Static+Bullseye"]))
     c.check(by["Air+FixedWing"]["read"] == 4 and by["Air+FixedWing"]["explosions"] == 0,
             "summary: 4 aircraft read, none exploded (nothing ends at the sea)", str(by["Air+FixedWing"]))
+    c.check(str(rec.get("land_mask")).endswith(".nc") and "binned_GSHHS" in str(rec.get("land_mask")),
+            "summary names the GSHHG land mask used", str(rec.get("land_mask")))
     c.check(rec["rigs"][0]["object"].startswith("d01 Air+FixedWing 'F-14B'"), "the rig follows d01",
             str(rec["rigs"]))
     # Chase: 40 m behind, 8 m above, looking at the aircraft: pitch -atan(8/40) = -11.3 deg.

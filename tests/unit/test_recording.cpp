@@ -7,6 +7,7 @@
 #include <recording/AcmiWriter.h>
 #include <recording/CameraRig.h>
 #include <recording/EarthFrame.h>
+#include <recording/LandMask.h>
 #include <recording/Recording.h>
 #include <recording/SeaDrivers.h>
 
@@ -403,6 +404,42 @@ TEST(SeaDrivers, ShipsImpactsAndLeftOutWithReasons) {
     EXPECT_EQ(d.byType.at("Ground+Heavy+Armor").leftOut.at("ground object"), 1);
     EXPECT_EQ(d.byType.at("Sea+Watercraft+Warship").ships, 2);
     EXPECT_EQ(d.byType.at("Air+FixedWing").explosions, 1);
+}
+
+TEST(LandMask, GshhgShorelinesTellLandFromWater) {
+    // Debian's gmt-gshhg-low (installed by ./pacifica deps) holds the GSHHG binned shorelines.
+    const std::optional<LandMask> mask = LandMask::loadDefault();
+    ASSERT_TRUE(mask.has_value()) << "no GSHHG file: apt-get install gmt-gshhg-low";
+    struct Place {
+        const char* name;
+        double lat, lon;
+        bool land;
+    };
+    for (const Place& p :
+         {Place{"Black Sea", 43.5, 34.0, false}, Place{"Anapa, inland", 45.0, 37.6, true},
+          Place{"Crimea", 45.3, 34.3, true}, Place{"Sea of Azov", 46.0, 36.5, false},
+          Place{"Caspian (a lake: water)", 42.0, 50.5, false}, Place{"Atlantic", 30.0, -40.0, false},
+          Place{"Sahara", 25.0, 10.0, true}, Place{"Lake Victoria", -1.0, 33.0, false},
+          Place{"Greenland", 72.0, -40.0, true}, Place{"Pacific", 0.0, -150.0, false},
+          Place{"London", 51.5, -0.1, true}, Place{"North Sea", 55.0, 3.0, false},
+          Place{"the DCS carrier group", 44.616, 36.885, false}})
+        EXPECT_EQ(mask->isLand(p.lat, p.lon), p.land) << p.name;
+    EXPECT_EQ(mask->isLand(43.5, 34.0 + 360.0), false); // longitudes wrap
+    EXPECT_FALSE(mask->isLand(NAN, 0.0));
+    EXPECT_THROW(LandMask("/nonexistent/binned_GSHHS_l.nc"), RecordingError);
+
+    // A bomb removed at sea level over land (Anapa, inland) is left out by position, not exploded.
+    const std::string text =
+        std::string(HEADER) +
+        "0,ReferenceLongitude=36\n0,ReferenceLatitude=44\n#0\n"
+        "e1,T=1.6|1.0|2,Type=Weapon+Bomb\ne2,T=-2|-0.5|2,Type=Weapon+Bomb\n#1\n-e1\n-e2\n";
+    const Recording r = acmi(text);
+    const EarthFrame frame = chooseFrame(r, nullptr, 0.0);
+    const SeaDrivers withMask = seaDrivers(r, frame, &*mask);
+    ASSERT_EQ(withMask.impacts.size(), 1u);
+    EXPECT_EQ(withMask.impacts[0].id, 0xe2u); // 43.5 N 34 E: the Black Sea
+    EXPECT_EQ(withMask.byType.at("Weapon+Bomb").leftOut.at("ended over land (GSHHG shoreline)"), 1);
+    EXPECT_EQ(seaDrivers(r, frame).impacts.size(), 2u); // without shorelines both count as at the sea
 }
 
 TEST(CameraRig, SelectionErrorsAndPoses) {

@@ -3,6 +3,8 @@
 
 #include "Replay.h"
 
+#include <recording/LandMask.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -125,10 +127,13 @@ double parseTimeArgument(const std::string& text, const std::optional<double>& r
 }
 
 std::string listObjects(const recording::Recording& rec) {
+    // The share of each track over the sea by the GSHHG shorelines when installed, else at sea level (|alt|
+    // <= 5 m).
+    const std::optional<recording::LandMask> mask = recording::LandMask::loadDefault();
     std::string out;
     char line[512];
-    std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9s %9s %8s %8s %7s\n", "id", "type", "name",
-                  "pilot", "start_s", "end_s", "alt_min", "alt_max", "at_sea");
+    std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9s %9s %8s %8s %8s\n", "id", "type", "name",
+                  "pilot", "start_s", "end_s", "alt_min", "alt_max", mask ? "over_sea" : "at_sea");
     out += line;
     for (const recording::RecordedObject& o : rec.objects) {
         if (o.track.empty())
@@ -138,14 +143,20 @@ std::string listObjects(const recording::Recording& rec) {
         for (const recording::ObjectSample& s : o.track) {
             lo = std::min(lo, s.alt);
             hi = std::max(hi, s.alt);
-            sea += std::abs(s.alt) <= recording::SEA_CONTACT_M ? 1 : 0;
+            sea += (mask ? !mask->isLand(s.lat, s.lon) : std::abs(s.alt) <= recording::SEA_CONTACT_M) ? 1 : 0;
         }
-        std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9.2f %9.2f %8.0f %8.0f %6.0f%%\n",
+        std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9.2f %9.2f %8.0f %8.0f %7.0f%%\n",
                       hexId(o.id).c_str(), o.type.substr(0, 36).c_str(), o.name.substr(0, 16).c_str(),
                       o.pilot.substr(0, 16).c_str(), o.startTime(), o.endTime(), lo, hi,
                       100.0 * static_cast<double>(sea) / static_cast<double>(o.track.size()));
         out += line;
     }
+    if (!mask)
+        out +=
+            "(no GSHHG shorelines installed: at_sea is the share of samples within 5 m of sea level; apt-get "
+            "install gmt-gshhg-low for over_sea)\n";
+    else
+        out += "(over_sea: share of samples over the sea by " + mask->source() + ")\n";
     return out;
 }
 
@@ -247,7 +258,10 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
                 throw UsageError("--rig: two views are named '" + in.views[i].name +
                                  "'; give each its own name=");
 
-    const recording::SeaDrivers drivers = recording::seaDrivers(*rec, *in.frame);
+    // GSHHG shorelines when installed (gmt-gshhg-*): impacts over land are left out by position, not
+    // altitude.
+    const std::optional<recording::LandMask> mask = recording::LandMask::loadDefault();
+    const recording::SeaDrivers drivers = recording::seaDrivers(*rec, *in.frame, mask ? &*mask : nullptr);
     for (const recording::SeaShip& s : drivers.ships) {
         ShipTrack t;
         t.id = hexId(s.id);
@@ -299,6 +313,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
                     {"longitude_deg", in.frame->originLongitude()},
                     {"frame", "WGS84 azimuthal equidistant (GeographicLib), z = altitude MSL"}}},
                   {"rigs", rigsJson},
+                  {"land_mask", mask ? nlohmann::json(mask->source()) : nlohmann::json(nullptr)},
                   {"by_type", types},
                   {"ships", ships},
                   {"explosions", impacts}};

@@ -42,7 +42,7 @@ double shipLength(const RecordedObject& o) {
 
 } // namespace
 
-SeaDrivers seaDrivers(const Recording& rec, const EarthFrame& frame) {
+SeaDrivers seaDrivers(const Recording& rec, const EarthFrame& frame, const LandMask* mask) {
     SeaDrivers out;
     for (const RecordedObject& o : rec.objects) {
         TypeTally& tally = out.byType[o.type.empty() ? "(no type)" : o.type];
@@ -109,8 +109,17 @@ SeaDrivers seaDrivers(const Recording& rec, const EarthFrame& frame) {
             at = wb + s * (wb - wa);
             atSea = true;
         }
+        if (mask) {
+            double lat = 0.0, lon = 0.0, alt = 0.0;
+            frame.toGeodetic(at, lat, lon, alt);
+            if (mask->isLand(lat, lon)) {
+                ++tally.leftOut["ended over land (GSHHG shoreline)"];
+                continue;
+            }
+        }
         if (!atSea) {
-            ++tally.leftOut["ended above the sea (over land or in the air)"];
+            ++tally.leftOut[mask ? "ended above the sea (in the air)"
+                                 : "ended above the sea (over land or in the air)"];
             continue;
         }
         if (o.hasTag("Air") && !destroyed && vh < 20.0) {

@@ -8,14 +8,16 @@
 // - Weapons (`Weapon`, `Projectile` tags: bombs, missiles, rockets, torpedoes, shells) and aircraft (`Air`)
 //   explode where their track ends -- a `-id` removal or a Destroyed event -- at the sea: the last recorded
 //   altitude within SEA_CONTACT_M of sea level, or a descent that reaches it within the last sample step
-//   (extrapolated: a 300 m/s bomb recorded at 10 Hz is last seen ~30 m up). Recordings carry no land mask, so
-//   an end further above sea level is "ended above the sea (over land or in the air)" and left out; an
+//   (extrapolated: a 300 m/s bomb recorded at 10 Hz is last seen ~30 m up), and not over land by the GSHHG
+//   shorelines when a LandMask is given. An end further above sea level is "ended above the sea (in the air)"
+//   (without a mask: "(over land or in the air)") and left out; an
 //   aircraft removed at sea level without a Destroyed event and below 20 m/s (parked, landed, despawned) is
 //   left out too. Strength by type: explosionStrengthFor() (1 = a nominal 500 kg charge).
 // - Everything else (navaids, ground units, flares, chaff, shrapnel, parachutists) is left out by type.
 #pragma once
 
 #include "recording/EarthFrame.h"
+#include "recording/LandMask.h"
 #include "recording/Recording.h"
 
 #include <glm/glm.hpp>
@@ -60,6 +62,8 @@ struct SeaDrivers {
 /// Rotorcraft 0.4, other aircraft 0.3. 0 for objects that never explode (ships, navaids, ...).
 double explosionStrengthFor(const RecordedObject& o);
 
-SeaDrivers seaDrivers(const Recording& rec, const EarthFrame& frame);
+/// mask (optional, LandMask::loadDefault()): an end over land is left out as "ended over land (GSHHG
+/// shoreline)" whatever its altitude; without a mask only the altitude rule above applies.
+SeaDrivers seaDrivers(const Recording& rec, const EarthFrame& frame, const LandMask* mask = nullptr);
 
 } // namespace pacifica::recording
