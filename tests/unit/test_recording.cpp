@@ -264,6 +264,7 @@ TEST(Igc, DateSpellingsRolloverAndDerivedAttitude) {
                                  "HFPLTPILOTINCHARGE:Ana Ribeiro\nHFGTYGLIDERTYPE:ASK 21\n" +
                                  "I023638FXA3940SIU\n" + body;
         const Recording r = parseIgc(text, "g.igc");
+        EXPECT_EQ(r.altitudeDatum, "");
         ASSERT_EQ(r.objects.size(), 1u);
         const RecordedObject& o = r.objects[0];
         EXPECT_EQ(o.pilot, "Ana Ribeiro");
@@ -294,6 +295,8 @@ TEST(Igc, DateSpellingsRolloverAndDerivedAttitude) {
     EXPECT_EQ(err("AXXX\nB1200004600000N00700000EA0100001000\nB1200104600000X00700000EA0100001000\n"),
               "g.igc:3: B latitude: expected DDMMmmmN/S, got '4600000X'");
     EXPECT_EQ(err("AXXX\nB120000\n"), "g.igc:2: B record: a fix needs at least 35 characters, got 7");
+    EXPECT_EQ(parseIgc("AXXX\nHFALGALTGPS:ELL\n" + body, "g.igc").altitudeDatum, "ELL");
+    EXPECT_EQ(parseIgc("AXXX\nHFALGALTGPS:GEO\n" + body, "g.igc").altitudeDatum, "GEO");
     // Found by fuzz_igc: headers shorter than their key are ignored, not read past their end.
     const Recording shortHeaders = parseIgc(
         "AXXX\nH\nHF\nB1200004600000N00700000EA0100001000\nB1200014600010N00700000EA0100101010\n", "g.igc");

@@ -3,6 +3,8 @@
 
 #include "Replay.h"
 
+#include <engine/Log.h>
+
 #include <recording/LandMask.h>
 
 #include <algorithm>
@@ -207,6 +209,10 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
 
     auto rec = std::make_shared<const recording::Recording>(recording::readRecording(flight));
     in.recording = rec;
+    if (rec->altitudeDatum == "ELL")
+        logWarning(flight.string() +
+                   ": GNSS altitudes are above the WGS84 ellipsoid (HFALGALTGPS:ELL) and are "
+                   "taken as above sea level (no geoid model installed; it differs by -106..+85 m)");
     in.referenceUnix = rec->referenceUnix;
     std::vector<recording::RigSpec> specs;
     for (const std::string& r : rigs) {
@@ -312,6 +318,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
                    {{"latitude_deg", in.frame->originLatitude()},
                     {"longitude_deg", in.frame->originLongitude()},
                     {"frame", "WGS84 azimuthal equidistant (GeographicLib), z = altitude MSL"}}},
+                  {"altitude_datum", rec->altitudeDatum},
                   {"rigs", rigsJson},
                   {"land_mask", mask ? nlohmann::json(mask->source()) : nlohmann::json(nullptr)},
                   {"by_type", types},

@@ -144,7 +144,11 @@ Recording parseIgc(std::string_view text, const std::string& source) {
             } else {
                 // HxPLT, HxGTY, ... (a header shorter than its key is ignored, like any unknown header)
                 const std::string_view tag = line.size() >= 5 ? line.substr(2, 3) : std::string_view{};
-                if (tag == "PLT")
+                if (tag == "ALG") { // HFALGALTGPS:GEO / ELL (the GNSS altitude datum)
+                    const std::string datum = headerValue(line);
+                    if (datum.rfind("ELL", 0) == 0 || datum.rfind("GEO", 0) == 0)
+                        rec.altitudeDatum = datum.substr(0, 3);
+                } else if (tag == "PLT")
                     o.pilot = headerValue(line);
                 else if (tag == "GTY")
                     o.name = headerValue(line);

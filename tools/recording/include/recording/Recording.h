@@ -93,6 +93,9 @@ struct Recording {
     std::string referenceTime;           ///< ISO 8601 UTC as in the file ("" if absent)
     std::optional<double> referenceUnix; ///< referenceTime in seconds since 1970 (UTC), if it parsed
     std::string title;
+    /// IGC: the GNSS altitude datum the logger declares (HFALGALTGPS): "GEO" (geoid, i.e. MSL), "ELL" (WGS84
+    /// ellipsoid: taken as MSL here, no geoid model is packaged; the geoid undulation is -106..+85 m), or "".
+    std::string altitudeDatum;
     std::vector<RecordedObject> objects;   ///< in order of first appearance
     std::vector<RecordedEvent> events;     ///< sorted by time (stable)
     double startTime = 0.0, endTime = 0.0; ///< over every sample and event
