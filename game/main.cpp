@@ -95,13 +95,14 @@ public:
         if (!mOut)
             throw std::runtime_error(file + ": cannot write the recording");
     }
-    void pose(double t, uint64_t id, const pacifica::Pose& p, bool declare, const char* props) {
+    using Properties = std::vector<std::pair<std::string, std::string>>;
+    void pose(double t, uint64_t id, const pacifica::Pose& p, bool declare, const Properties& props) {
         double lat = 0, lon = 0, alt = 0;
         mFrame.toGeodetic(p.position - MAP_ORIGIN_WORLD, lat, lon, alt);
         const double trueYaw = p.headingDeg - mFrame.gridHeading(lat, lon, 0.0); // grid -> true north
         mWriter.frame(t + RECORD_OFFSET_S);
         if (declare)
-            mWriter.object(id, parse(props));
+            mWriter.object(id, props);
         mWriter.transform(id, lon, lat, alt, p.rollDeg, p.pitchDeg, std::fmod(trueYaw + 360.0, 360.0));
     }
     /// A bomb meeting the sea at world (x, y) at time t: a bomb object there, removed at once (replay turns a
@@ -110,7 +111,7 @@ public:
         pacifica::Pose p;
         p.position = {at.x, at.y, 0.0};
         const uint64_t id = 0x300 + mBombs++;
-        pose(t, id, p, true, "Type=Weapon+Bomb|Name=Mk-82");
+        pose(t, id, p, true, {{"Type", "Weapon+Bomb"}, {"Name", "Mk-82"}});
         mWriter.remove(id);
         double lat = 0, lon = 0, alt = 0;
         mFrame.toGeodetic(p.position - MAP_ORIGIN_WORLD, lat, lon, alt);
@@ -137,19 +138,6 @@ public:
     }
 
 private:
-    static std::vector<std::pair<std::string, std::string>> parse(const std::string& props) {
-        std::vector<std::pair<std::string, std::string>> out;
-        size_t start = 0;
-        while (start < props.size()) {
-            const size_t bar = props.find('|', start);
-            const std::string kv =
-                props.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
-            const size_t eq = kv.find('=');
-            out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
-            start = bar == std::string::npos ? props.size() : bar + 1;
-        }
-        return out;
-    }
     std::string mFile, mTmp;
     std::ofstream mOut;
     pacifica::recording::EarthFrame mFrame;
@@ -220,7 +208,8 @@ int main(int argc, char** argv) {
                 std::fmod(std::atan2(-std::sin(a), std::cos(a)) * 180.0 / std::numbers::pi + 360.0, 360.0);
             return p;
         };
-        constexpr const char* SHIP_PROPS = "Type=Sea+Watercraft+Warship|Name=Circling Ship|Length=80";
+        const SessionRecorder::Properties SHIP_PROPS = {
+            {"Type", "Sea+Watercraft+Warship"}, {"Name", "Circling Ship"}, {"Length", "80"}};
         for (double t = -180.0; t < 0.0; t += 0.5) {
             registry.get<pacifica::ocean::Ship>(ship).position = shipAt(t);
             events.dispatch();
@@ -262,7 +251,10 @@ int main(int argc, char** argv) {
             registry.get<pacifica::ocean::Ship>(ship).position = shipAt(clock.time());
             if (recorder) {
                 recorder->pose(clock.time(), 0x100, plane.pose, frame == 0,
-                               "Type=Air+FixedWing|Name=Pacifica Jet|Pilot=Player|CallSign=Pacifica1");
+                               {{"Type", "Air+FixedWing"},
+                                {"Name", "Pacifica Jet"},
+                                {"Pilot", "Player"},
+                                {"CallSign", "Pacifica1"}});
                 recorder->pose(clock.time(), 0x200, shipPose(clock.time()), false, SHIP_PROPS);
             }
             events.dispatch();

@@ -2,6 +2,7 @@
 #include "ObjectRenderer.h"
 
 #include <engine/gl/Shader.h>
+#include <recording/EarthFrame.h>
 
 #include <epoxy/gl.h>
 
@@ -167,9 +168,9 @@ int ObjectRenderer::draw(const std::vector<DrawnObject>& objects, const CameraFr
     int drawn = 0;
     for (const DrawnObject& o : objects) {
         glm::dvec3 rel = o.pose.position - camera.origin;
-        const double d = std::hypot(rel.x, rel.y);
-        if (earthRadius > 0.0)
-            rel.z -= d * d / (2.0 * earthRadius); // the same drop as the sea (ocean/OceanConstants.h)
+        if (earthRadius > 0.0) // the same drop as the sea (ocean/OceanConstants.h)
+            rel.z =
+                recording::EarthFrame::drawnZ(o.pose.position, camera.origin, earthRadius) - camera.origin.z;
         // Too far to cover a pixel (a 19 m aircraft beyond ~38 km): skip.
         const double dist = glm::length(rel);
         if (dist > 2000.0 * o.length + 1.0)

@@ -325,6 +325,10 @@ void runReplay(const ReplayOptions& o) {
         // Frame time from the index (not accumulated): frame k is exactly start + k * speed / fps.
         const double t = std::min(end, start + static_cast<double>(k) * frameStep);
         advanceEffects(t, input.views.front().camera(t).position);
+        std::vector<std::pair<uint64_t, DrawnObject>> alive; // posed once per frame, drawn by every view
+        for (const ReplayObject& obj : objects)
+            if (t >= obj.start && t <= obj.end)
+                alive.push_back({obj.id, {obj.shape, obj.length, obj.track->poseAt(t)}});
         for (size_t vi = 0; vi < input.views.size(); ++vi) {
             const ReplayView& view = input.views[vi];
             gl::FrameTargets& target = *targets[vi];
@@ -339,9 +343,9 @@ void runReplay(const ReplayOptions& o) {
             frame.height = view.height;
 
             std::vector<DrawnObject> drawn;
-            for (const ReplayObject& obj : objects)
-                if (t >= obj.start && t <= obj.end && obj.id != view.hiddenObject.value_or(~uint64_t(0)))
-                    drawn.push_back({obj.shape, obj.length, obj.track->poseAt(t)});
+            for (const auto& [id, object] : alive)
+                if (id != view.hiddenObject.value_or(~uint64_t(0)))
+                    drawn.push_back(object);
             gpuTimer.begin();
             renderer.render(registry, frame);
             const int objectsDrawn =

@@ -16,12 +16,6 @@ namespace pacifica::tools {
 
 namespace {
 
-std::string hexId(uint64_t id) {
-    char b[24];
-    std::snprintf(b, sizeof b, "%llx", static_cast<unsigned long long>(id));
-    return b;
-}
-
 /// Applies the view keys of a rig spec (size, fov, name) to a view.
 void applyViewKeys(const recording::RigSpec& spec, ReplayView& view) {
     for (const auto& [k, v] : spec.params) {
@@ -81,10 +75,7 @@ std::vector<ReplayObject> replayObjects(const ReplayInput& in, double start, dou
         r.id = o.id;
         if (o.hasTag("Watercraft")) {
             r.shape = o.hasTag("AircraftCarrier") ? ObjectShape::Carrier : ObjectShape::Ship;
-            r.length = o.length > 0.0                ? o.length
-                       : o.hasTag("AircraftCarrier") ? 330.0
-                       : o.hasTag("Warship")         ? 150.0
-                                                     : 60.0;
+            r.length = recording::shipLength(o);
         } else if (o.hasTag("Rotorcraft")) {
             r.shape = ObjectShape::Rotorcraft;
             r.length = o.length > 0.0 ? o.length : 18.0;
@@ -148,9 +139,9 @@ std::string listObjects(const recording::Recording& rec) {
             sea += (mask ? !mask->isLand(s.lat, s.lon) : std::abs(s.alt) <= recording::SEA_CONTACT_M) ? 1 : 0;
         }
         std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9.2f %9.2f %8.0f %8.0f %7.0f%%\n",
-                      hexId(o.id).c_str(), o.type.substr(0, 36).c_str(), o.name.substr(0, 16).c_str(),
-                      o.pilot.substr(0, 16).c_str(), o.startTime(), o.endTime(), lo, hi,
-                      100.0 * static_cast<double>(sea) / static_cast<double>(o.track.size()));
+                      recording::hexId(o.id).c_str(), o.type.substr(0, 36).c_str(),
+                      o.name.substr(0, 16).c_str(), o.pilot.substr(0, 16).c_str(), o.startTime(), o.endTime(),
+                      lo, hi, 100.0 * static_cast<double>(sea) / static_cast<double>(o.track.size()));
         out += line;
     }
     if (!mask)
@@ -227,7 +218,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
         if (!focus)
             throw recording::RecordingError(flight.string(), 0, "",
                                             "the recording has no object with a position");
-        specs.push_back(recording::parseRigSpec("chase:" + hexId(focus->id)));
+        specs.push_back(recording::parseRigSpec("chase:" + recording::hexId(focus->id)));
     }
     // The world origin: the first view's object where the replay starts (near the action).
     const recording::RecordedObject& focus = recording::selectObject(*rec, specs.front().object);
@@ -270,7 +261,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
     const recording::SeaDrivers drivers = recording::seaDrivers(*rec, *in.frame, mask ? &*mask : nullptr);
     for (const recording::SeaShip& s : drivers.ships) {
         ShipTrack t;
-        t.id = hexId(s.id);
+        t.id = recording::hexId(s.id);
         for (const glm::dvec3& p : s.samples)
             t.samples.push_back({p.x, p.y, p.z});
         in.ships.push_back(std::move(t));
@@ -293,7 +284,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
     for (const recording::SeaImpact& x : drivers.impacts) {
         double lat = 0.0, lon = 0.0, alt = 0.0;
         in.frame->toGeodetic({x.position.x, x.position.y, 0.0}, lat, lon, alt);
-        impacts.push_back({{"id", hexId(x.id)},
+        impacts.push_back({{"id", recording::hexId(x.id)},
                            {"latitude_deg", lat},
                            {"longitude_deg", lon},
                            {"type", x.type},
@@ -305,7 +296,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
     }
     nlohmann::json ships = nlohmann::json::array();
     for (const recording::SeaShip& s : drivers.ships)
-        ships.push_back({{"id", hexId(s.id)}, {"object", s.label}, {"length_m", s.length}});
+        ships.push_back({{"id", recording::hexId(s.id)}, {"object", s.label}, {"length_m", s.length}});
     in.summary = {{"format", rec->format},
                   {"file_version", rec->fileVersion},
                   {"title", rec->title},

@@ -10,12 +10,6 @@ namespace pacifica::recording {
 
 namespace {
 
-std::string hex(uint64_t id) {
-    char b[24];
-    std::snprintf(b, sizeof b, "%llx", static_cast<unsigned long long>(id));
-    return b;
-}
-
 std::string fixed(double v, int decimals) {
     char b[48];
     std::snprintf(b, sizeof b, "%.*f", decimals, v);
@@ -72,7 +66,7 @@ void AcmiWriter::frame(double t) {
 void AcmiWriter::object(uint64_t id, const std::vector<std::pair<std::string, std::string>>& properties) {
     if (properties.empty())
         return;
-    mOut << hex(id);
+    mOut << hexId(id);
     for (const auto& [k, v] : properties)
         mOut << "," << k << "=" << escape(v);
     mOut << "\n";
@@ -93,11 +87,11 @@ void AcmiWriter::transform(uint64_t id, double lon, double lat, double alt) {
 void AcmiWriter::writeTransform(uint64_t id, const double* v, int n) {
     for (int k = 0; k < n; ++k)
         if (!std::isfinite(v[k]))
-            throw std::invalid_argument("AcmiWriter::transform: object " + hex(id) +
+            throw std::invalid_argument("AcmiWriter::transform: object " + hexId(id) +
                                         " has a non-finite value");
     const int decimals[6] = {7, 7, 2, 1, 1, 1};
     auto [it, fresh] = mLast.try_emplace(id);
-    std::string line = hex(id) + ",T=";
+    std::string line = hexId(id) + ",T=";
     for (int k = 0; k < n; ++k) {
         const std::string f = fixed(v[k], decimals[k]);
         if (k > 0)
@@ -111,14 +105,14 @@ void AcmiWriter::writeTransform(uint64_t id, const double* v, int n) {
 }
 
 void AcmiWriter::remove(uint64_t id) {
-    mOut << "-" << hex(id) << "\n";
+    mOut << "-" << hexId(id) << "\n";
     mLast.erase(id);
 }
 
 void AcmiWriter::event(const std::string& type, const std::vector<uint64_t>& ids, const std::string& text) {
     mOut << "0,Event=" << escape(type);
     for (uint64_t id : ids)
-        mOut << "|" << hex(id);
+        mOut << "|" << hexId(id);
     mOut << "|" << escape(text) << "\n";
 }
 

@@ -132,10 +132,14 @@ ObjectSample RecordedObject::sampleAt(double t) const {
     return r;
 }
 
+std::string hexId(uint64_t id) {
+    char text[24];
+    std::snprintf(text, sizeof text, "%llx", static_cast<unsigned long long>(id));
+    return text;
+}
+
 std::string RecordedObject::describe() const {
-    char idText[24];
-    std::snprintf(idText, sizeof idText, "%llx", static_cast<unsigned long long>(id));
-    std::string s = idText;
+    std::string s = hexId(id);
     s += " " + (type.empty() ? std::string("(no type)") : type);
     if (!name.empty())
         s += " '" + name + "'";

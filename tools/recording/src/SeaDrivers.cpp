@@ -28,8 +28,6 @@ double explosionStrengthFor(const RecordedObject& o) {
     return 0.0;
 }
 
-namespace {
-
 double shipLength(const RecordedObject& o) {
     if (o.length > 0.0)
         return o.length;
@@ -39,8 +37,6 @@ double shipLength(const RecordedObject& o) {
         return 150.0;
     return 60.0;
 }
-
-} // namespace
 
 SeaDrivers seaDrivers(const Recording& rec, const EarthFrame& frame, const LandMask* mask) {
     SeaDrivers out;

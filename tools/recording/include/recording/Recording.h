@@ -144,6 +144,9 @@ Recording parseIgc(std::string_view text, const std::string& sourceName);
 /// smoothed over smoothingSeconds (a Gaussian window, so 1 Hz GPS noise does not shake the camera).
 void deriveAttitude(RecordedObject& object, double smoothingSeconds = 2.0);
 
+/// An object id as ACMI writes it: lowercase hex without a prefix ("d01").
+std::string hexId(uint64_t id);
+
 /// Parses "YYYY-MM-DDTHH:MM:SS[.fff]Z" (UTC) into seconds since 1970; nullopt if it does not parse.
 std::optional<double> parseIsoUtc(std::string_view text);
 

@@ -64,6 +64,9 @@ double explosionStrengthFor(const RecordedObject& o);
 
 /// mask (optional, LandMask::loadDefault()): an end over land is left out as "ended over land (GSHHG
 /// shoreline)" whatever its altitude; without a mask only the altitude rule above applies.
+/// A ship's length: the ACMI Length property, else carrier 330 m, warship 150 m, other 60 m.
+double shipLength(const RecordedObject& o);
+
 SeaDrivers seaDrivers(const Recording& rec, const EarthFrame& frame, const LandMask* mask = nullptr);
 
 } // namespace pacifica::recording
