@@ -123,6 +123,84 @@ TEST(Acmi, NumbersReadExactlyAsFromChars) {
     }
 }
 
+TEST(Acmi, FastAndSlowNumberFormsMixInOneTransform) {
+    // Fields read in the scan that splits T= (plain decimals) next to ones that need from_chars (exponent,
+    // '+' sign, long mantissa), empty fields, and U|V|heading that are skipped unread (even when odd).
+    const Recording r = acmi(std::string(HEADER) + "#1\n1,T=1e-1|+2.5|-0.125|1.5e1|-3|+4|x|y|z\n" +
+                             "#2\n1,T=|0.12345678901234567|7||2|\n");
+    const auto& t = r.objects.at(0).track;
+    ASSERT_EQ(t.size(), 2u);
+    EXPECT_EQ(t[0].lon, 0.1);
+    EXPECT_EQ(t[0].lat, 2.5);
+    EXPECT_EQ(t[0].alt, -0.125);
+    EXPECT_EQ(t[0].roll, 15.0f);
+    EXPECT_EQ(t[0].pitch, -3.0f);
+    EXPECT_EQ(t[0].yaw, 4.0f);
+    EXPECT_EQ(t[1].lon, 0.1); // empty: unchanged
+    EXPECT_EQ(t[1].lat, 0.12345678901234567);
+    EXPECT_EQ(t[1].alt, 7.0);
+    EXPECT_EQ(t[1].roll, 15.0f);
+    EXPECT_EQ(t[1].pitch, 2.0f);
+    EXPECT_EQ(t[1].yaw, 4.0f);
+    EXPECT_NE(acmiError(std::string(HEADER) + "1,T=1|2x|3\n").find("T latitude: expected a number, got '2x'"),
+              std::string::npos);
+    // The reference is added as samples are stored; one set after the first sample still applies to all.
+    const Recording late =
+        acmi(std::string(HEADER) + "0,ReferenceLongitude=179\n1,T=0.5|1|0\n#1\n1,T=2|1|0\n" +
+             "0,ReferenceLongitude=-170\n0,ReferenceLatitude=40\n#2\n2,T=1|1|1\n");
+    ASSERT_EQ(late.objects.size(), 2u);
+    EXPECT_EQ(late.objects[0].track[0].lon, -169.5);
+    EXPECT_EQ(late.objects[0].track[1].lon, -168.0);
+    EXPECT_EQ(late.objects[0].track[1].lat, 41.0);
+    EXPECT_EQ(late.objects[1].track[0].lon, -169.0);
+    EXPECT_EQ(late.objects[1].track[0].lat, 41.0);
+    EXPECT_NE(acmiError(std::string(HEADER) + "0,ReferenceLatitude=89\n#0\n1,T=0|2|0\n")
+                  .find("t.acmi:5: T latitude: object 1 (no type) has latitude 91.000000 (reference + "
+                        "offset) outside"),
+              std::string::npos);
+    EXPECT_NE(
+        acmiError(std::string(HEADER) + "1,T=0|2|0\n0,ReferenceLatitude=89\n").find("outside [-90, 90]"),
+        std::string::npos);
+}
+
+TEST(Acmi, ManyObjectsRemovedAndIdsReused) {
+    // The id index under load: 20000 ids, every third removed, removed ids reused by new objects; each
+    // object keeps its own track and removal time (probe runs shifted back on removal stay findable).
+    std::string text = std::string(HEADER) + "#0\n";
+    const int N = 20000;
+    for (int i = 1; i <= N; ++i)
+        text += hexId(static_cast<uint64_t>(i) * 7919u) + ",T=1|2|" + std::to_string(i) + "\n";
+    text += "#1\n";
+    for (int i = 3; i <= N; i += 3)
+        text += "-" + hexId(static_cast<uint64_t>(i) * 7919u) + "\n";
+    text += "#2\n";
+    for (int i = 1; i <= N; ++i)
+        text += hexId(static_cast<uint64_t>(i) * 7919u) + ",T=||" + std::to_string(i + 1000000) + "\n";
+    const Recording r = acmi(text, 4096);
+    ASSERT_EQ(r.objects.size(), static_cast<size_t>(N + N / 3));
+    for (int i = 1; i <= N; ++i) {
+        const auto& o = r.objects[static_cast<size_t>(i - 1)];
+        ASSERT_EQ(o.id, static_cast<uint64_t>(i) * 7919u);
+        if (i % 3 == 0) {
+            ASSERT_EQ(o.track.size(), 1u) << i;
+            ASSERT_TRUE(o.removedAt.has_value());
+            EXPECT_EQ(*o.removedAt, 1.0);
+        } else {
+            ASSERT_EQ(o.track.size(), 2u) << i;
+            EXPECT_EQ(o.track[1].alt, i + 1000000.0);
+            EXPECT_FALSE(o.removedAt.has_value());
+        }
+    }
+    // The reused ids are new objects that start at t = 2 (their position fields were empty: zero).
+    for (size_t k = static_cast<size_t>(N); k < r.objects.size(); ++k) {
+        const auto& o = r.objects[k];
+        ASSERT_EQ(o.id % 7919u, 0u);
+        ASSERT_EQ(o.track.size(), 1u);
+        EXPECT_EQ(o.track[0].time, 2.0);
+        EXPECT_EQ(o.track[0].alt, static_cast<double>(o.id / 7919u) + 1000000.0);
+    }
+}
+
 TEST(Acmi, BomCrlfCommentsEscapesContinuationsRemovalsEvents) {
     const std::string text = "\xEF\xBB\xBF"
                              "FileType=text/acmi/tacview\r\nFileVersion=2.1\r\n"
@@ -159,6 +237,16 @@ TEST(Acmi, BomCrlfCommentsEscapesContinuationsRemovalsEvents) {
         ASSERT_TRUE(r.referenceUnix.has_value());
         EXPECT_DOUBLE_EQ(*r.referenceUnix, 1609016655.0);
         EXPECT_EQ(r.lines, 14);
+    }
+    // An escape in one chunk and the end of its continued line in a later chunk without any backslash:
+    // every split point must give the same object.
+    const std::string cont = std::string(HEADER) + "1,T=1|2|3,Name=A\\, B\\\n,Pilot=P\n#1\n1,T=4||\n";
+    for (size_t chunk = 1; chunk <= cont.size(); ++chunk) {
+        const Recording r = acmi(cont, chunk);
+        ASSERT_EQ(r.objects.size(), 1u) << chunk;
+        EXPECT_EQ(r.objects[0].name, "A, B\n") << chunk;
+        EXPECT_EQ(r.objects[0].pilot, "P") << chunk;
+        EXPECT_EQ(r.objects[0].track.size(), 2u) << chunk;
     }
 }
 
@@ -228,6 +316,49 @@ TEST(Acmi, ZipAndDetection) {
         EXPECT_EQ(std::string(e.what()),
                   (dir / "junk.bin").string() +
                       ": unrecognised flight file format; supported: " + supportedFormats());
+    }
+    // A member bigger than the 1 MiB buffers, deflated (inflated here with zlib) and stored (read by
+    // libzip): both give the text file's recording; a damaged deflate stream is an error, not a short read.
+    std::string big = std::string(HEADER);
+    for (int f = 0; f < 3000; ++f) {
+        big += "#" + std::to_string(f) + "\n";
+        for (int k = 1; k <= 40; ++k)
+            big += hexId(static_cast<uint64_t>(k)) + ",T=" + std::to_string(0.001 * f) + "|" +
+                   std::to_string(0.5 + 0.0001 * k) + "|" + std::to_string(100 * k) + "\n";
+    }
+    ASSERT_GT(big.size(), size_t(3) << 20);
+    writeFile(dir / "big.txt.acmi", big);
+    const Recording want = readRecording(dir / "big.txt.acmi");
+    for (const zip_int32_t method : {ZIP_CM_DEFLATE, ZIP_CM_STORE}) {
+        const fs::path zp = dir / (method == ZIP_CM_STORE ? "stored.zip.acmi" : "deflated.zip.acmi");
+        int err = 0;
+        zip_t* za = zip_open(zp.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+        ASSERT_NE(za, nullptr);
+        zip_source_t* src = zip_source_buffer(za, big.data(), big.size(), 0);
+        const zip_int64_t idx = zip_file_add(za, "big.txt.acmi", src, ZIP_FL_OVERWRITE);
+        ASSERT_GE(idx, 0);
+        ASSERT_EQ(zip_set_file_compression(za, static_cast<zip_uint64_t>(idx), method, 0), 0);
+        ASSERT_EQ(zip_close(za), 0);
+        const Recording got = readRecording(zp);
+        EXPECT_EQ(got.bytes, big.size());
+        ASSERT_EQ(got.objects.size(), want.objects.size());
+        for (size_t i = 0; i < want.objects.size(); ++i) {
+            ASSERT_EQ(got.objects[i].track.size(), want.objects[i].track.size());
+            EXPECT_EQ(got.objects[i].track.back().lat, want.objects[i].track.back().lat);
+        }
+    }
+    {
+        std::ifstream in(dir / "deflated.zip.acmi", std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        ASSERT_GT(bytes.size(), 4096u);
+        bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x5A);
+        writeFile(dir / "damaged.zip.acmi", bytes);
+        try {
+            readRecording(dir / "damaged.zip.acmi");
+            ADD_FAILURE() << "damaged zip accepted";
+        } catch (const RecordingError& e) {
+            EXPECT_NE(std::string(e.what()).find("corrupt zip member"), std::string::npos) << e.what();
+        }
     }
     writeFile(dir / "bad.zip", "PK\x03\x04 not really a zip");
     EXPECT_THROW(readRecording(dir / "bad.zip"), RecordingError);

@@ -10,7 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
-#include <unordered_map>
+#include <vector>
 
 namespace pacifica::recording {
 
@@ -55,12 +55,12 @@ std::string unescape(std::string_view v) {
 /// "[-]digits[.digits]" with at most 15 significant digits and 22 decimals: the mantissa and 10^k are exact
 /// doubles, so one division is correctly rounded and equals std::from_chars (Clinger 1990, "How to read
 /// floating point numbers accurately", the fast path). ACMI numbers are nearly all of this form; anything
-/// else (exponents, long mantissas, nan) returns false and goes through from_chars.
-bool fastDecimal(std::string_view s, double& out) {
+/// else (exponents, long mantissas, nan) returns false and goes through from_chars. scanDecimal() reads one
+/// at pos and stops at a '|' (a T= field separator) or the end, advancing pos only on success.
+[[gnu::always_inline]] inline bool scanDecimal(const char*& pos, const char* end, double& out) {
     static constexpr double POW10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-    const char* p = s.data();
-    const char* const end = p + s.size();
+    const char* p = pos;
     const bool negative = p != end && *p == '-';
     if (negative)
         ++p;
@@ -77,12 +77,121 @@ bool fastDecimal(std::string_view s, double& out) {
         decimals = static_cast<size_t>(p - frac);
     }
     // At most 19 digits (no uint64 overflow), an exactly representable mantissa, 10^decimals exact.
-    if (p != end || whole + decimals == 0 || whole + decimals > 19 || decimals > 22 ||
+    if ((p != end && *p != '|') || whole + decimals == 0 || whole + decimals > 19 || decimals > 22 ||
         mantissa > (uint64_t(1) << 53))
         return false;
     const double v = static_cast<double>(mantissa) / POW10[decimals];
     out = negative ? -v : v;
+    pos = p;
     return true;
+}
+
+bool fastDecimal(std::string_view s, double& out) {
+    const char* p = s.data();
+    const char* const end = p + s.size();
+    return scanDecimal(p, end, out) && p == end;
+}
+
+/// Object id -> index of the live object: open addressing with linear probing in a power-of-two table,
+/// Fibonacci hashing (Knuth, TAOCP vol. 3, 6.4) and backward-shift deletion (no tombstones; Knuth's
+/// Algorithm R). std::unordered_map spent most of its lookup in a 64-bit modulo by a prime; the parser looks
+/// an id up on every object line.
+class IdIndex {
+public:
+    static constexpr uint32_t NONE = ~0u;
+
+    uint32_t find(uint64_t id) const {
+        if (mSize == 0)
+            return NONE;
+        for (size_t i = slot(id);; i = (i + 1) & mMask) {
+            if (mValues[i] == NONE)
+                return NONE;
+            if (mKeys[i] == id)
+                return mValues[i];
+        }
+    }
+
+    /// Adds id -> value; the id must not be present.
+    void insert(uint64_t id, uint32_t value) {
+        if ((mSize + 1) * 4 > mValues.size() * 3)
+            grow();
+        size_t i = slot(id);
+        while (mValues[i] != NONE)
+            i = (i + 1) & mMask;
+        mKeys[i] = id;
+        mValues[i] = value;
+        ++mSize;
+    }
+
+    /// Removes id if present; returns its value or NONE.
+    uint32_t erase(uint64_t id) {
+        if (mSize == 0)
+            return NONE;
+        size_t i = slot(id);
+        while (mValues[i] != NONE && mKeys[i] != id)
+            i = (i + 1) & mMask;
+        if (mValues[i] == NONE)
+            return NONE;
+        const uint32_t value = mValues[i];
+        // Shift later members of the probe run back into the hole unless their home slot lies
+        // cyclically in (hole, j].
+        size_t hole = i;
+        for (size_t j = (i + 1) & mMask; mValues[j] != NONE; j = (j + 1) & mMask) {
+            const size_t home = slot(mKeys[j]);
+            const bool stays = hole <= j ? (hole < home && home <= j) : (hole < home || home <= j);
+            if (!stays) {
+                mKeys[hole] = mKeys[j];
+                mValues[hole] = mValues[j];
+                hole = j;
+            }
+        }
+        mValues[hole] = NONE;
+        --mSize;
+        return value;
+    }
+
+private:
+    size_t slot(uint64_t id) const { return static_cast<size_t>((id * 0x9E3779B97F4A7C15ull) >> mShift); }
+
+    void grow() {
+        const size_t capacity = mValues.empty() ? 64 : mValues.size() * 2;
+        std::vector<uint64_t> keys(capacity);
+        std::vector<uint32_t> values(capacity, NONE);
+        keys.swap(mKeys);
+        values.swap(mValues);
+        mMask = capacity - 1;
+        mShift = 64;
+        for (size_t c = capacity; c > 1; c >>= 1)
+            --mShift;
+        mSize = 0;
+        for (size_t i = 0; i < values.size(); ++i)
+            if (values[i] != NONE)
+                insert(keys[i], values[i]);
+    }
+
+    std::vector<uint64_t> mKeys;
+    std::vector<uint32_t> mValues;
+    size_t mMask = 0;
+    unsigned mShift = 64;
+    size_t mSize = 0;
+};
+
+/// string_view::find for a byte expected within the first few characters (an id's comma, a key's '='): a
+/// plain loop, where a memchr call costs more than the scan on the ~25-byte lines most recordings are made
+/// of.
+inline size_t findShort(std::string_view s, char c) {
+    for (size_t i = 0; i < s.size(); ++i)
+        if (s[i] == c)
+            return i;
+    return std::string_view::npos;
+}
+
+double wrapLongitude(double lon) {
+    if (lon > 180.0)
+        lon -= 360.0;
+    if (lon < -180.0)
+        lon += 360.0;
+    return lon;
 }
 
 struct State {
@@ -97,12 +206,15 @@ struct AcmiParser::Impl {
     std::string carry;   // an incomplete physical line from the previous chunk
     std::string logical; // continued lines joined so far
     bool continuing = false;
+    bool referenceFrozen = false;              // appliedLon/Lat were taken from the globals
+    double appliedLon = 0.0, appliedLat = 0.0; // reference added to the samples stored so far
+    bool mayEscape = true;      // false while the lines being read come from a chunk without any backslash
     long long lineNo = 0;       // physical line of the text just read
     long long logicalStart = 0; // physical line where the current logical line began
     bool sawFileType = false, sawVersion = false, firstBytes = true;
     double now = 0.0;
-    std::unordered_map<uint64_t, uint32_t> index; // id -> objects[] of the live object
-    std::vector<State> states;                    // parallel to rec.objects
+    IdIndex index;             // id -> objects[] of the live object
+    std::vector<State> states; // parallel to rec.objects
     std::vector<bool> anyAttitude;
 
     [[noreturn]] void fail(const std::string& field, const std::string& message) const {
@@ -153,9 +265,14 @@ struct AcmiParser::Impl {
             carry.append(chunk.substr(0, nl));
             std::string line;
             line.swap(carry);
+            mayEscape = true;
             physicalLine(line);
             pos = nl + 1;
         }
+        // One vectorised scan per chunk: when it holds no backslash (nearly always), no line in it continues
+        // or escapes, and the per-line checks are skipped.
+        mayEscape =
+            pos < chunk.size() && std::memchr(chunk.data() + pos, '\\', chunk.size() - pos) != nullptr;
         while (pos < chunk.size()) {
             const size_t nl = chunk.find('\n', pos);
             if (nl == std::string_view::npos) {
@@ -173,7 +290,7 @@ struct AcmiParser::Impl {
         if (!line.empty() && line.back() == '\r')
             line.remove_suffix(1);
         size_t slashes = 0;
-        while (slashes < line.size() && line[line.size() - 1 - slashes] == '\\')
+        while (mayEscape && slashes < line.size() && line[line.size() - 1 - slashes] == '\\')
             ++slashes;
         const bool continues = slashes % 2 == 1;
         if (continuing) {
@@ -185,7 +302,10 @@ struct AcmiParser::Impl {
             continuing = false;
             std::string joined;
             joined.swap(logical);
+            const bool clean = !mayEscape; // the joined text may hold escapes from earlier chunks
+            mayEscape = true;
             logicalLine(joined);
+            mayEscape = !clean;
             return;
         }
         logicalStart = lineNo;
@@ -232,18 +352,17 @@ struct AcmiParser::Impl {
             if (!parseHexId(line.substr(1), id))
                 fail("object id",
                      "expected a hexadecimal id after '-', got '" + std::string(line.substr(1, 20)) + "'");
-            const auto it = index.find(id);
-            if (it != index.end()) { // removing an unknown id is harmless (trimmed recordings)
-                rec.objects[it->second].removedAt = now;
-                index.erase(it);
-            }
+            const uint32_t obj = index.erase(id);
+            if (obj != IdIndex::NONE) // removing an unknown id is harmless (trimmed recordings)
+                rec.objects[obj].removedAt = now;
             return;
         }
         objectLine(line);
     }
 
-    /// Next property: up to the first unescaped comma. Returns false at the end.
-    static bool nextProperty(std::string_view& rest, std::string_view& prop, bool& escaped) {
+    /// Next property: up to the first unescaped comma. Returns false at the end. `escapes` is false when
+    /// the line holds no backslash at all (checked once per line), which skips the per-property check.
+    static bool nextProperty(std::string_view& rest, std::string_view& prop, bool& escaped, bool escapes) {
         if (rest.empty())
             return false;
         escaped = false;
@@ -251,7 +370,7 @@ struct AcmiParser::Impl {
         const void* commaPtr = std::memchr(rest.data(), ',', rest.size());
         const size_t comma =
             commaPtr ? static_cast<size_t>(static_cast<const char*>(commaPtr) - rest.data()) : rest.size();
-        if (!std::memchr(rest.data(), '\\', comma)) {
+        if (!escapes || !std::memchr(rest.data(), '\\', comma)) {
             prop = rest.substr(0, comma);
             rest = comma < rest.size() ? rest.substr(comma + 1) : std::string_view{};
             return true;
@@ -272,7 +391,7 @@ struct AcmiParser::Impl {
     }
 
     void objectLine(std::string_view line) {
-        const size_t comma = line.find(',');
+        const size_t comma = findShort(line, ',');
         const std::string_view idText = line.substr(0, comma);
         uint64_t id = 0;
         if (!parseHexId(idText, id))
@@ -283,9 +402,8 @@ struct AcmiParser::Impl {
             globalLine(rest);
             return;
         }
-        uint32_t obj = 0;
-        const auto it = index.find(id);
-        if (it == index.end()) {
+        uint32_t obj = index.find(id);
+        if (obj == IdIndex::NONE) {
             obj = static_cast<uint32_t>(rec.objects.size());
             RecordedObject o;
             o.id = id;
@@ -293,15 +411,15 @@ struct AcmiParser::Impl {
             rec.objects.push_back(std::move(o));
             states.emplace_back();
             anyAttitude.push_back(false);
-            index.emplace(id, obj);
-        } else {
-            obj = it->second;
+            index.insert(id, obj);
         }
         RecordedObject& o = rec.objects[obj];
         std::string_view prop;
         bool escaped = false;
-        while (nextProperty(rest, prop, escaped)) {
-            const size_t eq = prop.find('=');
+        const bool escapes =
+            mayEscape && !rest.empty() && std::memchr(rest.data(), '\\', rest.size()) != nullptr;
+        while (nextProperty(rest, prop, escaped, escapes)) {
+            const size_t eq = findShort(prop, '=');
             if (eq == std::string_view::npos)
                 continue; // not a property; never fatal
             const std::string_view key = prop.substr(0, eq), value = prop.substr(eq + 1);
@@ -337,31 +455,48 @@ struct AcmiParser::Impl {
         }
     }
 
+    /// Splits T= into its '|'-separated fields and reads each number in the same pass: fastDecimal's loop
+    /// stops at the '|', so the common line is scanned once (a separate split, then a parse, read it twice).
     void transform(uint32_t obj, std::string_view value) {
-        std::string_view f[9];
+        // Plain arrays, left uninitialised (only [0, n) is read): string_view's zeroing constructor cost a
+        // 144-byte rep stos per line, 13% of this function.
+        const char* fieldStart[9];
+        size_t fieldSize[9];
+        double parsed[9];
+        bool fast[9];
         int n = 0;
-        size_t start = 0;
+        const char* p = value.data();
+        const char* const end = p + value.size();
         while (true) {
-            const size_t bar = value.find('|', start);
             if (n == 9)
                 fail("T", "expected 3, 5, 6 or 9 '|'-separated fields, got more than 9");
-            f[n++] =
-                value.substr(start, bar == std::string_view::npos ? std::string_view::npos : bar - start);
-            if (bar == std::string_view::npos)
+            const char* const start = p;
+            // Fields 6-8 (U, V, heading) are never read, so they are only skipped.
+            fast[n] = n < 6 && scanDecimal(p, end, parsed[n]);
+            if (!fast[n]) { // empty, or not the fast form: find the bar and let number() decide
+                const void* bar = p == end ? nullptr : std::memchr(p, '|', static_cast<size_t>(end - p));
+                p = bar ? static_cast<const char*>(bar) : end;
+            }
+            fieldStart[n] = start;
+            fieldSize[n++] = static_cast<size_t>(p - start);
+            if (p == end)
                 break;
-            start = bar + 1;
+            ++p; // the '|'
         }
         if (n != 3 && n != 5 && n != 6 && n != 9)
             fail("T", "expected 3, 5, 6 or 9 '|'-separated fields, got " + std::to_string(n));
+        auto field = [&](int k, const char* name) {
+            return fast[k] ? parsed[k] : number(std::string_view(fieldStart[k], fieldSize[k]), name);
+        };
         State& s = states[obj];
         static const char* names[] = {"T longitude", "T latitude", "T altitude", "T roll",   "T pitch",
                                       "T yaw",       "T U",        "T V",        "T heading"};
-        if (!f[0].empty())
-            s.lon = number(f[0], names[0]);
-        if (!f[1].empty())
-            s.lat = number(f[1], names[1]);
-        if (!f[2].empty())
-            s.alt = number(f[2], names[2]);
+        if (fieldSize[0] != 0)
+            s.lon = field(0, names[0]);
+        if (fieldSize[1] != 0)
+            s.lat = field(1, names[1]);
+        if (fieldSize[2] != 0)
+            s.alt = field(2, names[2]);
         if (std::abs(s.lon) > 360.0)
             fail(names[0], "longitude offset " + std::to_string(s.lon) + " is out of range");
         if (std::abs(s.lat) > 180.0)
@@ -369,8 +504,8 @@ struct AcmiParser::Impl {
         if (n >= 6) {
             // 5 fields are lon|lat|alt|U|V: no attitude (a reader taking fields 3-5 as angles misreads them).
             for (int k = 3; k < 6; ++k)
-                if (!f[k].empty()) {
-                    const double v = number(f[k], names[k]);
+                if (fieldSize[k] != 0) {
+                    const double v = field(k, names[k]);
                     (k == 3 ? s.roll : k == 4 ? s.pitch : s.yaw) = v;
                     anyAttitude[obj] = true;
                 }
@@ -378,9 +513,21 @@ struct AcmiParser::Impl {
         // U, V (DCS's flat-world metres) and Heading (relative to that flat world's north) are not used --
         // the replay places objects on the ellipsoid -- so they are not read either.
         RecordedObject& o = rec.objects[obj];
+        // Offsets become absolute degrees here, with the reference known when the first sample is stored
+        // (the header sets it first in every recording seen); finish() corrects the rare file that moves it
+        // later. Doing it at the end meant a second pass over all tracks, ~5% of a parse.
+        if (!referenceFrozen) {
+            appliedLon = rec.referenceLongitude;
+            appliedLat = rec.referenceLatitude;
+            referenceFrozen = true;
+        }
+        const double lat = s.lat + appliedLat;
+        if (std::abs(lat) > 90.0)
+            fail("T latitude", "object " + o.describe() + " has latitude " + std::to_string(lat) +
+                                   " (reference + offset) outside [-90, 90]");
         ObjectSample sample{now,
-                            s.lon,
-                            s.lat,
+                            wrapLongitude(s.lon + appliedLon),
+                            lat,
                             s.alt,
                             static_cast<float>(s.roll),
                             static_cast<float>(s.pitch),
@@ -396,7 +543,8 @@ struct AcmiParser::Impl {
     void globalLine(std::string_view rest) {
         std::string_view prop;
         bool escaped = false;
-        while (nextProperty(rest, prop, escaped)) {
+        const bool escapes = !rest.empty() && std::memchr(rest.data(), '\\', rest.size()) != nullptr;
+        while (nextProperty(rest, prop, escaped, escapes)) {
             const size_t eq = prop.find('=');
             if (eq == std::string_view::npos)
                 continue;
@@ -447,9 +595,9 @@ struct AcmiParser::Impl {
         }
         if (e.type == "Destroyed")
             for (uint64_t id : e.objects) {
-                const auto it = index.find(id);
-                if (it != index.end() && !rec.objects[it->second].destroyedAt)
-                    rec.objects[it->second].destroyedAt = now;
+                const uint32_t obj = index.find(id);
+                if (obj != IdIndex::NONE && !rec.objects[obj].destroyedAt)
+                    rec.objects[obj].destroyedAt = now;
             }
         rec.events.push_back(std::move(e));
     }
@@ -461,6 +609,7 @@ struct AcmiParser::Impl {
             head.swap(carry);
             consume(head);
         }
+        mayEscape = true; // the carry may have grown over chunks that were not scanned
         if (!carry.empty()) {
             std::string line;
             line.swap(carry);
@@ -486,22 +635,24 @@ struct AcmiParser::Impl {
             hi = any ? std::max(hi, t) : t;
             any = true;
         };
+        const double dLon = rec.referenceLongitude - appliedLon, dLat = rec.referenceLatitude - appliedLat;
+        const bool moved = referenceFrozen && (dLon != 0.0 || dLat != 0.0);
         for (size_t i = 0; i < rec.objects.size(); ++i) {
             RecordedObject& o = rec.objects[i];
-            std::stable_sort(o.track.begin(), o.track.end(),
-                             [](const ObjectSample& a, const ObjectSample& b) { return a.time < b.time; });
-            for (ObjectSample& s : o.track) {
-                s.lon += rec.referenceLongitude;
-                s.lat += rec.referenceLatitude;
-                if (s.lon > 180.0)
-                    s.lon -= 360.0;
-                if (s.lon < -180.0)
-                    s.lon += 360.0;
-                if (std::abs(s.lat) > 90.0)
-                    throw RecordingError(source, o.line, "T latitude",
-                                         "object " + o.describe() + " has latitude " + std::to_string(s.lat) +
-                                             " (reference + offset) outside [-90, 90]");
-            }
+            const auto byTime = [](const ObjectSample& a, const ObjectSample& b) { return a.time < b.time; };
+            if (!std::is_sorted(o.track.begin(), o.track.end(),
+                                byTime)) // frames nearly always arrive in order
+                std::stable_sort(o.track.begin(), o.track.end(), byTime);
+            if (moved)
+                for (ObjectSample& s : o.track) {
+                    s.lon = wrapLongitude(s.lon + dLon);
+                    s.lat += dLat;
+                    if (std::abs(s.lat) > 90.0)
+                        throw RecordingError(source, o.line, "T latitude",
+                                             "object " + o.describe() + " has latitude " +
+                                                 std::to_string(s.lat) +
+                                                 " (reference + offset) outside [-90, 90]");
+                }
             if (!o.track.empty()) {
                 extend(o.track.front().time);
                 extend(o.track.back().time);

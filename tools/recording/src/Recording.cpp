@@ -3,6 +3,7 @@
 #include "recording/Recording.h"
 
 #include <zip.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <array>
@@ -63,21 +64,80 @@ void parseZip(const std::filesystem::path& file, AcmiParser& parser) {
     }
     if (member < 0)
         throw RecordingError(file.string(), 0, "", "the zip archive holds no file (expected one .txt.acmi)");
-    zip_file_t* zf = zip_fopen_index(za, static_cast<zip_uint64_t>(member), 0);
+    zip_stat_t st;
+    zip_stat_init(&st);
+    const bool known = zip_stat_index(za, static_cast<zip_uint64_t>(member), 0, &st) == 0 &&
+                       (st.valid & (ZIP_STAT_COMP_METHOD | ZIP_STAT_CRC | ZIP_STAT_ENCRYPTION_METHOD)) ==
+                           (ZIP_STAT_COMP_METHOD | ZIP_STAT_CRC | ZIP_STAT_ENCRYPTION_METHOD);
+    // Deflate members are inflated here with zlib over 1 MiB buffers (raw stream, RFC 1951) and checked
+    // against the member's CRC-32: libzip's own decoder feeds zlib 8 KiB at a time through layered sources,
+    // ~12% slower on a 50 MB recording. Anything else (stored, bzip2, encrypted...) goes through libzip.
+    const bool raw = known && st.comp_method == ZIP_CM_DEFLATE && st.encryption_method == ZIP_EM_NONE;
+    zip_file_t* zf = zip_fopen_index(za, static_cast<zip_uint64_t>(member), raw ? ZIP_FL_COMPRESSED : 0);
     if (!zf)
         throw RecordingError(file.string(), 0, "",
                              std::string("cannot read the zip member: ") + zip_strerror(za));
     std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> fguard(zf, zip_fclose);
     std::vector<char> buf(CHUNK);
-    while (true) {
-        const zip_int64_t got = zip_fread(zf, buf.data(), buf.size());
-        if (got < 0)
-            throw RecordingError(file.string(), 0, "",
-                                 std::string("corrupt zip member: ") + zip_file_strerror(zf));
-        if (got == 0)
-            break;
-        parser.feed(std::string_view(buf.data(), static_cast<size_t>(got)));
+    auto corrupt = [&](const std::string& why) {
+        return RecordingError(file.string(), 0, "", "corrupt zip member: " + why);
+    };
+    if (!raw) {
+        while (true) {
+            const zip_int64_t got = zip_fread(zf, buf.data(), buf.size());
+            if (got < 0)
+                throw corrupt(zip_file_strerror(zf));
+            if (got == 0)
+                break;
+            parser.feed(std::string_view(buf.data(), static_cast<size_t>(got)));
+        }
+        return;
     }
+    z_stream zs{};
+    if (inflateInit2(&zs, -MAX_WBITS) != Z_OK)
+        throw corrupt("zlib could not start");
+    std::unique_ptr<z_stream, int (*)(z_stream*)> zguard(&zs, inflateEnd);
+    std::vector<unsigned char> in(CHUNK);
+    uLong crc = crc32(0L, Z_NULL, 0);
+    int rc = Z_OK;
+    std::unique_ptr<RecordingError> parseError;
+    while (rc != Z_STREAM_END) {
+        const zip_int64_t got = zip_fread(zf, in.data(), in.size());
+        if (got < 0)
+            throw corrupt(zip_file_strerror(zf));
+        if (got == 0)
+            throw corrupt("the deflate stream ends early");
+        zs.next_in = in.data();
+        zs.avail_in = static_cast<uInt>(got);
+        while (zs.avail_in > 0 && rc != Z_STREAM_END) {
+            zs.next_out = reinterpret_cast<unsigned char*>(buf.data());
+            zs.avail_out = static_cast<uInt>(buf.size());
+            rc = inflate(&zs, Z_NO_FLUSH);
+            if (rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR)
+                throw corrupt(std::string("inflate: ") + (zs.msg ? zs.msg : "error " + std::to_string(rc)));
+            const size_t produced = buf.size() - zs.avail_out;
+            if (produced == 0 && rc == Z_BUF_ERROR) { // no progress: only possible once input runs out
+                if (zs.avail_in > 0)
+                    throw corrupt("inflate made no progress");
+                break;
+            }
+            crc = crc32(crc, zs.next_out - produced, static_cast<uInt>(produced));
+            if (!parseError) {
+                try {
+                    parser.feed(std::string_view(buf.data(), produced));
+                } catch (const RecordingError& e) {
+                    // Damage usually shows first as nonsense text: finish inflating (without parsing) so
+                    // the CRC can say whether the archive or the recording is at fault.
+                    parseError = std::make_unique<RecordingError>(e);
+                }
+            }
+        }
+    }
+    if (crc != st.crc)
+        throw corrupt("CRC-32 mismatch (the archive is damaged)" +
+                      (parseError ? "; its damaged text gave: " + std::string(parseError->what()) : ""));
+    if (parseError)
+        throw *parseError;
 }
 
 std::string readHead(const std::filesystem::path& file, size_t n) {
