@@ -110,16 +110,21 @@ TEST(Acmi, NumbersReadExactlyAsFromChars) {
         std::snprintf(buf, sizeof buf, "%s%.*f", (state >> 40) % 3 == 0 ? "-" : "", decimals,
                       static_cast<double>(state >> 24) / 1e6);
         alts.push_back(buf);
-        text += "#" + std::to_string(i) + "\n1,T=0|0|" + alts.back() + "\n";
+        // At the end of the line and before a '|' (the reader reads digits 8 bytes at a time when 8 are
+        // readable, so both a field's end and the line's end must stop it right).
+        text +=
+            "#" + std::to_string(i) + "\n1,T=0|0|" + alts.back() + "\n2,T=0|0|0|" + alts.back() + "|0|0\n";
     }
     alts.push_back("1e3");
-    text += "#2000\n1,T=0|0|1e3\n";
+    text += "#2000\n1,T=0|0|1e3\n2,T=0|0|0|1e3|0|0\n";
     const Recording r = acmi(text);
     ASSERT_EQ(r.objects.at(0).track.size(), alts.size());
+    ASSERT_EQ(r.objects.at(1).track.size(), alts.size());
     for (size_t i = 0; i < alts.size(); ++i) {
         double want = 0.0;
         std::from_chars(alts[i].data(), alts[i].data() + alts[i].size(), want);
         ASSERT_EQ(r.objects[0].track[i].alt, want) << alts[i];
+        ASSERT_EQ(r.objects[1].track[i].roll, static_cast<float>(want)) << alts[i];
     }
 }
 

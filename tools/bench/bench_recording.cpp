@@ -2,9 +2,9 @@
 // generated recording shaped like a busy DCS export (../shared/NOTES-flights.md: ~97% of objects are shells,
 // flares and chaff that live a few seconds; aircraft with 9-field transforms and extra properties at 10 Hz;
 // ships at 1 Hz; removals and events). The text file and a zip of it are parsed in a fresh child process each
-// (fork), so the peak resident memory (getrusage ru_maxrss) belongs to one parse alone; the baseline RSS of
-// the child before parsing is subtracted. Throughput is the decoded text size over the wall time
-// (steady_clock) of readRecording(), median of --runs. Writes DIR/recording_bench.{json,md}.
+// (fork + exec of this program), so the peak resident memory (getrusage ru_maxrss) belongs to one parse
+// alone; the baseline RSS of the child before parsing is subtracted. Throughput is the decoded text size over
+// the wall time (steady_clock) of readRecording(), median of --runs. Writes DIR/recording_bench.{json,md}.
 //
 //   pacifica-bench-recording --out DIR [--mb 200] [--runs 3] [--keep]
 #include <recording/Recording.h>
@@ -160,7 +160,31 @@ struct Measure {
     bool ok = false;
 };
 
-/// Parses `file` in a child process; the child reports its figures through a pipe.
+/// The child's side: parses `file` in this fresh process and writes its figures to `fd`.
+int parseChild(const char* file, int fd) {
+    Measure m;
+    m.baseKb = rssKb();
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+        const Recording r = pacifica::recording::readRecording(file);
+        m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        m.bytes = r.bytes;
+        m.samples = r.samples;
+        m.objects = static_cast<long long>(r.objects.size());
+        m.ok = true;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "parse failed: %s\n", e.what());
+    }
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    m.peakKb = ru.ru_maxrss;
+    if (write(fd, &m, sizeof m) != static_cast<ssize_t>(sizeof m))
+        return 3;
+    return m.ok ? 0 : 2;
+}
+
+/// Parses `file` in a child process that re-executes this program (a fresh process, as a user's replay is:
+/// a forked child would inherit the generator's heap and malloc state), reporting through a pipe.
 Measure parseInChild(const fs::path& file) {
     int fd[2];
     if (pipe(fd) != 0)
@@ -168,25 +192,10 @@ Measure parseInChild(const fs::path& file) {
     const pid_t pid = fork();
     if (pid == 0) {
         close(fd[0]);
-        Measure m;
-        m.baseKb = rssKb();
-        const auto t0 = std::chrono::steady_clock::now();
-        try {
-            const Recording r = pacifica::recording::readRecording(file);
-            m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            m.bytes = r.bytes;
-            m.samples = r.samples;
-            m.objects = static_cast<long long>(r.objects.size());
-            m.ok = true;
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "parse failed: %s\n", e.what());
-        }
-        rusage ru{};
-        getrusage(RUSAGE_SELF, &ru);
-        m.peakKb = ru.ru_maxrss;
-        if (write(fd[1], &m, sizeof m) != static_cast<ssize_t>(sizeof m))
-            _exit(3);
-        _exit(m.ok ? 0 : 2);
+        const std::string fdText = std::to_string(fd[1]);
+        execl("/proc/self/exe", "pacifica-bench-recording", "--parse-child", file.c_str(), fdText.c_str(),
+              static_cast<char*>(nullptr));
+        _exit(127);
     }
     close(fd[1]);
     Measure m;
@@ -207,6 +216,8 @@ double median(std::vector<double> v) {
 } // namespace
 
 int main(int argc, char** argv) {
+    if (argc == 4 && std::string(argv[1]) == "--parse-child")
+        return parseChild(argv[2], std::atoi(argv[3]));
     fs::path outDir;
     double mb = 200.0;
     int runs = 3;
