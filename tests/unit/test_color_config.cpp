@@ -189,6 +189,28 @@ TEST(ColorConfig, StudioConfigLoadsAndListsSrgbDisplay) {
     EXPECT_NEAR(applyGrey(p, 0.18f), 0.356f, 0.01f);
 }
 
+TEST(ColorConfig, InputColourSpaceForConfigsWhoseSceneLinearIsNotRec709) {
+    // The studio config's scene_linear is ACEScg: saturated Rec.709 red entered there is not red any more.
+    ColorPipeline p = ColorPipeline::fromFile(studioConfig());
+    EXPECT_EQ(p.linearRec709ColorSpace(), "Linear Rec.709 (sRGB)");
+    EXPECT_EQ(ColorPipeline::createDefault().linearRec709ColorSpace(), "Linear Rec.709 (sRGB)");
+    p.select("sRGB - Display", "Un-tone-mapped");
+    std::array<float, 4> red{0.5f, 0.0f, 0.0f, 1.0f};
+    p.applyCpu(red.data(), 1);
+    EXPECT_GT(std::fabs(red[1]), 0.01f); // through ACEScg it is not pure red any more (out of gamut here)
+    EXPECT_EQ(p.input(), "");
+    p.setInput(p.linearRec709ColorSpace()); // re-selects the same view
+    EXPECT_EQ(p.selectedView(), "Un-tone-mapped");
+    red = {0.5f, 0.0f, 0.0f, 1.0f};
+    p.applyCpu(red.data(), 1);
+    EXPECT_NEAR(red[0], 0.7353569f, 1e-4f); // the sRGB encoding of 0.5
+    EXPECT_NEAR(red[1], 0.0f, 1e-5f);
+    EXPECT_NEAR(red[2], 0.0f, 1e-5f);
+    EXPECT_NE(colorError([&] { p.setInput("No Such Space"); }).find("has no colour space 'No Such Space'"),
+              std::string::npos);
+    EXPECT_EQ(p.input(), "Linear Rec.709 (sRGB)");
+}
+
 TEST(ColorConfig, EnvironmentPrecedence) {
     const std::string studio = studioConfig().string();
     {

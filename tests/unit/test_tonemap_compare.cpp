@@ -6,6 +6,7 @@
 #include "tonemap/ConfigWriter.h"
 #include "tonemap/Curves.h"
 #include "tonemap/Metrics.h"
+#include "tonemap/TextRender.h"
 
 #include <gtest/gtest.h>
 
@@ -186,6 +187,33 @@ TEST(GeneratedConfig, LutsMatchClosedFormsWithinStatedBounds) {
                     static_cast<double>(worst));
     }
     fs::remove_all(dir);
+}
+
+TEST(TextRender, FreeTypeLabels) {
+    try {
+        TextRenderer missing("/nonexistent/font.ttf", 14);
+        ADD_FAILURE() << "a missing font was accepted";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/font.ttf: cannot load the font"),
+                  std::string::npos);
+    }
+    const TextRenderer text(defaultFontPath(), 16);
+    EXPECT_GT(text.lineHeight(), 14);
+    const int w = text.width("AgX base");
+    EXPECT_GT(w, 40);
+    EXPECT_LT(w, 120);
+    EXPECT_GT(text.width("WWW"), text.width("iii")); // proportional glyphs: a real font, not a grid
+    std::vector<float> img(100 * 30 * 3, 0.0f);
+    const int end = text.draw(img, 100, 30, 2, 20, "Hue", {1, 1, 1});
+    EXPECT_EQ(end, 2 + text.width("Hue"));
+    size_t lit = 0, partial = 0;
+    for (size_t i = 0; i < img.size(); i += 3) {
+        lit += img[i] > 0.9f;
+        partial += img[i] > 0.05f && img[i] < 0.9f; // antialiased edges
+    }
+    EXPECT_GT(lit, 20u);
+    EXPECT_GT(partial, 5u);
+    text.draw(img, 100, 30, 90, 20, "clipped at the edge", {1, 0, 0}); // clipped, no out-of-bounds write
 }
 
 } // namespace

@@ -1,11 +1,14 @@
 // pacifica: the command-line tool. Subcommands:
 //   replay FLIGHT --out DIR [--fps N] [--size WxH] [--start S --end S] [--display D --view V]
 //          [--ocio-config FILE] [--no-images] [--env FILE] [ocean options: tools/src/OceanOptions.h]
+//   tonemap compare INPUT... --out DIR [--ocio-config FILE]... [--lut3d N] [--max-pixels N]
+//   convert RECORDING OUT.txt.acmi
 // Any failure prints "pacifica: error: ..." naming the file/line/option and exits non-zero, leaving no
 // partial output behind.
 #include "OceanOptions.h"
 #include "Replay.h"
 #include "ReplayInput.h"
+#include "TonemapCompare.h"
 
 #include <recording/AcmiWriter.h>
 #include <recording/Recording.h>
@@ -72,6 +75,24 @@ int main(int argc, char** argv) {
     pacifica::tools::OceanOptions oceanOptions;
     pacifica::tools::addOceanOptions(*rp, oceanOptions);
 
+    pacifica::tools::TonemapCompareOptions compare;
+    std::vector<std::string> compareConfigs;
+    CLI::App* tmApp = app.add_subcommand("tonemap", "HDR display-transform tools");
+    tmApp->require_subcommand(1);
+    CLI::App* cmp = tmApp->add_subcommand(
+        "compare", "compare every OCIO view and the shipped tonemappers on scene-linear frames: contact "
+                   "sheets, metrics.json, report.md, report.html (docs/TONEMAP.md)");
+    cmp->add_option("inputs", compare.inputs, "scene-linear EXRs, replay output folders, or flight files")
+        ->required();
+    cmp->add_option("--out", compare.outDir, "output directory")->required();
+    cmp->add_option("--ocio-config", compareConfigs, "another OCIO config to compare (repeatable)");
+    cmp->add_option("--lut3d", compare.lut3dSize, "edge of PBR Neutral's 3D LUT")->default_val(33);
+    cmp->add_option("--max-pixels", compare.maxPixels, "refuse larger images")->default_val(50000000);
+    cmp->add_option("--tile-width", compare.tileWidth, "contact-sheet tile width")->default_val(360);
+    cmp->add_option("--frames", compare.framesPerFolder, "frames taken from a replay folder or flight")
+        ->default_val(3)
+        ->check(CLI::Range(1, 100));
+
     std::string convertIn, convertOut;
     CLI::App* cv = app.add_subcommand("convert", "write a recording (Tacview ACMI text/zip, IGC) as Tacview "
                                                  "ACMI 2.2 text, e.g. an IGC flight for Tacview");
@@ -114,6 +135,12 @@ int main(int argc, char** argv) {
             }
             std::fprintf(stderr, "pacifica: wrote %zu objects (%lld samples) to %s\n", rec.objects.size(),
                          rec.samples, convertOut.c_str());
+            return 0;
+        }
+        if (cmp->parsed()) {
+            for (const std::string& c : compareConfigs)
+                compare.ocioConfigs.emplace_back(c);
+            pacifica::tools::runTonemapCompare(compare);
             return 0;
         }
         if (rp->parsed() && listObjects) {

@@ -156,6 +156,7 @@ struct ColorPipeline::Impl {
     std::string source;
     std::string display;
     std::string view;
+    std::string input; // colour space the processors start from; empty = the scene_linear role
     OCIO::ConstProcessorRcPtr processor;
     OCIO::ConstCPUProcessorRcPtr cpu;
 
@@ -294,23 +295,45 @@ void ColorPipeline::select(const std::string& display, const std::string& view) 
     if (std::find(valid.begin(), valid.end(), v) == valid.end())
         throw ColorError("ColorPipeline::select(): unknown view '" + v + "' for display '" + d + "' in " +
                          impl.where() + "; valid views: " + quotedList(valid));
-    if (!impl.config->getColorSpace(OCIO::ROLE_SCENE_LINEAR))
+    if (impl.input.empty() && !impl.config->getColorSpace(OCIO::ROLE_SCENE_LINEAR))
         throw ColorError("ColorPipeline::select(): " + impl.where() +
                          " has no 'scene_linear' role (roles: the renderer's input space)");
+    const char* from = impl.input.empty() ? OCIO::ROLE_SCENE_LINEAR : impl.input.c_str();
     try {
-        OCIO::ConstProcessorRcPtr processor = impl.config->getProcessor(
-            OCIO::ROLE_SCENE_LINEAR, d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD);
+        OCIO::ConstProcessorRcPtr processor =
+            impl.config->getProcessor(from, d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD);
         OCIO::ConstCPUProcessorRcPtr cpu = processor->getDefaultCPUProcessor();
         impl.processor = std::move(processor);
         impl.cpu = std::move(cpu);
     } catch (const OCIO::Exception& e) {
-        throw ColorError("ColorPipeline::select(): " + impl.where() +
-                         ": cannot build the processor from "
-                         "'scene_linear' to display '" +
-                         d + "', view '" + v + "': " + e.what());
+        throw ColorError("ColorPipeline::select(): " + impl.where() + ": cannot build the processor from '" +
+                         from + "' to display '" + d + "', view '" + v + "': " + e.what());
     }
     impl.display = d;
     impl.view = v;
+}
+
+std::string ColorPipeline::linearRec709ColorSpace() const {
+    // Names and aliases used for linear Rec.709 / sRGB primaries by the ACES studio and CG configs, Blender
+    // and common hand-written configs (getColorSpace() resolves aliases).
+    for (const char* name : {"Linear Rec.709 (sRGB)", "lin_rec709_srgb", "lin_rec709",
+                             "Utility - Linear - sRGB", "Linear sRGB", "lin_srgb", "Linear"})
+        if (const OCIO::ConstColorSpaceRcPtr cs = mImpl->config->getColorSpace(name))
+            return cs->getName();
+    return "";
+}
+
+void ColorPipeline::setInput(const std::string& colorSpace) {
+    if (!colorSpace.empty() && !mImpl->config->getColorSpace(colorSpace.c_str()))
+        throw ColorError("ColorPipeline::setInput(): " + mImpl->where() + " has no colour space '" +
+                         colorSpace + "'");
+    mImpl->input = colorSpace;
+    if (!mImpl->display.empty())
+        select(mImpl->display, mImpl->view);
+}
+
+const std::string& ColorPipeline::input() const {
+    return mImpl->input;
 }
 
 const std::string& ColorPipeline::selectedDisplay() const {

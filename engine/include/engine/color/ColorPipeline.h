@@ -113,6 +113,16 @@ public:
     /// valid names, for an unknown display or view, or naming the role when scene_linear is missing; the
     /// previous selection stays in place then. GL passes built from the old selection must be recreated.
     void select(const std::string& display, const std::string& view);
+    /// The colour space processors start from: empty (default) = the config's scene_linear role. Tools
+    /// comparing configs whose scene_linear is not the renderer's Linear Rec.709 (the ACES configs use
+    /// ACEScg) set linearRec709ColorSpace() here. Re-selects the current output; throws ColorError naming an
+    /// unknown colour space.
+    void setInput(const std::string& colorSpace);
+    const std::string& input() const;
+    /// The config's colour space for linear Rec.709 primaries, found by the names and aliases common
+    /// configs use ("Linear Rec.709 (sRGB)", "lin_rec709", "Utility - Linear - sRGB", ...); "" if none.
+    std::string linearRec709ColorSpace() const;
+
     const std::string& selectedDisplay() const;
     const std::string& selectedView() const;
 

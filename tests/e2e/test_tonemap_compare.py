@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""End-to-end tests of `pacifica tonemap compare` (tools/src/TonemapCompare.cpp, tools/tonemap).
+
+Cases (chosen with --case, one ctest test each):
+  hdr          ../shared/data/hdr/*.exr with the ACES studio config: the report (HTML self-contained, Markdown,
+               JSON), a labelled contact sheet per input, NaN/Inf of BrightRingsNanInf counted and every output
+               finite, the shipped clamp equal to the configs' un-tone-mapped view, 1D LUTs within 1e-4 of their
+               closed forms and PBR Neutral's cube error falling with its size, non-sRGB displays listed.
+  replay       a replay output folder and a flight file (rendered first) as inputs.
+  bad-input    not an image, one channel, an image over --max-pixels (its size named), a missing input, a
+               missing --ocio-config: each exits non-zero with one 'pacifica: error:' line naming it and
+               leaves no output folder.
+
+Usage: test_tonemap_compare.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library + oiiotool)
+"""
+import json
+import os
+import struct
+import subprocess
+import sys
+import time
+import zlib
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import test_e2e  # noqa: E402
+from test_e2e import child_env, oiio_tool  # noqa: E402
+
+RUN_TIMEOUT_S = 240
+
+
+def shared(source_dir, *parts):
+    return os.path.join(os.environ.get("PACIFICA_SHARED_DIR", os.path.join(source_dir, "..", "shared")), *parts)
+
+
+def run(exe, args):
+    cmd = [exe, *args]
+    print("  $ " + " ".join(cmd))
+    t = time.monotonic()
+    p = subprocess.run(cmd, env=child_env(), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    print(f"    exit {p.returncode} after {time.monotonic() - t:.1f} s")
+    return p
+
+
+def png_rows(path):
+    """Decodes an 8-bit RGB PNG (what the tool writes) into (width, height, rows of bytes)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    pos, idat, width, height = 8, b"", 0, 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            width, height, depth, ctype = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and ctype == 2, "expected 8-bit RGB"
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, stride, rows, prev = zlib.decompress(idat), width * 3, [], bytearray(width * 3)
+    for y in range(height):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], prev[i - 3] if i >= 3 else 0
+            if f == 1:
+                line[i] = (line[i] + a) & 255
+            elif f == 2:
+                line[i] = (line[i] + b) & 255
+            elif f == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return width, height, rows
+
+
+def case_hdr(c, exe, source_dir, tmp):
+    out = os.path.join(tmp, "cmp")
+    hdr = [shared(source_dir, "data", "hdr", n) for n in ("BrightRings.exr", "BrightRingsNanInf.exr", "KernerEnvLatLong.exr")]
+    studio = shared(source_dir, "data", "ocio", "studio-config-v1.0.0_aces-v1.3_ocio-v2.1.ocio")
+    p = run(exe, ["tonemap", "compare", *hdr, "--ocio-config", studio, "--out", out])
+    c.require(p.returncode == 0, "tonemap compare succeeds", p.stderr[-1500:])
+    for name in ("report.html", "report.md", "metrics.json", "ocio/pacifica-tonemappers.ocio"):
+        c.check(os.path.isfile(os.path.join(out, name)), f"{name} written")
+    with open(os.path.join(out, "metrics.json")) as f:
+        m = json.load(f)
+    names = [i["name"] for i in m["inputs"]]
+    c.check(names == ["test-chart", "brightrings", "brightringsnaninf", "kernerenvlatlong"], "inputs in order", names)
+    labels = [t["label"] for t in m["transforms"]]
+    c.check(len([l for l in labels if l.startswith("pacifica: ")]) == 6, "the six shipped tonemappers", labels)
+    c.check(any(l.startswith("embedded: sRGB / ACES 1.0 - SDR Video") for l in labels), "embedded ACES view")
+    studio_views = [l for l in labels if not l.startswith(("pacifica: ", "embedded: "))]
+    c.check(len(studio_views) >= 2, "the studio config's sRGB views are compared", studio_views)
+    c.check(any("Rec.2100-PQ" in s or "P3" in s for s in m["skipped_displays"]), "non-sRGB displays listed",
+            m["skipped_displays"])
+    by = {i["name"]: i for i in m["inputs"]}
+    nan = by["brightringsnaninf"]["census"]
+    c.check(nan["nan"] > 0 and nan["inf"] > 0, "NaN and Inf counted in BrightRingsNanInf", nan)
+    c.check(by["brightrings"]["census"]["nan"] == 0, "BrightRings has no NaN")
+    nonfinite = [(i["name"], r["transform"]) for i in m["inputs"] for r in i["results"]
+                 if r["metrics"]["non_finite_output"] != 0]
+    c.check(not nonfinite, "every output finite (NaN/Inf inputs included)", nonfinite)
+    c.check(any("Raw" in s and "passes scene-linear data through" in s for s in m["skipped_displays"]),
+            "the studio config's Raw view is left out as a data view", m["skipped_displays"])
+    chart = {r["transform"]: r for r in by["test-chart"]["results"]}
+    clamp, untm = chart["pacifica: Clamp (no tonemap)"], chart["embedded: sRGB / Un-tone-mapped"]
+    for k in ("clipped", "crushed", "hue_shift_mean_deg", "chroma_ratio"):
+        c.check(abs(clamp["metrics"][k] - untm["metrics"][k]) < 1e-3, f"shipped clamp == un-tone-mapped view: {k}",
+                (clamp["metrics"][k], untm["metrics"][k]))
+    studio_untm = [r for t, r in chart.items() if t.endswith("sRGB - Display / Un-tone-mapped")]
+    c.check(len(studio_untm) == 1 and abs(studio_untm[0]["metrics"]["hue_shift_mean_deg"] -
+                                           clamp["metrics"]["hue_shift_mean_deg"]) < 1e-3,
+            "the studio config is entered through its linear Rec.709 space (its un-tone-mapped view == clamp)",
+            [r["metrics"]["hue_shift_mean_deg"] for r in studio_untm])
+    for r in chart.values():
+        c.check(0.3 < r["sweep"]["mid_grey_code"] < 0.6, f"{r['transform']}: 0.18 lands mid-range",
+                r["sweep"]["mid_grey_code"])
+    luts = m["luts"]
+    for r in luts:
+        if r["lut"].startswith("1D"):
+            c.check(r["max_code_error"] < 1e-4, f"{r['tonemapper']} 1D LUT within 1e-4", r["max_code_error"])
+    cube = [r["max_code_error"] for r in luts if r["tonemapper"] == "pbr-neutral"]
+    c.check(len(cube) == 3 and cube[0] > cube[1] > cube[2], "PBR Neutral: error falls with cube size 17/33/65", cube)
+    with open(os.path.join(out, "report.html")) as f:
+        html = f.read()
+    c.check(html.count("data:image/png;base64,") == 4, "report.html embeds the 4 sheets")
+    c.check("src=\"sheets/" not in html and "<link" not in html, "report.html is self-contained")
+    w, h, rows = png_rows(os.path.join(out, "sheets", "brightrings.png"))
+    c.check(w > 1000 and h > 1000, "contact sheet size", (w, h))
+    # The header (first ~18 rows) is dark grey (0.12 -> code 31) except where the title text is drawn.
+    lit = sum(1 for y in range(4, 20) for x in range(0, 300) if rows[y][3 * x] > 160)
+    c.check(lit > 100, "the title is drawn in the header", lit)
+    with open(os.path.join(out, "report.md")) as f:
+        md = f.read()
+    c.check("least clipping" in md and "least hue shift" in md, "report.md names the least clipping / hue shift")
+
+
+def case_replay(c, exe, source_dir, tmp):
+    flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
+    rep = os.path.join(tmp, "rep")
+    p = run(exe, ["replay", flight, "--out", rep, "--size", "160x90", "--fps", "1", "--start", "0", "--end", "3",
+                  "--no-progress"])
+    c.require(p.returncode == 0, "a short replay", p.stderr[-800:])
+    out = os.path.join(tmp, "cmp")
+    p = run(exe, ["tonemap", "compare", rep, flight, "--frames", "2", "--out", out])
+    c.require(p.returncode == 0, "compare a replay folder and a flight file", p.stderr[-1500:])
+    with open(os.path.join(out, "metrics.json")) as f:
+        m = json.load(f)
+    names = [i["name"] for i in m["inputs"]]
+    c.check(len(names) == 5, "chart + 2 frames of the folder + 2 rendered frames", names)
+    c.check(any(i["source"].startswith(os.path.join(out, "renders")) or "/renders/" in i["source"]
+                for i in m["inputs"]), "the flight was rendered first", [i["source"] for i in m["inputs"]])
+    c.check(len(os.listdir(os.path.join(out, "sheets"))) == 5, "one sheet per input")
+
+
+def case_bad_input(c, exe, source_dir, tmp):
+    def refuse(args, needle, what):
+        out = os.path.join(tmp, "never")
+        p = run(exe, ["tonemap", "compare", *args, "--out", out])
+        errs = [l for l in p.stderr.splitlines() if l.startswith("pacifica: error:")]
+        c.check(p.returncode != 0, f"{what}: non-zero exit")
+        c.check(len(errs) == 1 and needle in errs[0], f"{what}: error names it", p.stderr[-600:])
+        c.check(not os.path.exists(out), f"{what}: no output folder")
+        c.check(not [n for n in os.listdir(tmp) if n.startswith(".never")], f"{what}: no staging left")
+
+    text = os.path.join(tmp, "notes.exr")
+    with open(text, "w") as f:
+        f.write("not an image\n")
+    refuse([text], "notes.exr: not an image", "not an image")
+    grey = os.path.join(tmp, "grey.exr")
+    subprocess.run([oiio_tool("oiiotool"), "--create", "8x8", "1", "-d", "half", "-o", grey], check=True)
+    refuse([grey], "grey.exr: has 1 channel(s); RGB or RGBA is needed", "one channel")
+    rings = shared(source_dir, "data", "hdr", "BrightRings.exr")
+    refuse([rings, "--max-pixels", "1000"], "800x800 = 640000 pixels is over the limit of 1000", "huge image")
+    refuse([os.path.join(tmp, "missing.exr")], "missing.exr: no such file", "missing input")
+    refuse([rings, "--ocio-config", os.path.join(tmp, "nope.ocio")], "nope.ocio", "missing config")
+
+
+CASES = {"hdr": case_hdr, "replay": case_replay, "bad-input": case_bad_input}
+
+if __name__ == "__main__":
+    sys.exit(test_e2e.main(CASES, "tonemap", __doc__))

@@ -1,0 +1,698 @@
+// `pacifica tonemap compare` (TonemapCompare.h).
+#include "TonemapCompare.h"
+
+#include "FlightPath.h"
+#include "Replay.h"
+
+#include <engine/capture/Capture.h>
+#include <engine/color/ColorPipeline.h>
+#include <recording/Recording.h>
+#include <tonemap/ConfigWriter.h>
+#include <tonemap/Curves.h>
+#include <tonemap/Metrics.h>
+#include <tonemap/TextRender.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace pacifica::tools {
+
+namespace fs = std::filesystem;
+using color::ColorPipeline;
+using json = nlohmann::json;
+namespace tm = pacifica::tonemap;
+
+namespace {
+
+struct Input {
+    std::string name;   ///< label and file stem
+    std::string source; ///< where it came from
+    int width = 0, height = 0;
+    std::vector<float> rgb; ///< scene-linear, non-finite values replaced
+    tm::SourceCensus census;
+    bool ldr = false;
+    bool chart = false;
+};
+
+struct Transform {
+    std::string label;  ///< "config: display / view"
+    std::string config; ///< config label
+    std::string display, view;
+    std::string tonemapperId; ///< closed-form tonemapper this view ships, if any
+    ColorPipeline pipeline;
+};
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+std::string slug(const std::string& s) {
+    std::string out;
+    for (char c : s)
+        out += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
+    return out;
+}
+
+/// NaN -> 0, +Inf -> 65504 (the largest half), -Inf -> 0: what the transforms see (the census counts them).
+void sanitise(std::vector<float>& rgb) {
+    for (float& v : rgb)
+        if (std::isnan(v) || v == -INFINITY)
+            v = 0.0f;
+        else if (v == INFINITY)
+            v = 65504.0f;
+}
+
+Input fromImage(const fs::path& file, const std::string& name, long long maxPixels) {
+    capture::Image img;
+    try {
+        img = capture::readImage(file);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(file.string() + ": not an image this tool reads (" + e.what() + ")");
+    }
+    const long long pixels = static_cast<long long>(img.width) * img.height;
+    if (pixels > maxPixels)
+        throw std::runtime_error(file.string() + ": " + std::to_string(img.width) + "x" +
+                                 std::to_string(img.height) + " = " + std::to_string(pixels) +
+                                 " pixels is over the limit of " + std::to_string(maxPixels) +
+                                 " (--max-pixels)");
+    if (img.channels < 3)
+        throw std::runtime_error(file.string() + ": has " + std::to_string(img.channels) +
+                                 " channel(s); RGB or RGBA is needed");
+    Input in;
+    in.name = name;
+    in.source = file.string();
+    in.width = img.width;
+    in.height = img.height;
+    in.rgb.resize(static_cast<size_t>(pixels) * 3);
+    for (size_t i = 0; i < static_cast<size_t>(pixels); ++i)
+        for (size_t k = 0; k < 3; ++k)
+            in.rgb[3 * i + k] = img.pixels[i * static_cast<size_t>(img.channels) + k];
+    in.census = tm::census(in.rgb.data(), static_cast<size_t>(pixels));
+    sanitise(in.rgb);
+    const std::string ext = lower(file.extension().string());
+    in.ldr =
+        ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp" || ext == ".gif" || ext == ".webp";
+    if (in.ldr)
+        std::fprintf(stderr,
+                     "pacifica: warning: %s is a display-referred (LDR) image, not scene-linear: "
+                     "its transforms are compared as if it were\n",
+                     file.c_str());
+    return in;
+}
+
+std::vector<fs::path> replayFrames(const fs::path& dir, int count) {
+    std::vector<fs::path> exrs;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (e.is_regular_file() && lower(e.path().extension().string()) == ".exr")
+            exrs.push_back(e.path());
+    std::sort(exrs.begin(), exrs.end());
+    if (exrs.empty())
+        throw std::runtime_error(dir.string() +
+                                 ": a replay folder without EXR frames (was it run with --no-images?)");
+    std::vector<fs::path> picked;
+    const int n = std::min<int>(count, static_cast<int>(exrs.size()));
+    for (int i = 0; i < n; ++i) {
+        const size_t k = n == 1 ? exrs.size() / 2
+                                : static_cast<size_t>(i) * (exrs.size() - 1) / static_cast<size_t>(n - 1);
+        picked.push_back(exrs[k]);
+    }
+    return picked;
+}
+
+/// A flight file rendered by the replay into `renderDir`: up to `frames` frames over the flight.
+std::vector<fs::path> renderFlight(const fs::path& flight, const fs::path& renderDir, int frames) {
+    ReplayOptions r;
+    r.flight = flight;
+    r.outDir = renderDir;
+    r.progress = false;
+    double span = 0.0;
+    const std::string format = recording::detectFormat(flight);
+    if (format == "csv") {
+        const FlightPath p = FlightPath::load(flight);
+        span = p.endTime() - p.startTime();
+    } else {
+        const recording::Recording rec = recording::readRecording(flight);
+        span = rec.endTime - rec.startTime;
+    }
+    // floor(span * fps) + 1 frames: half a frame of slack keeps rounding from dropping the last one.
+    r.fps = frames > 1 && span > 0.0 ? (static_cast<double>(frames) - 0.5) / span : 1.0;
+    std::fprintf(stderr, "pacifica: rendering %s (%d frames) into %s\n", flight.c_str(), frames,
+                 renderDir.c_str());
+    runReplay(r);
+    return replayFrames(renderDir, frames);
+}
+
+std::vector<float> toRgba(const std::vector<float>& rgb) {
+    const size_t n = rgb.size() / 3;
+    std::vector<float> rgba(n * 4);
+    for (size_t i = 0; i < n; ++i) {
+        for (size_t k = 0; k < 3; ++k)
+            rgba[4 * i + k] = rgb[3 * i + k];
+        rgba[4 * i + 3] = 1.0f;
+    }
+    return rgba;
+}
+
+std::vector<float> applyTransform(const Transform& t, const std::vector<float>& rgb) {
+    std::vector<float> rgba = toRgba(rgb);
+    t.pipeline.applyCpu(rgba.data(), rgba.size() / 4);
+    std::vector<float> out(rgb.size());
+    for (size_t i = 0; i < rgb.size() / 3; ++i)
+        for (size_t k = 0; k < 3; ++k) {
+            const float v = rgba[4 * i + k];
+            out[3 * i + k] = std::isfinite(v) ? v : 0.0f;
+        }
+    return out;
+}
+
+/// Box-filtered downscale of code values to `tw` pixels wide (aspect kept).
+std::vector<float> downscale(const std::vector<float>& rgb, int w, int h, int tw, int& th) {
+    th = std::max(1, static_cast<int>(std::lround(static_cast<double>(h) * tw / w)));
+    std::vector<float> out(static_cast<size_t>(tw) * static_cast<size_t>(th) * 3, 0.0f);
+    for (int y = 0; y < th; ++y)
+        for (int x = 0; x < tw; ++x) {
+            const int x0 = x * w / tw, x1 = std::max(x0 + 1, (x + 1) * w / tw);
+            const int y0 = y * h / th, y1 = std::max(y0 + 1, (y + 1) * h / th);
+            double s[3] = {0, 0, 0};
+            for (int yy = y0; yy < y1; ++yy)
+                for (int xx = x0; xx < x1; ++xx)
+                    for (int k = 0; k < 3; ++k)
+                        s[k] +=
+                            rgb[(static_cast<size_t>(yy) * static_cast<size_t>(w) + static_cast<size_t>(xx)) *
+                                    3 +
+                                static_cast<size_t>(k)];
+            const double n = static_cast<double>((x1 - x0) * (y1 - y0));
+            for (int k = 0; k < 3; ++k)
+                out[(static_cast<size_t>(y) * static_cast<size_t>(tw) + static_cast<size_t>(x)) * 3 +
+                    static_cast<size_t>(k)] = static_cast<float>(s[k] / n);
+        }
+    return out;
+}
+
+std::string base64(const std::string& bytes) {
+    static const char* A = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) |
+                           (static_cast<unsigned char>(bytes[i + 1]) << 8) |
+                           static_cast<unsigned char>(bytes[i + 2]);
+        out += {A[v >> 18], A[(v >> 12) & 63], A[(v >> 6) & 63], A[v & 63]};
+    }
+    if (i + 1 == bytes.size()) {
+        const unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
+        out += {A[v >> 18], A[(v >> 12) & 63], '=', '='};
+    } else if (i + 2 == bytes.size()) {
+        const unsigned v =
+            (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8);
+        out += {A[v >> 18], A[(v >> 12) & 63], A[(v >> 6) & 63], '='};
+    }
+    return out;
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out.flush())
+        throw std::runtime_error(path.string() + ": cannot write");
+}
+
+std::string fmt(double v, int precision = 3) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.*f", precision, v);
+    return b;
+}
+
+/// Adds every view of every sRGB display of `pipeline`; other displays are listed in `skipped`.
+void addConfigViews(const ColorPipeline& pipeline, const std::string& configLabel,
+                    std::vector<Transform>& out, std::vector<std::string>& skipped) {
+    for (const std::string& d : pipeline.displays()) {
+        if (lower(d).find("srgb") == std::string::npos) {
+            skipped.push_back(configLabel + ": " + d + " (not an sRGB display; the metrics decode sRGB)");
+            continue;
+        }
+        for (const std::string& v : pipeline.views(d)) {
+            Transform t{configLabel + ": " + d + " / " + v, configLabel, d, v, "", pipeline};
+            t.pipeline.select(d, v);
+            // A view that passes scene-linear values through unchanged (a data / "Raw" view) is no display
+            // transform: its metrics would mean nothing.
+            float probe[8] = {0.18f, 2.0f, 0.05f, 1.0f, 0.5f, 0.5f, 0.5f, 1.0f};
+            t.pipeline.applyCpu(probe, 2);
+            if (std::fabs(probe[0] - 0.18f) < 1e-6f && std::fabs(probe[1] - 2.0f) < 1e-6f &&
+                std::fabs(probe[2] - 0.05f) < 1e-6f) {
+                skipped.push_back(t.label + " (passes scene-linear data through: no display transform)");
+                continue;
+            }
+            out.push_back(std::move(t));
+        }
+    }
+}
+
+json metricsJson(const tm::TransformMetrics& m) {
+    return {{"pixels", m.pixels},
+            {"clipped", m.clipped},
+            {"crushed", m.crushed},
+            {"chromatic_pixels", m.chromatic},
+            {"desaturated_to_neutral", m.desaturated},
+            {"hue_shift_mean_deg", m.hueShiftMean},
+            {"hue_shift_p95_deg", m.hueShiftP95},
+            {"chroma_ratio", m.chromaRatio},
+            {"contrast_kept", m.contrastKept},
+            {"neutral_drift", m.neutralDrift},
+            {"non_finite_output", m.nonFiniteOutput}};
+}
+
+/// Staging folder inside the output's parent, moved into place at the end (never a half-written DIR).
+class Staging {
+public:
+    explicit Staging(fs::path out) : mOut(std::move(out)) {
+        const fs::path parent = mOut.parent_path().empty() ? fs::path(".") : mOut.parent_path();
+        fs::create_directories(parent);
+        mDir = parent / ("." + mOut.filename().string() + ".staging-" + std::to_string(getpid()));
+        fs::remove_all(mDir);
+        fs::create_directories(mDir);
+    }
+    ~Staging() {
+        std::error_code ec;
+        if (!mCommitted)
+            fs::remove_all(mDir, ec);
+    }
+    const fs::path& dir() const { return mDir; }
+    void commit() {
+        fs::create_directories(mOut);
+        for (const auto& e : fs::directory_iterator(mDir)) {
+            const fs::path target = mOut / e.path().filename();
+            std::error_code ec;
+            fs::remove_all(target, ec);
+            fs::rename(e.path(), target);
+        }
+        fs::remove_all(mDir);
+        mCommitted = true;
+    }
+
+private:
+    fs::path mOut, mDir;
+    bool mCommitted = false;
+};
+
+/// Each shipped tonemapper's LUT (through OCIO's CPU processor) against its closed form, over the chart and
+/// every input, for several 3D LUT sizes where it has one; and what each costs per megapixel (steady_clock,
+/// median of 3, one thread).
+json lutAccuracyAndCost(const fs::path& out, const std::vector<Input>& inputs) {
+    std::vector<float> pool;
+    for (const Input& in : inputs) // up to ~1 Mpixel of every input, strided
+        for (size_t i = 0, step = std::max<size_t>(1, in.rgb.size() / 3 / (1u << 20) * inputs.size());
+             i < in.rgb.size() / 3; i += step)
+            pool.insert(pool.end(), &in.rgb[3 * i], &in.rgb[3 * i] + 3);
+    const size_t n = pool.size() / 3;
+    auto timeIt = [&](const auto& fn) {
+        std::vector<double> ms;
+        for (int r = 0; r < 3; ++r) {
+            const auto t0 = std::chrono::steady_clock::now();
+            fn();
+            ms.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        }
+        std::sort(ms.begin(), ms.end());
+        return ms[1] / (static_cast<double>(n) / 1e6);
+    };
+    json rows = json::array();
+    for (const tm::Tonemapper& t : tm::tonemappers()) {
+        std::vector<float> closed(pool.size());
+        const double closedMs = timeIt([&] {
+            for (size_t i = 0; i < n; ++i) {
+                const tm::Rgb d = t.apply({pool[3 * i], pool[3 * i + 1], pool[3 * i + 2]});
+                for (size_t k = 0; k < 3; ++k)
+                    closed[3 * i + k] = tm::srgbEncode(d[k]);
+            }
+        });
+        const std::vector<int> sizes =
+            t.id == "pbr-neutral" ? std::vector<int>{17, 33, 65} : std::vector<int>{0};
+        for (int size : sizes) {
+            const fs::path dir = out / "ocio-lut-sizes" / (t.id + "-" + std::to_string(size));
+            const tm::GeneratedConfig g = tm::writeTonemapConfig(dir, size == 0 ? 2 : size);
+            ColorPipeline p = ColorPipeline::fromFile(g.path);
+            p.select(g.display, g.views.at(t.id));
+            std::vector<float> rgba = toRgba(pool);
+            const double lutMs = timeIt([&] {
+                rgba = toRgba(pool);
+                p.applyCpu(rgba.data(), n);
+            });
+            std::vector<float> err;
+            err.reserve(n);
+            for (size_t i = 0; i < n; ++i) {
+                float e = 0.0f;
+                for (size_t k = 0; k < 3; ++k)
+                    e = std::max(e, std::fabs(rgba[4 * i + k] - closed[3 * i + k]));
+                err.push_back(e);
+            }
+            std::sort(err.begin(), err.end());
+            rows.push_back(
+                {{"tonemapper", t.id},
+                 {"name", t.name},
+                 {"lut", size == 0
+                             ? (t.perChannel ? "1D half-domain (65536)" : "AgX: matrices + 1D half-domain")
+                             : "3D " + std::to_string(size) + "^3, log2 shaper"},
+                 {"max_code_error", err.back()},
+                 {"p99_code_error", err[static_cast<size_t>(0.99 * static_cast<double>(err.size() - 1))]},
+                 {"lut_ms_per_mpixel", lutMs},
+                 {"closed_form_ms_per_mpixel", closedMs},
+                 {"pixels", n}});
+        }
+    }
+    fs::remove_all(out / "ocio-lut-sizes");
+    return rows;
+}
+
+void writeReports(const fs::path& out, const json& report) {
+    writeText(out / "metrics.json", report.dump(2) + "\n");
+    // Ranking over every input that is scene-linear: mean clipped fraction and mean hue shift per transform.
+    std::map<std::string, std::pair<double, double>> sums;
+    std::map<std::string, int> counts;
+    for (const json& in : report["inputs"]) {
+        if (in["ldr"].get<bool>())
+            continue;
+        for (const json& r : in["results"]) {
+            auto& s = sums[r["transform"].get<std::string>()];
+            s.first += r["metrics"]["clipped"].get<double>();
+            s.second += r["metrics"]["hue_shift_mean_deg"].get<double>();
+            ++counts[r["transform"].get<std::string>()];
+        }
+    }
+    std::string leastClip, leastHue;
+    double bestClip = 2.0, bestHue = 1e9;
+    for (const auto& [name, s] : sums) {
+        const double c = s.first / counts[name], h = s.second / counts[name];
+        if (c < bestClip)
+            bestClip = c, leastClip = name;
+        if (h < bestHue)
+            bestHue = h, leastHue = name;
+    }
+    std::ostringstream md;
+    md << "# Tonemapping comparison\n\nGenerated by `pacifica tonemap compare`. Metrics: docs/TONEMAP.md.\n\n"
+       << "Over the scene-linear inputs: **least clipping**: " << leastClip << " (mean "
+       << fmt(100 * bestClip, 2) << "% of pixels); **least hue shift**: " << leastHue << " (mean "
+       << fmt(bestHue, 2) << " deg).\n\n";
+    for (const json& in : report["inputs"]) {
+        const json& c = in["census"];
+        md << "## " << in["name"].get<std::string>() << "\n\n"
+           << in["source"].get<std::string>() << ", " << in["width"].get<int>() << "x"
+           << in["height"].get<int>() << ", NaN " << c["nan"].get<size_t>() << ", Inf "
+           << c["inf"].get<size_t>() << ", negative " << c["negative"].get<size_t>() << "\n\n"
+           << "| transform | clipped % | crushed % | hue shift mean / p95 (deg) | chroma ratio | contrast "
+              "kept | "
+              "neutral drift |"
+           << (in["name"] == "test-chart" ? " lum. reversals | hue flips | 0.18 -> code |" : "")
+           << "\n|---|---|---|---|---|---|---|" << (in["name"] == "test-chart" ? "---|---|---|" : "") << "\n";
+        for (const json& r : in["results"]) {
+            const json& m = r["metrics"];
+            md << "| " << r["transform"].get<std::string>() << " | "
+               << fmt(100 * m["clipped"].get<double>(), 2) << " | "
+               << fmt(100 * m["crushed"].get<double>(), 2) << " | "
+               << fmt(m["hue_shift_mean_deg"].get<double>(), 2) << " / "
+               << fmt(m["hue_shift_p95_deg"].get<double>(), 2) << " | "
+               << fmt(m["chroma_ratio"].get<double>()) << " | " << fmt(m["contrast_kept"].get<double>())
+               << " | " << fmt(m["neutral_drift"].get<double>(), 4) << " |";
+            if (r.contains("sweep"))
+                md << " " << r["sweep"]["luminance_reversals"].get<int>() << " | "
+                   << r["sweep"]["hue_flips"].get<int>() << " | "
+                   << fmt(r["sweep"]["mid_grey_code"].get<double>()) << " |";
+            md << "\n";
+        }
+        md << "\n![" << in["name"].get<std::string>() << "](sheets/" << in["name"].get<std::string>()
+           << ".png)\n\n";
+    }
+    md << "## Shipped LUTs against their closed forms\n\nsRGB code-value error of the generated OCIO config "
+          "(OCIO CPU processor) against the CPU closed form, over the chart and up to ~1 Mpixel of the "
+          "inputs; "
+          "cost per megapixel on one core (steady_clock, median of 3).\n\n"
+          "| tonemapper | LUT | max error | p99 error | OCIO LUT ms/Mpx | closed form ms/Mpx "
+          "|\n|---|---|---|---|---|---|\n";
+    for (const json& r : report["luts"]) {
+        char b[64];
+        md << "| " << r["name"].get<std::string>() << " | " << r["lut"].get<std::string>() << " | ";
+        std::snprintf(b, sizeof b, "%.2e | %.2e", r["max_code_error"].get<double>(),
+                      r["p99_code_error"].get<double>());
+        md << b << " | " << fmt(r["lut_ms_per_mpixel"].get<double>(), 1) << " | "
+           << fmt(r["closed_form_ms_per_mpixel"].get<double>(), 1) << " |\n";
+    }
+    if (!report["skipped_displays"].empty()) {
+        md << "\nDisplays not compared: ";
+        for (const json& s : report["skipped_displays"])
+            md << s.get<std::string>() << "; ";
+        md << "\n";
+    }
+    writeText(out / "report.md", md.str());
+
+    // HTML: the same tables, the sheets embedded as data URIs (one self-contained file).
+    std::string body;
+    std::istringstream lines(md.str());
+    bool inTable = false;
+    for (std::string line; std::getline(lines, line);) {
+        auto esc = [](const std::string& s) {
+            std::string o;
+            for (char c : s)
+                o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+            return o;
+        };
+        if (line.rfind("|", 0) == 0) {
+            if (line.rfind("|---", 0) == 0)
+                continue;
+            if (!inTable)
+                body += "<table>\n";
+            std::string row = "<tr>";
+            std::istringstream cells(line.substr(1));
+            for (std::string cell; std::getline(cells, cell, '|');)
+                row += (inTable ? "<td>" : "<th>") + esc(cell) + (inTable ? "</td>" : "</th>");
+            body += row + "</tr>\n";
+            inTable = true;
+            continue;
+        }
+        if (inTable)
+            body += "</table>\n";
+        inTable = false;
+        if (line.rfind("# ", 0) == 0)
+            body += "<h1>" + esc(line.substr(2)) + "</h1>\n";
+        else if (line.rfind("## ", 0) == 0)
+            body += "<h2>" + esc(line.substr(3)) + "</h2>\n";
+        else if (line.rfind("![", 0) == 0) {
+            const size_t a = line.find("](") + 2;
+            const std::string file = line.substr(a, line.size() - a - 1);
+            std::ifstream in(out / file, std::ios::binary);
+            const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            body += "<img alt=\"" + esc(file) + "\" src=\"data:image/png;base64," + base64(bytes) + "\">\n";
+        } else if (!line.empty())
+            body += "<p>" + esc(line) + "</p>\n";
+    }
+    if (inTable)
+        body += "</table>\n";
+    writeText(out / "report.html",
+              "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>Tonemapping comparison</title>\n"
+              "<style>body{font-family:sans-serif;background:#1e1e1e;color:#ddd;margin:2em}"
+              "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #555;padding:2px 8px;"
+              "text-align:right}td:first-child,th:first-child{text-align:left}img{max-width:100%}</style>"
+              "</head><body>\n" +
+                  body + "</body></html>\n");
+    std::fprintf(stderr, "pacifica: least clipping: %s (%.2f%%); least hue shift: %s (%.2f deg)\n",
+                 leastClip.c_str(), 100 * bestClip, leastHue.c_str(), bestHue);
+}
+
+} // namespace
+
+void runTonemapCompare(const TonemapCompareOptions& o) {
+    if (o.inputs.empty())
+        throw std::runtime_error(
+            "tonemap compare: give at least one input (EXR, replay folder or flight file)");
+    if (o.outDir.empty())
+        throw std::runtime_error("tonemap compare: --out DIR is required");
+    if (o.lut3dSize < 2 || o.lut3dSize > 129)
+        throw std::runtime_error("--lut3d " + std::to_string(o.lut3dSize) + " is outside 2..129");
+    if (o.tileWidth < 64 || o.tileWidth > 4096)
+        throw std::runtime_error("--tile-width " + std::to_string(o.tileWidth) + " is outside 64..4096");
+    Staging staging(o.outDir);
+    const fs::path out = staging.dir();
+    const tm::TextRenderer label(tm::defaultFontPath(), 14);
+
+    // Inputs, checked before any work: the chart first.
+    std::vector<Input> inputs;
+    const tm::Chart chart = tm::testChart(16);
+    {
+        Input c;
+        c.name = "test-chart";
+        c.source = "generated hue x exposure chart (tonemap/Metrics.h)";
+        c.width = chart.width;
+        c.height = chart.height;
+        c.rgb = chart.rgb;
+        c.census = tm::census(c.rgb.data(), c.rgb.size() / 3);
+        c.chart = true;
+        inputs.push_back(std::move(c));
+    }
+    for (const std::string& arg : o.inputs) {
+        const fs::path p(arg);
+        if (!fs::exists(p))
+            throw std::runtime_error(arg + ": no such file or folder");
+        std::vector<std::pair<fs::path, std::string>> files;
+        if (fs::is_directory(p)) {
+            if (!fs::exists(p / "summary.json"))
+                throw std::runtime_error(arg + ": a folder that is not a replay output (no summary.json)");
+            for (const fs::path& f : replayFrames(p, o.framesPerFolder))
+                files.emplace_back(f, p.filename().string() + "-" + f.stem().string());
+        } else {
+            std::string format;
+            try {
+                format = recording::detectFormat(p);
+            } catch (const std::exception&) {
+            }
+            if (!format.empty()) {
+                const fs::path renderDir = out / "renders" / slug(p.stem().string());
+                for (const fs::path& f : renderFlight(p, renderDir, o.framesPerFolder))
+                    files.emplace_back(f, slug(p.stem().string()) + "-" + f.stem().string());
+            } else {
+                files.emplace_back(p, p.stem().string());
+            }
+        }
+        for (const auto& [file, name] : files) {
+            inputs.push_back(fromImage(file, slug(name), o.maxPixels));
+            const std::string staged = out.string() + "/";
+            if (inputs.back().source.rfind(staged, 0) ==
+                0) // a render: name where it will be, not the staging
+                inputs.back().source = (o.outDir / inputs.back().source.substr(staged.size())).string();
+        }
+    }
+
+    // Transforms: the shipped tonemappers (generated config), then the configs' sRGB views.
+    std::vector<Transform> transforms;
+    std::vector<std::string> skipped;
+    const tm::GeneratedConfig generated = tm::writeTonemapConfig(out / "ocio", o.lut3dSize);
+    {
+        const ColorPipeline shipped = ColorPipeline::fromFile(generated.path);
+        for (const tm::Tonemapper& t : tm::tonemappers()) {
+            Transform tr{"pacifica: " + t.name,    "pacifica", generated.display,
+                         generated.views.at(t.id), t.id,       shipped};
+            tr.pipeline.select(tr.display, tr.view);
+            transforms.push_back(std::move(tr));
+        }
+    }
+    addConfigViews(ColorPipeline::createDefault(), "embedded", transforms, skipped);
+    std::vector<fs::path> configs;
+    if (const char* env = std::getenv("OCIO"); env && *env)
+        configs.emplace_back(env);
+    configs.insert(configs.end(), o.ocioConfigs.begin(), o.ocioConfigs.end());
+    for (const fs::path& c : configs) {
+        ColorPipeline p = ColorPipeline::fromFile(c); // throws naming the file
+        // The inputs are linear Rec.709; a config whose scene_linear is another space (ACEScg in the ACES
+        // configs) is entered through its linear Rec.709 colour space.
+        const std::string rec709 = p.linearRec709ColorSpace();
+        if (!rec709.empty())
+            p.setInput(rec709);
+        else
+            std::fprintf(stderr,
+                         "pacifica: warning: %s has no linear Rec.709 colour space; its views start from "
+                         "scene_linear\n",
+                         c.c_str());
+        addConfigViews(p, p.configDescription(), transforms, skipped);
+    }
+    std::fprintf(stderr, "pacifica: %zu inputs x %zu transforms\n", inputs.size(), transforms.size());
+
+    json report;
+    report["transforms"] = json::array();
+    for (const Transform& t : transforms)
+        report["transforms"].push_back({{"label", t.label},
+                                        {"config", t.config},
+                                        {"display", t.display},
+                                        {"view", t.view},
+                                        {"closed_form", t.tonemapperId}});
+    report["skipped_displays"] = skipped;
+    report["inputs"] = json::array();
+    fs::create_directories(out / "sheets");
+
+    // Per input: every transform, its metrics and a tile of the contact sheet.
+    const int columns = 3;
+    for (const Input& in : inputs) {
+        json ji = {{"name", in.name},
+                   {"source", in.source},
+                   {"width", in.width},
+                   {"height", in.height},
+                   {"ldr", in.ldr},
+                   {"census",
+                    {{"pixels", in.census.pixels},
+                     {"nan", in.census.nan},
+                     {"inf", in.census.inf},
+                     {"negative", in.census.negative},
+                     {"max", in.census.maxValue}}},
+                   {"results", json::array()}};
+        const int tw = std::min(o.tileWidth, std::max(in.width, 64));
+        const int th =
+            std::max(1, static_cast<int>(std::lround(static_cast<double>(in.height) * tw / in.width)));
+        const int labelH = 2 * label.lineHeight() + 6; // config, then display / view
+        const int headerH = 2 * label.lineHeight() + 10;
+        const int rows = (static_cast<int>(transforms.size()) + columns - 1) / columns;
+        const int sw = columns * tw + (columns + 1) * 8;
+        const int sh = headerH + rows * (th + labelH + 8) + 8;
+        std::vector<float> sheet(static_cast<size_t>(sw) * static_cast<size_t>(sh) * 3, 0.12f);
+        label.draw(sheet, sw, sh, 8, 6 + label.ascender(),
+                   in.name + "  (" + std::to_string(in.width) + "x" + std::to_string(in.height) + ", max " +
+                       fmt(in.census.maxValue, 1) + ")",
+                   {1, 1, 1});
+        label.draw(sheet, sw, sh, 8, 8 + label.lineHeight() + label.ascender(),
+                   "NaN " + std::to_string(in.census.nan) + ", Inf " + std::to_string(in.census.inf) +
+                       ", negative " + std::to_string(in.census.negative) +
+                       (in.ldr ? "   LDR input: not scene-linear" : ""),
+                   {0.75f, 0.75f, 0.75f});
+        for (size_t ti = 0; ti < transforms.size(); ++ti) {
+            const Transform& t = transforms[ti];
+            const std::vector<float> code = applyTransform(t, in.rgb);
+            const tm::TransformMetrics m = tm::measure(in.rgb.data(), code.data(), in.rgb.size() / 3);
+            json jr = {{"transform", t.label}, {"metrics", metricsJson(m)}};
+            if (in.chart) {
+                const tm::SweepMetrics s = tm::sweepMetrics(chart, code.data());
+                jr["sweep"] = {{"luminance_reversals", s.luminanceReversals},
+                               {"hue_flips", s.hueFlips},
+                               {"mid_grey_code", s.whereMidGreyLands}};
+            }
+            ji["results"].push_back(jr);
+            int tileH = 0;
+            const std::vector<float> tile = downscale(code, in.width, in.height, tw, tileH);
+            const int col = static_cast<int>(ti) % columns, row = static_cast<int>(ti) / columns;
+            const int x0 = 8 + col * (tw + 8), y0 = headerH + row * (th + labelH + 8);
+            auto fit = [&](std::string text) {
+                while (text.size() > 4 && label.width(text) > tw)
+                    text = text.substr(0, text.size() - 4) + "...";
+                return text;
+            };
+            const std::string line2 =
+                t.tonemapperId.empty() ? t.display + " / " + t.view : tm::tonemapper(t.tonemapperId).name;
+            label.draw(sheet, sw, sh, x0, y0 + label.ascender() + 2, fit(t.config), {0.7f, 0.7f, 0.7f});
+            label.draw(sheet, sw, sh, x0, y0 + label.lineHeight() + label.ascender() + 2, fit(line2),
+                       {1, 1, 1});
+            for (int y = 0; y < std::min(th, tileH); ++y)
+                std::copy_n(&tile[static_cast<size_t>(y) * static_cast<size_t>(tw) * 3],
+                            static_cast<size_t>(tw) * 3,
+                            &sheet[(static_cast<size_t>(y0 + labelH + y) * static_cast<size_t>(sw) +
+                                    static_cast<size_t>(x0)) *
+                                   3]);
+        }
+        capture::writePng8(out / "sheets" / (in.name + ".png"), sw, sh, 3, sheet.data());
+        report["inputs"].push_back(ji);
+    }
+
+    report["luts"] = lutAccuracyAndCost(out, inputs);
+    writeReports(out, report);
+    staging.commit();
+    std::fprintf(stderr, "pacifica: wrote %s (report.html, report.md, metrics.json, sheets/)\n",
+                 o.outDir.c_str());
+}
+
+} // namespace pacifica::tools
