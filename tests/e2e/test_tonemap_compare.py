@@ -125,7 +125,16 @@ def case_hdr(c, exe, source_dir, tmp):
     c.check(len(cube) == 3 and cube[0] > cube[1] > cube[2], "PBR Neutral: error falls with cube size 17/33/65", cube)
     with open(os.path.join(out, "report.html")) as f:
         html = f.read()
-    c.check(html.count("data:image/png;base64,") == 4, "report.html embeds the 4 sheets")
+    c.check(html.count("data:image/png;base64,") == 4 * 5, "report.html embeds the 4 x 5 sheets")
+    for n in names:
+        for suffix in ("", "-bracket", "-falsecolour", "-histograms", "-wipe"):
+            c.check(os.path.isfile(os.path.join(out, "sheets", n + suffix + ".png")), f"sheets/{n}{suffix}.png")
+    pair = by["brightrings"]["pair"]
+    c.check(pair["a"].startswith("pacifica: AgX base") and pair["b"] == "embedded: sRGB / ACES 1.0 - SDR Video"
+            and 0.01 < pair["max_code_difference"] < 1.0, "default wipe pair and its difference", pair)
+    w, h, rows = png_rows(os.path.join(out, "sheets", "brightrings-wipe.png"))
+    mid = [rows[h // 4][3 * x] for x in (w // 2 - 1, w // 2)] if w == 720 else []
+    c.check(mid == [255, 255], "the wipe's divider is drawn at the middle", (w, mid))
     c.check("src=\"sheets/" not in html and "<link" not in html, "report.html is self-contained")
     w, h, rows = png_rows(os.path.join(out, "sheets", "brightrings.png"))
     c.check(w > 1000 and h > 1000, "contact sheet size", (w, h))
@@ -152,7 +161,7 @@ def case_replay(c, exe, source_dir, tmp):
     c.check(len(names) == 5, "chart + 2 frames of the folder + 2 rendered frames", names)
     c.check(any(i["source"].startswith(os.path.join(out, "renders")) or "/renders/" in i["source"]
                 for i in m["inputs"]), "the flight was rendered first", [i["source"] for i in m["inputs"]])
-    c.check(len(os.listdir(os.path.join(out, "sheets"))) == 5, "one sheet per input")
+    c.check(len(os.listdir(os.path.join(out, "sheets"))) == 5 * 5, "five sheets per input")
 
 
 def case_bad_input(c, exe, source_dir, tmp):
@@ -176,6 +185,8 @@ def case_bad_input(c, exe, source_dir, tmp):
     refuse([rings, "--max-pixels", "1000"], "800x800 = 640000 pixels is over the limit of 1000", "huge image")
     refuse([os.path.join(tmp, "missing.exr")], "missing.exr: no such file", "missing input")
     refuse([rings, "--ocio-config", os.path.join(tmp, "nope.ocio")], "nope.ocio", "missing config")
+    refuse([rings, "--pair", "hable,nosuchthing"], "--pair: 'nosuchthing' names no transform", "unknown wipe transform")
+    refuse([rings, "--pair", "pacifica,clamp"], "--pair: 'pacifica' names more than one", "ambiguous transform")
 
 
 CASES = {"hdr": case_hdr, "replay": case_replay, "bad-input": case_bad_input}

@@ -6,6 +6,7 @@
 #include "tonemap/ConfigWriter.h"
 #include "tonemap/Curves.h"
 #include "tonemap/Metrics.h"
+#include "tonemap/Sheets.h"
 #include "tonemap/TextRender.h"
 
 #include <gtest/gtest.h>
@@ -187,6 +188,47 @@ TEST(GeneratedConfig, LutsMatchClosedFormsWithinStatedBounds) {
                     static_cast<double>(worst));
     }
     fs::remove_all(dir);
+}
+
+TEST(Sheets, FalseColourHistogramWipeDifference) {
+    // 0.18 is the grey band, 8x that (3 stops) the 2..4 band, zero and NaN the lowest, 1e6 the highest.
+    const std::vector<float> src = {0.18f, 0.18f, 0.18f, 1.44f, 1.44f, 1.44f, 0.f, 0.f,
+                                    0.f,   NAN,   0.f,   0.f,   1e6f,  1e6f,  1e6f};
+    const std::vector<float> fc = falseColourStops(src.data(), 5);
+    auto bandOf = [&](size_t i) {
+        for (const StopBand& b : FALSE_COLOUR_BANDS)
+            if (b.colour[0] == fc[3 * i] && b.colour[1] == fc[3 * i + 1] && b.colour[2] == fc[3 * i + 2])
+                return std::string(b.label);
+        return std::string("?");
+    };
+    EXPECT_EQ(bandOf(0), "0 (grey)");
+    EXPECT_EQ(bandOf(1), "2..4");
+    EXPECT_EQ(bandOf(2), "< -8");
+    EXPECT_EQ(bandOf(3), "< -8");
+    EXPECT_EQ(bandOf(4), "> 12");
+    // Histogram: every pixel counted once per channel, out-of-range codes clamped into the end bins.
+    const std::vector<float> code = {0.f, 0.5f, 1.f, 2.f, -1.f, 0.999f};
+    const Histogram h = histogram(code.data(), 2, 4);
+    EXPECT_EQ(h.counts[0][0], 1u);
+    EXPECT_EQ(h.counts[0][3], 1u); // 2.0 -> last bin
+    EXPECT_EQ(h.counts[1][0], 1u); // -1 -> first bin
+    EXPECT_EQ(h.counts[1][2], 1u);
+    EXPECT_EQ(h.counts[2][3], 2u);
+    // Wipe: left from a, right from b, white divider in the middle; difference with its maximum.
+    std::vector<float> a(8 * 2 * 3, 0.2f), b(8 * 2 * 3, 0.6f);
+    const std::vector<float> w = wipe(a.data(), b.data(), 8, 2);
+    EXPECT_EQ(w[0], 0.2f);
+    EXPECT_EQ(w[3 * 3], 1.0f);
+    EXPECT_EQ(w[3 * 4], 1.0f);
+    EXPECT_EQ(w[3 * 7], 0.6f);
+    float maxDiff = 0.f;
+    const std::vector<float> d = difference(a.data(), b.data(), 16, 2.0f, maxDiff);
+    EXPECT_FLOAT_EQ(maxDiff, 0.4f);
+    EXPECT_FLOAT_EQ(d[0], 0.8f);
+    int th = 0;
+    const std::vector<float> small = downscaleBox(b, 8, 2, 4, th);
+    EXPECT_EQ(th, 1);
+    EXPECT_FLOAT_EQ(small[0], 0.6f);
 }
 
 TEST(TextRender, FreeTypeLabels) {

@@ -10,6 +10,7 @@
 #include <tonemap/ConfigWriter.h>
 #include <tonemap/Curves.h>
 #include <tonemap/Metrics.h>
+#include <tonemap/Sheets.h>
 #include <tonemap/TextRender.h>
 
 #include <nlohmann/json.hpp>
@@ -177,30 +178,6 @@ std::vector<float> applyTransform(const Transform& t, const std::vector<float>& 
     return out;
 }
 
-/// Box-filtered downscale of code values to `tw` pixels wide (aspect kept).
-std::vector<float> downscale(const std::vector<float>& rgb, int w, int h, int tw, int& th) {
-    th = std::max(1, static_cast<int>(std::lround(static_cast<double>(h) * tw / w)));
-    std::vector<float> out(static_cast<size_t>(tw) * static_cast<size_t>(th) * 3, 0.0f);
-    for (int y = 0; y < th; ++y)
-        for (int x = 0; x < tw; ++x) {
-            const int x0 = x * w / tw, x1 = std::max(x0 + 1, (x + 1) * w / tw);
-            const int y0 = y * h / th, y1 = std::max(y0 + 1, (y + 1) * h / th);
-            double s[3] = {0, 0, 0};
-            for (int yy = y0; yy < y1; ++yy)
-                for (int xx = x0; xx < x1; ++xx)
-                    for (int k = 0; k < 3; ++k)
-                        s[k] +=
-                            rgb[(static_cast<size_t>(yy) * static_cast<size_t>(w) + static_cast<size_t>(xx)) *
-                                    3 +
-                                static_cast<size_t>(k)];
-            const double n = static_cast<double>((x1 - x0) * (y1 - y0));
-            for (int k = 0; k < 3; ++k)
-                out[(static_cast<size_t>(y) * static_cast<size_t>(tw) + static_cast<size_t>(x)) * 3 +
-                    static_cast<size_t>(k)] = static_cast<float>(s[k] / n);
-        }
-    return out;
-}
-
 std::string base64(const std::string& bytes) {
     static const char* A = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
@@ -306,6 +283,129 @@ private:
     fs::path mOut, mDir;
     bool mCommitted = false;
 };
+
+/// The transform named by `part` (case-insensitive substring of its label; an exact label wins).
+size_t findTransform(const std::vector<Transform>& ts, const std::string& part) {
+    std::vector<size_t> hits;
+    for (size_t i = 0; i < ts.size(); ++i) {
+        if (lower(ts[i].label) == lower(part))
+            return i;
+        if (lower(ts[i].label).find(lower(part)) != std::string::npos)
+            hits.push_back(i);
+    }
+    if (hits.size() == 1)
+        return hits[0];
+    std::string list;
+    for (const Transform& t : ts)
+        list += "\n  " + t.label;
+    throw std::runtime_error("--pair: '" + part + "' names " + (hits.empty() ? "no" : "more than one") +
+                             " transform; the transforms are:" + list);
+}
+
+std::string shortLabel(const Transform& t) {
+    return t.tonemapperId.empty() ? t.config + ": " + t.view : tm::tonemapper(t.tonemapperId).name;
+}
+
+/// sheets/<input>-bracket.png: one row per transform, the source at -4..+4 EV.
+void bracketSheet(const fs::path& file, const Input& in, const std::vector<Transform>& ts,
+                  const tm::TextRenderer& label) {
+    constexpr int TW = 120, LABEL_W = 330, GAP = 4;
+    int th = 0;
+    const std::vector<float> small = tm::downscaleBox(in.rgb, in.width, in.height, TW, th);
+    const int head = label.lineHeight() + 8;
+    tm::Canvas c(LABEL_W + 9 * (TW + GAP) + GAP, head + static_cast<int>(ts.size()) * (th + GAP) + GAP,
+                 0.12f);
+    for (int e = 0; e < 9; ++e)
+        label.draw(c.rgb, c.width, c.height, LABEL_W + GAP + e * (TW + GAP) + 4, 4 + label.ascender(),
+                   (e < 4    ? ""
+                    : e == 4 ? " "
+                             : "+") +
+                       std::to_string(e - 4) + " EV",
+                   {1, 1, 1});
+    for (size_t ti = 0; ti < ts.size(); ++ti) {
+        const int y = head + static_cast<int>(ti) * (th + GAP);
+        std::string text = shortLabel(ts[ti]);
+        while (text.size() > 4 && label.width(text) > LABEL_W - 8)
+            text = text.substr(0, text.size() - 4) + "...";
+        label.draw(c.rgb, c.width, c.height, 4, y + th / 2 + label.ascender() / 2, text, {1, 1, 1});
+        for (int e = 0; e < 9; ++e) {
+            std::vector<float> exposed = small;
+            for (float& v : exposed)
+                v *= std::exp2(static_cast<float>(e - 4));
+            const std::vector<float> code = applyTransform(ts[ti], exposed);
+            c.blit(code.data(), TW, th, LABEL_W + GAP + e * (TW + GAP), y);
+        }
+    }
+    capture::writePng8(file, c.width, c.height, 3, c.rgb.data());
+}
+
+/// sheets/<input>-falsecolour.png: the source's luminance in stops over 0.18, with the legend.
+void falseColourSheet(const fs::path& file, const Input& in, const tm::TextRenderer& label) {
+    const int w = std::min(720, in.width);
+    int h = 0;
+    const std::vector<float> small = tm::downscaleBox(in.rgb, in.width, in.height, w, h);
+    const std::vector<float> fc = tm::falseColourStops(small.data(), small.size() / 3);
+    const int legend = 2 * label.lineHeight() + 12;
+    constexpr int CELL = 76; // legend cell: swatch + label
+    const int cw = std::max(w, static_cast<int>(tm::FALSE_COLOUR_BANDS.size()) * CELL);
+    tm::Canvas c(cw, h + legend, 0.12f);
+    c.blit(fc.data(), w, h, 0, 0);
+    label.draw(c.rgb, c.width, c.height, 4, h + 4 + label.ascender(),
+               "scene-linear luminance, stops over 0.18 (source, before any transform)", {1, 1, 1});
+    for (size_t i = 0; i < tm::FALSE_COLOUR_BANDS.size(); ++i) {
+        const auto& b = tm::FALSE_COLOUR_BANDS[i];
+        const int x = static_cast<int>(i) * CELL, y = h + label.lineHeight() + 8;
+        c.fillRect(x + 2, y, 14, label.lineHeight(), b.colour);
+        label.draw(c.rgb, c.width, c.height, x + 18, y + label.ascender(), b.label, {0.85f, 0.85f, 0.85f});
+    }
+    capture::writePng8(file, c.width, c.height, 3, c.rgb.data());
+}
+
+/// sheets/<input>-histograms.png: per transform, R, G, B histograms of its code values (log counts).
+void histogramSheet(const fs::path& file, const std::vector<tm::Histogram>& hs,
+                    const std::vector<Transform>& ts, const tm::TextRenderer& label) {
+    constexpr int PW = 300, PH = 90, COLS = 3, GAP = 8;
+    const int cellH = label.lineHeight() + 4 + PH + GAP;
+    const int rows = (static_cast<int>(ts.size()) + COLS - 1) / COLS;
+    tm::Canvas c(COLS * (PW + GAP) + GAP, rows * cellH + GAP, 0.12f);
+    for (size_t i = 0; i < ts.size(); ++i) {
+        const int x = GAP + static_cast<int>(i) % COLS * (PW + GAP),
+                  y = GAP + static_cast<int>(i) / COLS * cellH;
+        std::string text = shortLabel(ts[i]);
+        while (text.size() > 4 && label.width(text) > PW)
+            text = text.substr(0, text.size() - 4) + "...";
+        label.draw(c.rgb, c.width, c.height, x, y + label.ascender(), text, {1, 1, 1});
+        tm::plotHistogram(c, x, y + label.lineHeight() + 4, PW, PH, hs[i]);
+    }
+    capture::writePng8(file, c.width, c.height, 3, c.rgb.data());
+}
+
+/// sheets/<input>-wipe.png: A | B wipe, and |A - B| x 4 below; returns the largest |A - B|.
+float wipeSheet(const fs::path& file, const Input& in, const std::vector<float>& a,
+                const std::vector<float>& b, const Transform& ta, const Transform& tb,
+                const tm::TextRenderer& label) {
+    const int w = std::min(720, in.width);
+    int h = 0;
+    const std::vector<float> sa = tm::downscaleBox(a, in.width, in.height, w, h);
+    const std::vector<float> sb = tm::downscaleBox(b, in.width, in.height, w, h);
+    float maxDiff = 0.0f;
+    tm::difference(a.data(), b.data(), a.size() / 3, 4.0f, maxDiff); // full-resolution maximum
+    float unused = 0.0f;
+    const std::vector<float> diff = tm::difference(sa.data(), sb.data(), sa.size() / 3, 4.0f, unused);
+    const std::vector<float> wiped = tm::wipe(sa.data(), sb.data(), w, h);
+    const int lh = label.lineHeight() + 6;
+    tm::Canvas c(std::max(w, 600), 2 * (h + lh), 0.12f);
+    label.draw(c.rgb, c.width, c.height, 4, 3 + label.ascender(),
+               "left: " + shortLabel(ta) + "   right: " + shortLabel(tb), {1, 1, 1});
+    c.blit(wiped.data(), w, h, 0, lh);
+    char text[96];
+    std::snprintf(text, sizeof text, "|left - right| x 4 (largest difference %.3f in code values)",
+                  static_cast<double>(maxDiff));
+    label.draw(c.rgb, c.width, c.height, 4, h + lh + 3 + label.ascender(), text, {1, 1, 1});
+    c.blit(diff.data(), w, h, 0, h + 2 * lh);
+    capture::writePng8(file, c.width, c.height, 3, c.rgb.data());
+    return maxDiff;
+}
 
 /// Each shipped tonemapper's LUT (through OCIO's CPU processor) against its closed form, over the chart and
 /// every input, for several 3D LUT sizes where it has one; and what each costs per megapixel (steady_clock,
@@ -431,8 +531,18 @@ void writeReports(const fs::path& out, const json& report) {
                    << fmt(r["sweep"]["mid_grey_code"].get<double>()) << " |";
             md << "\n";
         }
-        md << "\n![" << in["name"].get<std::string>() << "](sheets/" << in["name"].get<std::string>()
-           << ".png)\n\n";
+        const std::string name = in["name"].get<std::string>();
+        md << "\n![" << name << "](sheets/" << name << ".png)\n\n";
+        md << "Exposure bracket, -4..+4 EV, per transform:\n\n![" << name << " bracket](sheets/" << name
+           << "-bracket.png)\n\n";
+        md << "False colour of the source in stops:\n\n![" << name << " false colour](sheets/" << name
+           << "-falsecolour.png)\n\n";
+        md << "Histograms of the code values (R, G, B; log counts):\n\n![" << name << " histograms](sheets/"
+           << name << "-histograms.png)\n\n";
+        md << "Wipe and difference: " << in["pair"]["a"].get<std::string>() << " | "
+           << in["pair"]["b"].get<std::string>() << " (largest difference "
+           << fmt(in["pair"]["max_code_difference"].get<double>()) << "):\n\n![" << name << " wipe](sheets/"
+           << name << "-wipe.png)\n\n";
     }
     md << "## Shipped LUTs against their closed forms\n\nsRGB code-value error of the generated OCIO config "
           "(OCIO CPU processor) against the CPU closed form, over the chart and up to ~1 Mpixel of the "
@@ -604,6 +714,11 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
                          c.c_str());
         addConfigViews(p, p.configDescription(), transforms, skipped);
     }
+    const size_t comma = o.pair.find(',');
+    if (comma == std::string::npos)
+        throw std::runtime_error("--pair '" + o.pair + "': expected two transforms, A,B");
+    const size_t pairA = findTransform(transforms, o.pair.substr(0, comma));
+    const size_t pairB = findTransform(transforms, o.pair.substr(comma + 1));
     std::fprintf(stderr, "pacifica: %zu inputs x %zu transforms\n", inputs.size(), transforms.size());
 
     json report;
@@ -651,9 +766,16 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
                        ", negative " + std::to_string(in.census.negative) +
                        (in.ldr ? "   LDR input: not scene-linear" : ""),
                    {0.75f, 0.75f, 0.75f});
+        std::vector<tm::Histogram> histograms;
+        std::vector<float> codeA, codeB;
         for (size_t ti = 0; ti < transforms.size(); ++ti) {
             const Transform& t = transforms[ti];
             const std::vector<float> code = applyTransform(t, in.rgb);
+            histograms.push_back(tm::histogram(code.data(), code.size() / 3, 64));
+            if (ti == pairA)
+                codeA = code;
+            if (ti == pairB)
+                codeB = code;
             const tm::TransformMetrics m = tm::measure(in.rgb.data(), code.data(), in.rgb.size() / 3);
             json jr = {{"transform", t.label}, {"metrics", metricsJson(m)}};
             if (in.chart) {
@@ -664,7 +786,7 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
             }
             ji["results"].push_back(jr);
             int tileH = 0;
-            const std::vector<float> tile = downscale(code, in.width, in.height, tw, tileH);
+            const std::vector<float> tile = tm::downscaleBox(code, in.width, in.height, tw, tileH);
             const int col = static_cast<int>(ti) % columns, row = static_cast<int>(ti) / columns;
             const int x0 = 8 + col * (tw + 8), y0 = headerH + row * (th + labelH + 8);
             auto fit = [&](std::string text) {
@@ -685,6 +807,13 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
                                    3]);
         }
         capture::writePng8(out / "sheets" / (in.name + ".png"), sw, sh, 3, sheet.data());
+        bracketSheet(out / "sheets" / (in.name + "-bracket.png"), in, transforms, label);
+        falseColourSheet(out / "sheets" / (in.name + "-falsecolour.png"), in, label);
+        histogramSheet(out / "sheets" / (in.name + "-histograms.png"), histograms, transforms, label);
+        ji["pair"] = {{"a", transforms[pairA].label},
+                      {"b", transforms[pairB].label},
+                      {"max_code_difference", wipeSheet(out / "sheets" / (in.name + "-wipe.png"), in, codeA,
+                                                        codeB, transforms[pairA], transforms[pairB], label)}};
         report["inputs"].push_back(ji);
     }
 

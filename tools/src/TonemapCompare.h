@@ -7,7 +7,9 @@
 // Transforms: every view of every sRGB display of the embedded config, of $OCIO and of each --ocio-config,
 // plus the shipped closed-form tonemappers as a generated OCIO config (tonemap/ConfigWriter.h).
 // Output (written into a staging folder and moved into DIR only when complete): sheets/<input>.png contact
-// sheets with labels, metrics.json, report.md, report.html (self-contained), ocio/ (the generated config).
+// sheets with labels, and per input an exposure bracket (-4..+4 EV) per transform, false colour of the
+// source in stops, per-channel histograms per transform, a wipe and a difference between two transforms;
+// metrics.json, report.md, report.html (self-contained), ocio/ (the generated config).
 #pragma once
 
 #include <filesystem>
@@ -24,6 +26,9 @@ struct TonemapCompareOptions {
     long long maxPixels = 50'000'000;               ///< larger images are refused, naming their size
     int tileWidth = 360;                            ///< contact-sheet tile width in pixels
     int framesPerFolder = 3;                        ///< EXRs taken from a replay folder, evenly spaced
+    /// --pair A,B: the two transforms of the wipe and difference sheets, each a case-insensitive part of
+    /// a transform's label that names exactly one.
+    std::string pair = "pacifica: AgX base,embedded: sRGB / ACES 1.0 - SDR Video";
 };
 
 /// Runs the comparison. Throws std::runtime_error naming the input, option or file at fault; nothing is

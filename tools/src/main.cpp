@@ -89,6 +89,9 @@ int main(int argc, char** argv) {
     cmp->add_option("--lut3d", compare.lut3dSize, "edge of PBR Neutral's 3D LUT")->default_val(33);
     cmp->add_option("--max-pixels", compare.maxPixels, "refuse larger images")->default_val(50000000);
     cmp->add_option("--tile-width", compare.tileWidth, "contact-sheet tile width")->default_val(360);
+    cmp->add_option("--pair", compare.pair,
+                    "the two transforms of the wipe and difference sheets, A,B (parts of their labels)")
+        ->default_val(compare.pair);
     cmp->add_option("--frames", compare.framesPerFolder, "frames taken from a replay folder or flight")
         ->default_val(3)
         ->check(CLI::Range(1, 100));
