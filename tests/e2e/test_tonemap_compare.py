@@ -102,6 +102,13 @@ def case_hdr(c, exe, source_dir, tmp):
     nonfinite = [(i["name"], r["transform"]) for i in m["inputs"] for r in i["results"]
                  if r["metrics"]["non_finite_output"] != 0]
     c.check(not nonfinite, "every output finite (NaN/Inf inputs included)", nonfinite)
+    # GPU (OCIO's GLSL, LUT textures included) against the CPU processor. Measured on llvmpipe <= 1.6e-5 for
+    # every transform (LUT ones too: llvmpipe filters in float); the bound leaves room for a hardware GPU's
+    # 8-bit-fraction LUT filtering only on the LUT transforms.
+    c.check(m["gl_renderer"] != "", "the GPU path ran", m["gl_renderer"])
+    gpu_bad = [(i["name"], r["transform"], r.get("gpu_cpu_max_difference")) for i in m["inputs"] for r in i["results"]
+               if r.get("gpu_cpu_max_difference", 1.0) > (1e-3 if r["transform"].startswith("pacifica: Khronos") else 1e-4)]
+    c.check(not gpu_bad, "GPU within 1e-4 of the CPU processor (1e-3 for the 3D LUT)", gpu_bad)
     c.check(any("Raw" in s and "passes scene-linear data through" in s for s in m["skipped_displays"]),
             "the studio config's Raw view is left out as a data view", m["skipped_displays"])
     chart = {r["transform"]: r for r in by["test-chart"]["results"]}

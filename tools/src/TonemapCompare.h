@@ -29,6 +29,9 @@ struct TonemapCompareOptions {
     /// --pair A,B: the two transforms of the wipe and difference sheets, each a case-insensitive part of
     /// a transform's label that names exactly one.
     std::string pair = "pacifica: AgX base,embedded: sRGB / ACES 1.0 - SDR Video";
+    /// Run every transform on the GPU too (OCIO's GLSL through color::Tonemapper, headless EGL) and report
+    /// its largest difference from the CPU processor; without a GL context this is a warning.
+    bool gpu = true;
 };
 
 /// Runs the comparison. Throws std::runtime_error naming the input, option or file at fault; nothing is

@@ -92,6 +92,8 @@ int main(int argc, char** argv) {
     cmp->add_option("--pair", compare.pair,
                     "the two transforms of the wipe and difference sheets, A,B (parts of their labels)")
         ->default_val(compare.pair);
+    bool noGpu = false;
+    cmp->add_flag("--no-gpu", noGpu, "skip the GPU path (no GPU-vs-CPU differences)");
     cmp->add_option("--frames", compare.framesPerFolder, "frames taken from a replay folder or flight")
         ->default_val(3)
         ->check(CLI::Range(1, 100));
@@ -143,6 +145,7 @@ int main(int argc, char** argv) {
         if (cmp->parsed()) {
             for (const std::string& c : compareConfigs)
                 compare.ocioConfigs.emplace_back(c);
+            compare.gpu = !noGpu;
             pacifica::tools::runTonemapCompare(compare);
             return 0;
         }
