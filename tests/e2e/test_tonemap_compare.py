@@ -148,6 +148,20 @@ def case_hdr(c, exe, source_dir, tmp):
     # The header (first ~18 rows) is dark grey (0.12 -> code 31) except where the title text is drawn.
     lit = sum(1 for y in range(4, 20) for x in range(0, 300) if rows[y][3 * x] > 160)
     c.check(lit > 100, "the title is drawn in the header", lit)
+    # HDR display output: 16-bit PQ PNG and an EXR in cd/m^2 per input; ACES 1.1 HDR puts 0.18 at ~15 cd/m^2.
+    for n in names:
+        png = os.path.join(out, "hdr", n + "-pq.png")
+        c.check(os.path.isfile(png) and os.path.isfile(os.path.join(out, "hdr", n + "-nits.exr")), f"hdr/{n} files")
+        if os.path.isfile(png):
+            with open(png, "rb") as f:
+                head = f.read(26)
+            c.check(head[24] == 16, f"hdr/{n}-pq.png is 16-bit", head[24])
+    c.check(13.5 < by["test-chart"]["hdr"]["mid_grey_nits"] < 16.5, "HDR: 0.18 -> ~15 cd/m^2",
+            by["test-chart"]["hdr"]["mid_grey_nits"])
+    # Measured 1011: a saturated channel can sit a little above the 1000 cd/m^2 white.
+    c.check(900 < by["test-chart"]["hdr"]["peak_nits"] <= 1050, "HDR: the sun-glint patch reaches the ~1000 cd/m^2 peak",
+            by["test-chart"]["hdr"]["peak_nits"])
+    c.check(by["brightringsnaninf"]["hdr"]["peak_nits"] <= 1050, "HDR output finite and within the peak")
     with open(os.path.join(out, "report.md")) as f:
         md = f.read()
     c.check("least clipping" in md and "least hue shift" in md, "report.md names the least clipping / hue shift")

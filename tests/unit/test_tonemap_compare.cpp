@@ -187,6 +187,16 @@ TEST(GeneratedConfig, LutsMatchClosedFormsWithinStatedBounds) {
         std::printf("%-12s LUT vs closed form: max |code error| %.2e\n", t.id.c_str(),
                     static_cast<double>(worst));
     }
+    // The HDR display: ACES 1.1 HDR for a 1000 cd/m^2 PQ display. Mid grey lands at 15 cd/m^2 (ACES 1.1
+    // HDR's mid-grey anchor), a very bright white at the 1000 cd/m^2 peak, and greys stay grey in Rec.2020.
+    pipeline.select(g.hdrDisplay, g.hdrView);
+    std::vector<float> px = {0.18f, 0.18f, 0.18f, 1.f, 1000.f, 1000.f, 1000.f, 1.f, 0.f, 0.f, 0.f, 1.f};
+    pipeline.applyCpu(px.data(), 3);
+    EXPECT_NEAR(pqDecode(px[1]), 15.0f, 1.5f);
+    EXPECT_NEAR(px[0], px[1], 1e-4f);
+    EXPECT_NEAR(px[2], px[1], 1e-4f);
+    EXPECT_NEAR(pqDecode(px[5]), 1000.0f, 20.0f);
+    EXPECT_LT(pqDecode(px[9]), 0.02f); // black near the 0.0001..0.02 cd/m^2 floor of the transform
     fs::remove_all(dir);
 }
 

@@ -351,6 +351,50 @@ private:
     size_t mUploadedSize = 0;
 };
 
+/// hdr/<input>-pq.png (16-bit Rec.2100 PQ code values, Rec.2020 primaries) and hdr/<input>-nits.exr (the
+/// same pixels as absolute luminance in cd/m^2, PQ-decoded) through the ACES 1.1 HDR 1000 cd/m^2 view;
+/// returns its numbers: peak, share of pixels at the 1000 cd/m^2 peak (any channel >= 990), and where 0.18
+/// lands.
+json hdrOutput(const fs::path& dir, const Input& in, const ColorPipeline& hdr, const std::string& view,
+               const tm::Chart* chart) {
+    std::vector<float> rgba = toRgba(in.rgb);
+    hdr.applyCpu(rgba.data(), rgba.size() / 4);
+    const size_t n = rgba.size() / 4;
+    std::vector<float> code(n * 3), nits(n * 3);
+    double peak = 0.0;
+    size_t atPeak = 0;
+    for (size_t i = 0; i < n; ++i) {
+        bool top = false;
+        for (size_t k = 0; k < 3; ++k) {
+            const float c = std::isfinite(rgba[4 * i + k]) ? rgba[4 * i + k] : 0.0f;
+            code[3 * i + k] = c;
+            nits[3 * i + k] = tm::pqDecode(c);
+            peak = std::max(peak, static_cast<double>(nits[3 * i + k]));
+            top = top || nits[3 * i + k] >= 990.0f;
+        }
+        atPeak += top;
+    }
+    capture::writePng16(dir / (in.name + "-pq.png"), in.width, in.height, 3, code.data());
+    capture::Metadata meta;
+    meta.strings = {{"units", "cd/m^2 (absolute, PQ-decoded)"},
+                    {"primaries", "Rec.2020"},
+                    {"view", view},
+                    {"source", in.source}};
+    capture::writeExrHalf(dir / (in.name + "-nits.exr"), in.width, in.height, 3, nits.data(), meta);
+    json j = {{"view", view},
+              {"peak_nits", peak},
+              {"at_peak", n ? static_cast<double>(atPeak) / static_cast<double>(n) : 0.0},
+              {"png", "hdr/" + in.name + "-pq.png"},
+              {"exr", "hdr/" + in.name + "-nits.exr"}};
+    if (chart) {
+        const size_t ev0 =
+            static_cast<size_t>(std::find(chart->evs.begin(), chart->evs.end(), 0.0f) - chart->evs.begin());
+        const size_t grey = chart->sweepPixel(chart->hues.size(), ev0); // the grey ramp at EV 0
+        j["mid_grey_nits"] = nits[3 * grey + 1];
+    }
+    return j;
+}
+
 /// The transform named by `part` (case-insensitive substring of its label; an exact label wins).
 size_t findTransform(const std::vector<Transform>& ts, const std::string& part) {
     std::vector<size_t> hits;
@@ -614,6 +658,15 @@ void writeReports(const fs::path& out, const json& report) {
         }
         const std::string name = in["name"].get<std::string>();
         md << "\n![" << name << "](sheets/" << name << ".png)\n\n";
+        const json& hj = in["hdr"];
+        md << "HDR display (Rec.2100 PQ, " << hj["view"].get<std::string>() << "): peak "
+           << fmt(hj["peak_nits"].get<double>(), 1) << " cd/m^2, "
+           << fmt(100 * hj["at_peak"].get<double>(), 2) << "% of pixels at the 1000 cd/m^2 peak"
+           << (hj.contains("mid_grey_nits")
+                   ? ", 0.18 grey -> " + fmt(hj["mid_grey_nits"].get<double>(), 1) + " cd/m^2"
+                   : std::string())
+           << "; " << hj["png"].get<std::string>() << " (16-bit PQ codes), " << hj["exr"].get<std::string>()
+           << " (cd/m^2).\n\n";
         md << "Exposure bracket, -4..+4 EV, per transform:\n\n![" << name << " bracket](sheets/" << name
            << "-bracket.png)\n\n";
         md << "False colour of the source in stops:\n\n![" << name << " false colour](sheets/" << name
@@ -802,6 +855,9 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
     const size_t pairB = findTransform(transforms, o.pair.substr(comma + 1));
     std::fprintf(stderr, "pacifica: %zu inputs x %zu transforms\n", inputs.size(), transforms.size());
     GpuCheck gpu(transforms.size(), o.gpu);
+    ColorPipeline hdr = ColorPipeline::fromFile(generated.path);
+    hdr.select(generated.hdrDisplay, generated.hdrView);
+    fs::create_directories(out / "hdr");
 
     json report;
     report["transforms"] = json::array();
@@ -901,6 +957,7 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
                                    3]);
         }
         capture::writePng8(out / "sheets" / (in.name + ".png"), sw, sh, 3, sheet.data());
+        ji["hdr"] = hdrOutput(out / "hdr", in, hdr, generated.hdrView, in.chart ? &chart : nullptr);
         bracketSheet(out / "sheets" / (in.name + "-bracket.png"), in, transforms, label);
         falseColourSheet(out / "sheets" / (in.name + "-falsecolour.png"), in, label);
         histogramSheet(out / "sheets" / (in.name + "-histograms.png"), histograms, transforms, label);

@@ -169,6 +169,21 @@ void writePng8(const std::filesystem::path& path, int width, int height, int cha
     writeAtomically(path, "png", spec, bytes.data());
 }
 
+void writePng16(const std::filesystem::path& path, int width, int height, int channels,
+                const float* codeTopDown) {
+    checkArguments(path, "writePng16()", width, height, channels, 1, 4, codeTopDown);
+    const size_t count =
+        static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
+    std::vector<uint16_t> values(count);
+    for (size_t i = 0; i < count; ++i) {
+        const float v = codeTopDown[i];
+        const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+        values[i] = static_cast<uint16_t>(std::lround(clamped * 65535.0f));
+    }
+    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT16);
+    writeAtomically(path, "png", spec, values.data());
+}
+
 Image readImage(const std::filesystem::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {

@@ -169,7 +169,10 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
         y << "    - !<View> {name: \"" << view << "\", colorspace: " << s.colorspace << "}\n";
         active += (active.empty() ? "" : ", ") + ("\"" + view + "\"");
     }
-    y << "active_displays: [sRGB]\nactive_views: [" << active << "]\n"
+    y << "  " << g.hdrDisplay << ":\n    - !<View> {name: \"" << g.hdrView
+      << "\", colorspace: Rec.2100-PQ 1000 nits}\n";
+    y << "active_displays: [sRGB, " << g.hdrDisplay << "]\nactive_views: [" << active << ", \"" << g.hdrView
+      << "\"]\n"
       << "colorspaces:\n"
       << "  - !<ColorSpace>\n    name: Linear Rec.709\n    family: Scene-linear\n    encoding: scene-linear\n"
       << "  - !<ColorSpace>\n    name: Raw\n    isdata: true\n";
@@ -180,6 +183,17 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
         for (const std::string& step : s.steps)
             y << "          " << step << "\n";
     }
+    // The HDR display: linear Rec.709 -> ACES2065-1 (the inverse of the studio config's AP0 -> Linear Rec.709
+    // matrix, Bradford D60/D65), ACES 1.1 HDR output transform (1000 cd/m^2 peak, 15 cd/m^2 ... Rec.2020
+    // limited), then the Rec.2100 PQ encoding (SMPTE ST 2084) -- OCIO 2.1 built-in transforms.
+    y << "  - !<ColorSpace>\n    name: Rec.2100-PQ 1000 nits\n    family: Display\n    encoding: hdr-video\n"
+      << "    from_scene_reference: !<GroupTransform>\n        children:\n"
+      << "          !<MatrixTransform> {matrix: [2.52168618674388, -1.13413098823972, -0.387555198504164, 0, "
+         "-0.276479914229922, 1.37271908766826, -0.096239173438334, 0, -0.0153780649660342, "
+         "-0.152975335867399, 1.16835340083343, 0, 0, 0, 0, 1], direction: inverse}\n"
+      << "          !<BuiltinTransform> {style: \"ACES-OUTPUT - ACES2065-1_to_CIE-XYZ-D65 - "
+         "HDR-VIDEO-1000nit-15nit-REC2020lim_1.1\"}\n"
+      << "          !<BuiltinTransform> {style: \"DISPLAY - CIE-XYZ-D65_to_REC.2100-PQ\"}\n";
     // Steps joined with ",\n" above are YAML flow items on separate lines: turn them into list items.
     std::string text = y.str();
     std::string fixed;

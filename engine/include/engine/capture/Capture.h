@@ -66,6 +66,12 @@ uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, 
 void writePng8(const std::filesystem::path& path, int width, int height, int channels,
                const float* displayTopDown);
 
+/// Writes a 16-bit PNG of code values in [0, 1] (clamped, NaN -> 0, round(v * 65535)), 1 to 4 channels, top
+/// row first, untagged (e.g. Rec.2100 PQ codes for an HDR display). Atomic like writeExrHalf(); throws
+/// CaptureError.
+void writePng16(const std::filesystem::path& path, int width, int height, int channels,
+                const float* codeTopDown);
+
 /// An image read back from disk.
 struct Image {
     int width = 0;

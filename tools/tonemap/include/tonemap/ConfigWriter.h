@@ -24,6 +24,10 @@ struct GeneratedConfig {
     std::filesystem::path path; ///< the .ocio file
     std::string display = "sRGB";
     std::map<std::string, std::string> views; ///< tonemapper id -> view name
+    /// The HDR display: Rec.2100 PQ (Rec.2020 primaries, SMPTE ST 2084), ACES 1.1 output transform for a
+    /// 1000 cd/m^2 display (OCIO built-ins), entered from linear Rec.709 through ACES2065-1.
+    std::string hdrDisplay = "Rec.2100-PQ";
+    std::string hdrView = "ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)";
 };
 
 /// Writes the config and its LUTs into `dir` (created if missing). lut3dSize: edge of PBR Neutral's 3D LUT
