@@ -7,6 +7,9 @@ Cases (chosen with --case, one ctest test each):
                finite, the shipped clamp equal to the configs' un-tone-mapped view, 1D LUTs within 1e-4 of their
                closed forms and PBR Neutral's cube error falling with its size, non-sRGB displays listed.
   replay       a replay output folder and a flight file (rendered first) as inputs.
+  replay-views `replay --view A --view B`: one render, one more tonemap pass per extra view (its PNGs and
+               summary entries; scene passes and EXR hashes equal to a one-view run); an unknown view is
+               refused listing the valid ones, nothing written.
   bad-input    not an image, one channel, an image over --max-pixels (its size named), a missing input, a
                missing --ocio-config: each exits non-zero with one 'pacifica: error:' line naming it and
                leaves no output folder.
@@ -210,7 +213,44 @@ def case_bad_input(c, exe, source_dir, tmp):
     refuse([rings, "--pair", "pacifica,clamp"], "--pair: 'pacifica' names more than one", "ambiguous transform")
 
 
-CASES = {"hdr": case_hdr, "replay": case_replay, "bad-input": case_bad_input}
+def case_replay_views(c, exe, source_dir, tmp):
+    flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
+    common = ["replay", flight, "--size", "160x90", "--fps", "1", "--start", "0", "--end", "2", "--no-progress"]
+    one, two = os.path.join(tmp, "one"), os.path.join(tmp, "two")
+    p = run(exe, [*common, "--out", one])
+    c.require(p.returncode == 0, "one view", p.stderr[-800:])
+    p = run(exe, [*common, "--out", two, "--view", "ACES 1.0 - SDR Video", "--view", "Un-tone-mapped"])
+    c.require(p.returncode == 0, "two views", p.stderr[-800:])
+    with open(os.path.join(one, "summary.json")) as f:
+        s1 = json.load(f)
+    with open(os.path.join(two, "summary.json")) as f:
+        s2 = json.load(f)
+    c.check(s2["ocio"]["view"] == "ACES 1.0 - SDR Video" and s2["ocio"]["extra_views"] == ["Un-tone-mapped"],
+            "summary names both views", s2["ocio"])
+    f1, f2 = s1["frames"], s2["frames"]
+    c.require(len(f1) == len(f2) == 3, "3 frames each", (len(f1), len(f2)))
+    for a, b in zip(f1, f2):
+        c.check(a["counters"]["passes"] == b["counters"]["passes"] and a["counters"]["draws"] == b["counters"]["draws"],
+                f"frame {a['index']}: scene passes and draws do not grow with views",
+                (a["counters"]["passes"], b["counters"]["passes"]))
+        c.check(a["counters"]["tonemap_passes"] == 1 and b["counters"]["tonemap_passes"] == 2,
+                f"frame {a['index']}: one tonemap pass per view")
+        c.check(a["exr_pixel_hash"] == b["exr_pixel_hash"], f"frame {a['index']}: the same scene render")
+        extra = b.get("extra_views", [])
+        c.check(len(extra) == 1 and os.path.isfile(os.path.join(two, extra[0]["png"])),
+                f"frame {a['index']}: the extra view's PNG", extra)
+        if extra:
+            with open(os.path.join(two, b["png"]), "rb") as fa, open(os.path.join(two, extra[0]["png"]), "rb") as fb:
+                c.check(fa.read() != fb.read(), f"frame {a['index']}: the two views differ")
+    bad = os.path.join(tmp, "bad")
+    p = run(exe, [*common, "--out", bad, "--view", "ACES 1.0 - SDR Video", "--view", "Filmic"])
+    errs = [l for l in p.stderr.splitlines() if l.startswith("pacifica: error:")]
+    c.check(p.returncode != 0 and len(errs) == 1 and "unknown view 'Filmic'" in errs[0] and "Un-tone-mapped" in errs[0],
+            "an unknown extra view is refused listing the valid ones", p.stderr[-600:])
+    c.check(not os.path.exists(bad) or not os.listdir(bad), "nothing written for the refused run")
+
+
+CASES = {"hdr": case_hdr, "replay": case_replay, "replay-views": case_replay_views, "bad-input": case_bad_input}
 
 if __name__ == "__main__":
     sys.exit(test_e2e.main(CASES, "tonemap", __doc__))

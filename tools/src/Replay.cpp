@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -257,6 +258,23 @@ void runReplay(const ReplayOptions& o) {
     for (const ReplayView& v : input.views)
         targets.push_back(std::make_unique<gl::FrameTargets>(v.width, v.height));
     color::Tonemapper tonemapper(colour);
+    // Extra views: one more tonemap pass each over the same rendered scene (no scene pass is repeated).
+    struct ExtraView {
+        std::string view, suffix;
+        std::unique_ptr<color::Tonemapper> pass;
+    };
+    std::vector<ExtraView> extraViews;
+    for (const std::string& v : o.extraViews) {
+        color::ColorPipeline other = colour;
+        other.select(colour.selectedDisplay(), v); // an unknown view: ColorError listing the valid ones
+        std::string suffix;
+        for (char c : v)
+            suffix += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
+        for (const ExtraView& e : extraViews)
+            if (e.suffix == suffix)
+                throw std::runtime_error("--view '" + v + "' is given twice");
+        extraViews.push_back({v, suffix, std::make_unique<color::Tonemapper>(other)});
+    }
     gl::GpuTimer gpuTimer(context->info());
     const std::vector<ReplayObject> objects =
         o.objects ? replayObjects(input, start, end) : std::vector<ReplayObject>{};
@@ -385,6 +403,16 @@ void runReplay(const ReplayOptions& o) {
             }
             if (video && vi == 0)
                 video->addFrame(display.data());
+            nlohmann::json extraPngs = nlohmann::json::array();
+            for (ExtraView& e : extraViews) {
+                e.pass->run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
+                if (writeImages) {
+                    target.readDisplay(display);
+                    const std::string png = std::string(name) + "." + e.suffix + ".png";
+                    capture::writePng8(out->staged(png), view.width, view.height, 4, display.data());
+                    extraPngs.push_back({{"view", e.view}, {"png", png}});
+                }
+            }
 
             nlohmann::json fj;
             fj["index"] = k;
@@ -395,6 +423,8 @@ void runReplay(const ReplayOptions& o) {
             if (writeImages) {
                 fj["exr"] = exrName;
                 fj["png"] = pngName;
+                if (!extraViews.empty())
+                    fj["extra_views"] = extraPngs;
             }
             fj["exr_pixel_hash"] = hex64(hash);
             // What the frame cost and did (OceanStats, EffectCounters): absent effects show zeros.
@@ -417,7 +447,8 @@ void runReplay(const ReplayOptions& o) {
                               {"explosions_dropped", fx.droppedExplosions},
                               {"wakes_dropped", fx.droppedWakes},
                               {"events_rejected", fx.rejected},
-                              {"objects_drawn", objectsDrawn}};
+                              {"objects_drawn", objectsDrawn},
+                              {"tonemap_passes", 1 + extraViews.size()}};
             viewFrames[vi].push_back(std::move(fj));
         }
         const auto f1 = std::chrono::steady_clock::now();
@@ -452,7 +483,8 @@ void runReplay(const ReplayOptions& o) {
                      {"platform", context->info().platform}};
     summary["ocio"] = {{"config", colour.configDescription()},
                        {"display", colour.selectedDisplay()},
-                       {"view", colour.selectedView()}};
+                       {"view", colour.selectedView()},
+                       {"extra_views", o.extraViews}};
     summary["environment"] = environmentJson;
     summary["size"] = {input.views.front().width, input.views.front().height};
     summary["fps"] = o.fps;

@@ -37,6 +37,9 @@ struct ReplayOptions {
     long long maxFrames = 100000; ///< --max-frames: a run with more frames is refused before it starts
     std::string display;          ///< empty = the config's default display
     std::string view;             ///< empty = the display's default view
+    /// Further views of the same display (--view repeated): the scene is rendered once per frame and
+    /// tonemapped once more per extra view, written as frame_NNNNN.<view>.png (slug of the view name).
+    std::vector<std::string> extraViews;
     std::optional<std::filesystem::path> ocioConfig;
     bool writeImages = true; ///< false: render, tonemap and read back, but write no images (benchmarks)
     bool progress = true;    ///< progress line when stderr is a TTY

@@ -59,7 +59,12 @@ int main(int argc, char** argv) {
     CLI::Option* endOpt =
         rp->add_option("--end", end, "last frame time: seconds or UTC timestamp (default: flight end)");
     rp->add_option("--display", replay.display, "OCIO display (default: the config's default)");
-    rp->add_option("--view", replay.view, "OCIO view (default: the display's default)");
+    std::vector<std::string> replayViews;
+    rp->add_option("--view", replayViews,
+                   "OCIO view (default: the display's default); repeat to tonemap the same render several "
+                   "ways (frame_NNNNN.<view>.png per extra view)")
+        ->expected(1)
+        ->take_all();
     CLI::Option* ocioOpt = rp->add_option("--ocio-config", ocioConfig, "OCIO config file (overrides $OCIO)");
     rp->add_flag("--no-images", noImages, "render and read back but write no images (benchmarking)");
     rp->add_flag("--no-progress", noProgress, "no progress line");
@@ -156,6 +161,10 @@ int main(int argc, char** argv) {
         }
         if (rp->parsed()) {
             replay.flight = flight;
+            if (!replayViews.empty()) {
+                replay.view = replayViews.front();
+                replay.extraViews.assign(replayViews.begin() + 1, replayViews.end());
+            }
             if (videoOpt->count())
                 replay.video = video;
             replay.outDir = outDir;
