@@ -211,6 +211,25 @@ TEST(ColorConfig, InputColourSpaceForConfigsWhoseSceneLinearIsNotRec709) {
     EXPECT_EQ(p.input(), "Linear Rec.709 (sRGB)");
 }
 
+TEST(ColorConfig, DecodeDisplayBackToXyz) {
+    // sRGB display: code 0.5 is display-linear 0.214 (IEC 61966-2-1), as CIE Y of a grey.
+    ColorPipeline p = ColorPipeline::createDefault();
+    p.select("sRGB", "Un-tone-mapped");
+    std::array<float, 4> px{0.5f, 0.5f, 0.5f, 1.0f};
+    ASSERT_TRUE(p.decodeDisplayCpu(px.data(), 1));
+    EXPECT_NEAR(px[1], 0.2140411f, 1e-4f);
+    // PQ display of the studio config, entered from linear Rec.709: white 1.0 un-tone-mapped is 100 cd/m^2,
+    // and decodes back to Y = 1 (the display reference's 1.0 = 100 cd/m^2).
+    ColorPipeline s = ColorPipeline::fromFile(studioConfig());
+    s.setInput(s.linearRec709ColorSpace());
+    s.select("Rec.2100-PQ - Display", "Un-tone-mapped");
+    px = {1.0f, 1.0f, 1.0f, 1.0f};
+    s.applyCpu(px.data(), 1);
+    EXPECT_NEAR(px[1], 0.508f, 0.001f); // ST 2084 code of 100 cd/m^2
+    ASSERT_TRUE(s.decodeDisplayCpu(px.data(), 1));
+    EXPECT_NEAR(px[1], 1.0f, 2e-3f);
+}
+
 TEST(ColorConfig, EnvironmentPrecedence) {
     const std::string studio = studioConfig().string();
     {

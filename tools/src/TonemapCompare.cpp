@@ -26,6 +26,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <unistd.h>
@@ -55,6 +56,9 @@ struct Transform {
     std::string display, view;
     std::string tonemapperId; ///< closed-form tonemapper this view ships, if any
     ColorPipeline pipeline;
+    /// How its code values become display-linear light for the colour metrics: through the display colour
+    /// space back to CIE XYZ (ColorPipeline::decodeDisplayCpu), else the sRGB EOTF.
+    bool decodesToXyz = false;
 };
 
 std::string lower(std::string s) {
@@ -220,10 +224,6 @@ std::string fmt(double v, int precision = 3) {
 void addConfigViews(const ColorPipeline& pipeline, const std::string& configLabel,
                     std::vector<Transform>& out, std::vector<std::string>& skipped) {
     for (const std::string& d : pipeline.displays()) {
-        if (lower(d).find("srgb") == std::string::npos) {
-            skipped.push_back(configLabel + ": " + d + " (not an sRGB display; the metrics decode sRGB)");
-            continue;
-        }
         for (const std::string& v : pipeline.views(d)) {
             Transform t{configLabel + ": " + d + " / " + v, configLabel, d, v, "", pipeline};
             t.pipeline.select(d, v);
@@ -234,6 +234,13 @@ void addConfigViews(const ColorPipeline& pipeline, const std::string& configLabe
             if (std::fabs(probe[0] - 0.18f) < 1e-6f && std::fabs(probe[1] - 2.0f) < 1e-6f &&
                 std::fabs(probe[2] - 0.05f) < 1e-6f) {
                 skipped.push_back(t.label + " (passes scene-linear data through: no display transform)");
+                continue;
+            }
+            float none[4] = {0, 0, 0, 1};
+            t.decodesToXyz = t.pipeline.decodeDisplayCpu(none, 0);
+            if (!t.decodesToXyz && lower(d).find("srgb") == std::string::npos) {
+                skipped.push_back(t.label + " (its view names no display colour space and the display is not "
+                                            "sRGB: its code values cannot be decoded)");
                 continue;
             }
             out.push_back(std::move(t));
@@ -350,6 +357,26 @@ private:
     const std::vector<float>* mUploaded = nullptr;
     size_t mUploadedSize = 0;
 };
+
+/// Display-linear Rec.709 light of a transform's code values (scale: relative for SDR, 1 = 100 cd/m^2 for
+/// the ACES configs' HDR displays; the colour metrics are scale-free).
+std::vector<float> displayLinear(const Transform& t, const std::vector<float>& code) {
+    std::vector<float> out(code.size());
+    if (!t.decodesToXyz) {
+        for (size_t i = 0; i < code.size(); ++i)
+            out[i] = tm::srgbDecode(code[i]);
+        return out;
+    }
+    std::vector<float> rgba = toRgba(code);
+    for (float& v : rgba) // what a display shows: code values outside [0, 1] are clipped by it
+        v = std::clamp(v, 0.0f, 1.0f);
+    t.pipeline.decodeDisplayCpu(rgba.data(), rgba.size() / 4);
+    for (size_t i = 0; i < code.size() / 3; ++i)
+        for (size_t k = 0; k < 3; ++k)
+            out[3 * i + k] = rgba[4 * i + k];
+    tm::xyzToLinearRec709(out.data(), out.size() / 3);
+    return out;
+}
 
 /// hdr/<input>-pq.png (16-bit Rec.2100 PQ code values, Rec.2020 primaries) and hdr/<input>-nits.exr (the
 /// same pixels as absolute luminance in cd/m^2, PQ-decoded) through the ACES 1.1 HDR 1000 cd/m^2 view;
@@ -590,12 +617,20 @@ json lutAccuracyAndCost(const fs::path& out, const std::vector<Input>& inputs) {
 void writeReports(const fs::path& out, const json& report) {
     writeText(out / "metrics.json", report.dump(2) + "\n");
     // Ranking over every input that is scene-linear: mean clipped fraction and mean hue shift per transform.
+    std::set<std::string> srgbLabels;
+    for (const json& t : report["transforms"])
+        if (lower(t["display"].get<std::string>()).find("srgb") != std::string::npos)
+            srgbLabels.insert(t["label"].get<std::string>());
     std::map<std::string, std::pair<double, double>> sums;
     std::map<std::string, int> counts;
     for (const json& in : report["inputs"]) {
         if (in["ldr"].get<bool>())
             continue;
         for (const json& r : in["results"]) {
+            // Ranked among sRGB displays only: "clipped" (a code at the display maximum) means nothing
+            // comparable on a PQ display whose maximum is 10000 cd/m^2.
+            if (!srgbLabels.count(r["transform"].get<std::string>()))
+                continue;
             auto& s = sums[r["transform"].get<std::string>()];
             s.first += r["metrics"]["clipped"].get<double>();
             s.second += r["metrics"]["hue_shift_mean_deg"].get<double>();
@@ -618,9 +653,9 @@ void writeReports(const fs::path& out, const json& report) {
                ? std::string("not run")
                : "GL_RENDERER " + report["gl_renderer"].get<std::string>())
        << ".\n\n"
-       << "Over the scene-linear inputs: **least clipping**: " << leastClip << " (mean "
-       << fmt(100 * bestClip, 2) << "% of pixels); **least hue shift**: " << leastHue << " (mean "
-       << fmt(bestHue, 2) << " deg).\n\n";
+       << "Over the scene-linear inputs, among the sRGB-display transforms: **least clipping**: " << leastClip
+       << " (mean " << fmt(100 * bestClip, 2) << "% of pixels); **least hue shift**: " << leastHue
+       << " (mean " << fmt(bestHue, 2) << " deg).\n\n";
     for (const json& in : report["inputs"]) {
         const json& c = in["census"];
         md << "## " << in["name"].get<std::string>() << "\n\n"
@@ -862,11 +897,13 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
     json report;
     report["transforms"] = json::array();
     for (const Transform& t : transforms)
-        report["transforms"].push_back({{"label", t.label},
-                                        {"config", t.config},
-                                        {"display", t.display},
-                                        {"view", t.view},
-                                        {"closed_form", t.tonemapperId}});
+        report["transforms"].push_back(
+            {{"label", t.label},
+             {"decoded_by", t.decodesToXyz ? "display colour space -> CIE XYZ" : "sRGB EOTF"},
+             {"config", t.config},
+             {"display", t.display},
+             {"view", t.view},
+             {"closed_form", t.tonemapperId}});
     report["skipped_displays"] = skipped;
     report["gl_renderer"] = gpu.available() ? gpu.renderer() : "";
     report["inputs"] = json::array();
@@ -915,7 +952,9 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
                 codeA = code;
             if (ti == pairB)
                 codeB = code;
-            const tm::TransformMetrics m = tm::measure(in.rgb.data(), code.data(), in.rgb.size() / 3);
+            const std::vector<float> linear = displayLinear(t, code);
+            const tm::TransformMetrics m =
+                tm::measure(in.rgb.data(), code.data(), linear.data(), in.rgb.size() / 3);
             json jr = {{"transform", t.label}, {"metrics", metricsJson(m)}};
             if (o.gpu && gpu.available()) {
                 // Uploaded and read back in the same row order, pixel for pixel (the pass texelFetch-es).
@@ -929,7 +968,7 @@ void runTonemapCompare(const TonemapCompareOptions& o) {
                 jr["gpu_cpu_max_difference"] = worst;
             }
             if (in.chart) {
-                const tm::SweepMetrics s = tm::sweepMetrics(chart, code.data());
+                const tm::SweepMetrics s = tm::sweepMetrics(chart, code.data(), linear.data());
                 jr["sweep"] = {{"luminance_reversals", s.luminanceReversals},
                                {"hue_flips", s.hueFlips},
                                {"mid_grey_code", s.whereMidGreyLands}};

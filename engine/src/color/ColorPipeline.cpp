@@ -354,6 +354,33 @@ void ColorPipeline::applyCpu(float* rgba, std::size_t pixelCount) const {
     }
 }
 
+bool ColorPipeline::decodeDisplayCpu(float* rgba, std::size_t pixelCount) const {
+    const Impl& impl = *mImpl;
+    try {
+        std::string name = impl.config->getDisplayViewColorSpaceName(impl.display.c_str(), impl.view.c_str());
+        if (name ==
+            OCIO::OCIO_VIEW_USE_DISPLAY_NAME) // v2 views: the display colour space is named as the display
+            name = impl.display;
+        const OCIO::ConstColorSpaceRcPtr cs = impl.config->getColorSpace(name.c_str());
+        if (!cs || cs->getReferenceSpaceType() != OCIO::REFERENCE_SPACE_DISPLAY)
+            return false;
+        OCIO::ConstProcessorRcPtr processor;
+        if (const OCIO::ConstTransformRcPtr to = cs->getTransform(OCIO::COLORSPACE_DIR_TO_REFERENCE))
+            processor = impl.config->getProcessor(to, OCIO::TRANSFORM_DIR_FORWARD);
+        else if (const OCIO::ConstTransformRcPtr from = cs->getTransform(OCIO::COLORSPACE_DIR_FROM_REFERENCE))
+            processor = impl.config->getProcessor(from, OCIO::TRANSFORM_DIR_INVERSE);
+        else
+            return false;
+        if (pixelCount > 0) {
+            OCIO::PackedImageDesc image(rgba, static_cast<long>(pixelCount), 1, 4);
+            processor->getDefaultCPUProcessor()->apply(image);
+        }
+        return true;
+    } catch (const OCIO::Exception& e) {
+        throw ColorError("ColorPipeline::decodeDisplayCpu(): " + impl.where() + ": " + e.what());
+    }
+}
+
 ColorPipeline::GpuShader ColorPipeline::gpuShader() const {
     const Impl& impl = *mImpl;
     GpuShader out;

@@ -75,7 +75,35 @@ SourceCensus census(const float* rgb, size_t pixels) {
     return c;
 }
 
+namespace {
+std::vector<float> srgbDecoded(const float* code, size_t values) {
+    std::vector<float> out(values);
+    for (size_t i = 0; i < values; ++i)
+        out[i] = std::isfinite(code[i]) ? srgbDecode(code[i]) : code[i];
+    return out;
+}
+} // namespace
+
+void xyzToLinearRec709(float* p, size_t pixels) {
+    for (size_t i = 0; i < pixels; ++i, p += 3) {
+        const float x = p[0], y = p[1], z = p[2];
+        p[0] = 3.2404542f * x - 1.5371385f * y - 0.4985314f * z;
+        p[1] = -0.9692660f * x + 1.8760108f * y + 0.0415560f * z;
+        p[2] = 0.0556434f * x - 0.2040259f * y + 1.0572252f * z;
+    }
+}
+
 TransformMetrics measure(const float* src, const float* code, size_t pixels) {
+    const std::vector<float> linear = srgbDecoded(code, pixels * 3);
+    return measure(src, code, linear.data(), pixels);
+}
+
+SweepMetrics sweepMetrics(const Chart& chart, const float* code) {
+    const std::vector<float> linear = srgbDecoded(code, chart.rgb.size());
+    return sweepMetrics(chart, code, linear.data());
+}
+
+TransformMetrics measure(const float* src, const float* code, const float* linear, size_t pixels) {
     TransformMetrics m;
     size_t clipped = 0, crushed = 0, chromaticSource = 0, desaturated = 0, neutral = 0;
     double chromaRatioSum = 0.0, neutralSum = 0.0;
@@ -85,7 +113,7 @@ TransformMetrics measure(const float* src, const float* code, size_t pixels) {
         const float* o = code + 3 * i;
         if (!finite3(s))
             continue;
-        if (!finite3(o)) {
+        if (!finite3(o) || !finite3(linear + 3 * i)) {
             ++m.nonFiniteOutput;
             continue;
         }
@@ -97,7 +125,8 @@ TransformMetrics measure(const float* src, const float* code, size_t pixels) {
             ++clipped;
         if (maxCode < CRUSH_CODE && ys > CRUSH_SOURCE_Y)
             ++crushed;
-        const float lr = srgbDecode(o[0]), lg = srgbDecode(o[1]), lb = srgbDecode(o[2]);
+        const float* li = linear + 3 * i;
+        const float lr = std::max(li[0], 0.0f), lg = std::max(li[1], 0.0f), lb = std::max(li[2], 0.0f);
         const float yo = luminance(lr, lg, lb);
         if (ys > CRUSH_SOURCE_Y) {
             logSrc.push_back(std::log2(ys));
@@ -205,14 +234,15 @@ Chart testChart(int cell) {
     return c;
 }
 
-SweepMetrics sweepMetrics(const Chart& chart, const float* code) {
+SweepMetrics sweepMetrics(const Chart& chart, const float* code, const float* linear) {
     SweepMetrics m;
     for (size_t h = 0; h <= chart.hues.size(); ++h) {
         float prevY = -1.0f, prevHue = 0.0f;
         bool prevChromatic = false;
         for (size_t e = 0; e < chart.evs.size(); ++e) {
             const float* o = code + 3 * chart.sweepPixel(h, e);
-            const float lr = srgbDecode(o[0]), lg = srgbDecode(o[1]), lb = srgbDecode(o[2]);
+            const float* li = linear + 3 * chart.sweepPixel(h, e);
+            const float lr = std::max(li[0], 0.0f), lg = std::max(li[1], 0.0f), lb = std::max(li[2], 0.0f);
             const float y = luminance(lr, lg, lb);
             if (prevY >= 0.0f && y < prevY - 1e-4f)
                 ++m.luminanceReversals;

@@ -130,6 +130,12 @@ public:
     /// through). Output is not clamped. Thread-safe.
     void applyCpu(float* rgba, std::size_t pixelCount) const;
 
+    /// Decodes code values of the selected (display, view) back to the config's display reference (CIE XYZ
+    /// D65 in the ACES configs; for the PQ and HLG displays of those configs 1.0 = 100 cd/m^2), in place,
+    /// with the display colour space's own transform. Returns false, touching nothing, when the view's colour
+    /// space is not a display colour space (a v1-style view) -- the caller must know its encoding then.
+    bool decodeDisplayCpu(float* rgba, std::size_t pixelCount) const;
+
     /// The selected processor as GLSL 4.0 (OCIO's default GPU processor, function "pacificaOCIODisplay",
     /// resource prefix "pacifica_ocio"), with the LUT data and dynamic uniforms it needs.
     GpuShader gpuShader() const;

@@ -53,6 +53,12 @@ struct TransformMetrics {
 /// src: scene-linear RGB, code: sRGB code values of the same pixels, both interleaved RGB.
 /// Non-finite source pixels are skipped (census() counts them).
 TransformMetrics measure(const float* src, const float* code, size_t pixels);
+/// The same for any display: code = its code values (clipping, crushing), linear = the same pixels decoded to
+/// display-linear Rec.709 RGB (relative or absolute: colour metrics are scale-free), e.g. from
+/// ColorPipeline::decodeDisplayCpu() and xyzToLinearRec709().
+TransformMetrics measure(const float* src, const float* code, const float* linear, size_t pixels);
+/// CIE XYZ (D65) -> linear Rec.709, in place on interleaved RGB (IEC 61966-2-1 matrix, inverted).
+void xyzToLinearRec709(float* rgb, size_t pixels);
 
 /// The generated test chart (scene-linear Rec.709): rows of saturated hues swept over exposure, a grey ramp,
 /// and sky and skin patches. Built in code, licence-clean.
@@ -76,5 +82,7 @@ struct SweepMetrics {
     float whereMidGreyLands = 0; ///< code value of 0.18 grey on the ramp
 };
 SweepMetrics sweepMetrics(const Chart& chart, const float* code);
+/// With the chart's output decoded to display-linear Rec.709 (`linear`), for any display.
+SweepMetrics sweepMetrics(const Chart& chart, const float* code, const float* linear);
 
 } // namespace pacifica::tonemap
