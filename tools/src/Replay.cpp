@@ -246,6 +246,14 @@ void runReplay(const ReplayOptions& o) {
     }
     const std::string environmentName = o.environment ? o.environment->filename().string() : "procedural";
     color::ColorPipeline colour = color::ColorPipeline::fromEnvironmentOr(o.ocioConfig);
+    // The renderer's frames are linear Rec.709: a config whose scene_linear role is another space (ACEScg in
+    // the ACES studio and CG configs) is entered through its linear Rec.709 colour space when it has one.
+    if (const std::string rec709 = colour.linearRec709ColorSpace(); !rec709.empty())
+        colour.setInput(rec709);
+    else
+        std::fprintf(stderr,
+                     "pacifica: warning: the OCIO config has no linear Rec.709 colour space; frames enter it "
+                     "as its scene_linear role\n");
     colour.select(o.display, o.view);
     std::unique_ptr<gl::GlContext> context = gl::createHeadlessContext();
 
@@ -482,6 +490,7 @@ void runReplay(const ReplayOptions& o) {
                      {"version", context->info().version},
                      {"platform", context->info().platform}};
     summary["ocio"] = {{"config", colour.configDescription()},
+                       {"input", colour.input().empty() ? std::string("scene_linear") : colour.input()},
                        {"display", colour.selectedDisplay()},
                        {"view", colour.selectedView()},
                        {"extra_views", o.extraViews}};
