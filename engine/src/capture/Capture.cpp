@@ -16,6 +16,7 @@
 #include <atomic>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <system_error>
 
@@ -151,19 +152,33 @@ uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, 
     return hashHalfPixels(halves.data(), halves.size());
 }
 
+namespace {
+
+/// Code values in [0, 1] (clamped, NaN -> 0) quantised as round(v * max) into T: the PNG writers' sample
+/// step.
+template <typename T>
+std::vector<T> quantise(const float* values, size_t count) {
+    constexpr float MAX = static_cast<float>(std::numeric_limits<T>::max());
+    std::vector<T> out(count);
+    for (size_t i = 0; i < count; ++i) {
+        const float v = values[i];
+        const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+        out[i] = static_cast<T>(std::lround(clamped * MAX));
+    }
+    return out;
+}
+
+size_t sampleCount(int width, int height, int channels) {
+    return static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
+}
+
+} // namespace
+
 void writePng8(const std::filesystem::path& path, int width, int height, int channels,
                const float* displayTopDown) {
     checkArguments(path, "writePng8()", width, height, channels, 1, 4, displayTopDown);
-
-    const size_t count =
-        static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
-    std::vector<uint8_t> bytes(count);
-    for (size_t i = 0; i < count; ++i) {
-        const float v = displayTopDown[i];
-        const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-        bytes[i] = static_cast<uint8_t>(std::lround(clamped * 255.0f));
-    }
-
+    const std::vector<uint8_t> bytes =
+        quantise<uint8_t>(displayTopDown, sampleCount(width, height, channels));
     OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
     writeAtomically(path, "png", spec, bytes.data());
@@ -172,14 +187,8 @@ void writePng8(const std::filesystem::path& path, int width, int height, int cha
 void writePng16(const std::filesystem::path& path, int width, int height, int channels,
                 const float* codeTopDown) {
     checkArguments(path, "writePng16()", width, height, channels, 1, 4, codeTopDown);
-    const size_t count =
-        static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
-    std::vector<uint16_t> values(count);
-    for (size_t i = 0; i < count; ++i) {
-        const float v = codeTopDown[i];
-        const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-        values[i] = static_cast<uint16_t>(std::lround(clamped * 65535.0f));
-    }
+    const std::vector<uint16_t> values =
+        quantise<uint16_t>(codeTopDown, sampleCount(width, height, channels));
     OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT16);
     writeAtomically(path, "png", spec, values.data());
 }
