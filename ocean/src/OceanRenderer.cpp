@@ -262,8 +262,38 @@ unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback) {
     return program.id();
 }
 
+namespace {
+enum TimedPass { PassCompute, PassSky, PassSea, PassEffects, PassCount };
+} // namespace
+
+void OceanRenderer::setPassTiming(std::optional<gl::GpuTimer::Clock> clock) {
+    mPassTimes = {};
+    if (!clock)
+        mPassTimer.reset();
+    else
+        mPassTimer = std::make_unique<gl::PassTimer>(*clock, PassCount);
+}
+
+const char* OceanRenderer::passTimingClock() const {
+    return mPassTimer ? mPassTimer->clockName() : "";
+}
+
 void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
     mStats = {};
+    renderPasses(registry, frame);
+    if (!mPassTimer)
+        return;
+    if (auto ms = mPassTimer->poll()) {
+        mPassTimes.measured = true;
+        mPassTimes.computeMs = (*ms)[PassCompute];
+        mPassTimes.skyMs = (*ms)[PassSky];
+        mPassTimes.seaMs = (*ms)[PassSea];
+        mPassTimes.effectsMs = (*ms)[PassEffects];
+    }
+    mStats.passTimes = mPassTimes;
+}
+
+void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& frame) {
     // Drop GPU resources of oceans that no longer exist.
     for (auto it = mGpu.begin(); it != mGpu.end();) {
         if (!registry.valid(it->first) || !registry.has<OceanComponent>(it->first))
@@ -287,6 +317,22 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
     glClear(GL_DEPTH_BUFFER_BIT);
 
     const glm::mat4 invViewProj = glm::inverse(frame.camera.viewProj);
+    // Pass timing (setPassTiming): a mark at the end of each pass; a pass left out adds ~0 to its slot.
+    struct FrameMarks {
+        gl::PassTimer* timer;
+        explicit FrameMarks(gl::PassTimer* t) : timer(t) {
+            if (timer)
+                timer->beginFrame();
+        }
+        ~FrameMarks() {
+            if (timer)
+                timer->endFrame();
+        }
+        void mark(int pass) const {
+            if (timer)
+                timer->mark(pass);
+        }
+    } marks(mPassTimer.get());
     view.each([&](ecs::Entity e, OceanComponent& ocean) {
         if (!ocean.surface)
             return;
@@ -294,6 +340,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         const SurfaceGpuStats work = gpu.model->update(frame.time, frame.camera.origin);
         mStats.passes += work.computePasses;
         mStats.uploads += work.uploads;
+        marks.mark(PassCompute);
 
         if (ocean.desc.drawSky) {
             if (!mPrograms->sky) {
@@ -316,6 +363,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             mStats.passes += 1;
             mStats.draws += 1;
             mStats.vertices += 3;
+            marks.mark(PassSky);
         }
 
         // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
@@ -356,6 +404,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         mStats.passes += 1;
         mStats.draws += 1;
         mStats.vertices += gpu.mesh.vertexCount;
+        marks.mark(PassSea);
 
         // The secondary grids, one instanced draw per kind in view (after the base grid: same depth test).
         if (!holes)
@@ -377,6 +426,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
             mStats.draws += 1;
             mStats.vertices += vertices;
         }
+        marks.mark(PassEffects);
     });
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }

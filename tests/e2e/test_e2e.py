@@ -581,6 +581,26 @@ def case_effects(c, exe, source_dir, tmp):
             c.check(fp["exr_pixel_hash"] != fe["exr_pixel_hash"], f"t={fp['time_s']}: the effects change the pixels")
 
 
+    print("[profile] the events slice again with --profile: per-pass times, the same pixels")
+    c.check(all("pass_ms" not in f for f in f_fx), "without --profile no frame has pass_ms")
+    s_prof, f_prof = run("profiled", ["--profile"])
+    medians = s_prof.get("timings", {}).get("passes_ms_median", {})
+    want = {"compute", "sky", "sea", "effects", "objects", "tonemap", "readback", "encode"}
+    c.check(want <= set(medians), "summary timings.passes_ms_median names every pass", str(medians))
+    c.check("glFinish" in s_prof.get("timings", {}).get("pass_clock", "") or
+            "GL_TIMESTAMP" in s_prof.get("timings", {}).get("pass_clock", ""),
+            "summary timings.pass_clock names the clock", str(s_prof.get("timings")))
+    for fp, fe in zip(f_prof, f_fx):
+        pm = fp.get("pass_ms", {})
+        c.check(fp["exr_pixel_hash"] == fe["exr_pixel_hash"], f"t={fp['time_s']}: --profile changes no pixel")
+        c.check(all(isinstance(pm.get(k), (int, float)) and pm[k] >= 0 for k in want),
+                f"t={fp['time_s']}: pass_ms has every pass, none negative", str(pm))
+        c.check(pm.get("sea", 0) > 0 and pm.get("sky", 0) > 0 and pm.get("tonemap", 0) > 0,
+                f"t={fp['time_s']}: sky, sea and tonemap take time", str(pm))
+        if fe["counters"]["wakes"]["drawn"] or fe["counters"]["explosions"]["drawn"]:
+            c.check(pm.get("effects", 0) > 0, f"t={fp['time_s']}: drawn effects take time", str(pm))
+
+
 CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options": case_ocean_options,
          "effects": case_effects}
 

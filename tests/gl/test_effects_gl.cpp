@@ -18,10 +18,13 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <string>
 
 using namespace pacifica;
 using namespace pacifica::ocean;
@@ -172,6 +175,51 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
     EXPECT_EQ(s.vertices, plain.vertices);
     EXPECT_EQ(s.programsBuilt, 0);
     EXPECT_EQ(s.explosions.uploads + s.wakes.uploads + s.explosions.draws + s.wakes.draws, 0);
+}
+
+// Pass timing (docs/PERFORMANCE.md): off by default (nothing measured, no query); on, every present pass
+// has time, absent passes ~none, the passes add up to no more than the frame, and the image is unchanged.
+TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
+    EffectsSystem fx(registry, events);
+    const glm::dvec3 cam(0.0, 0.0, 60.0);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.0));
+    EXPECT_FALSE(renderer.lastStats().passTimes.measured);
+    EXPECT_STREQ(renderer.passTimingClock(), "");
+    std::vector<float> untimed, timed;
+    targets.readScene(untimed);
+
+    renderer.setPassTiming(gl::GpuTimer::Clock::WallAroundFinish);
+    EXPECT_TRUE(std::string(renderer.passTimingClock()).find("glFinish") != std::string::npos);
+    glFinish();
+    const auto t0 = std::chrono::steady_clock::now();
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.0));
+    const double frameMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    targets.readScene(timed);
+    EXPECT_EQ(timed, untimed) << "timing must not change what is drawn";
+    OceanPassTimes p = renderer.lastStats().passTimes;
+    ASSERT_TRUE(p.measured);
+    EXPECT_GT(p.skyMs, 0.0);
+    EXPECT_GT(p.seaMs, 0.0);
+    EXPECT_LE(p.totalMs(), frameMs);
+    // No effects: the effects span is a glFinish with nothing queued, far below the sea's draw.
+    EXPECT_LT(p.effectsMs, 0.25 * p.seaMs) << p.effectsMs << " vs sea " << p.seaMs;
+
+    // An explosion in view: its secondary grid's draw shows up in the effects span.
+    events.enqueue(SpawnExplosion{{300.0, 0.0}, 1.0, 1.0});
+    events.dispatch();
+    fx.update(3.0, cam);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.0));
+    p = renderer.lastStats().passTimes;
+    ASSERT_EQ(renderer.lastStats().explosions.draws, 1);
+    EXPECT_GT(p.effectsMs, 0.0);
+    EXPECT_GT(p.seaMs, 0.0);
+
+    // Off again: no new measurement.
+    renderer.setPassTiming(std::nullopt);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.1));
+    EXPECT_FALSE(renderer.lastStats().passTimes.measured);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 TEST_F(EffectsGl, WakeOnlySceneDoesNoExplosionWork) {

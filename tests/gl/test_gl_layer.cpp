@@ -10,11 +10,13 @@
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GlObjects.h"
 #include "engine/gl/GpuTimer.h"
+#include "engine/gl/PassTimer.h"
 #include "engine/gl/Shader.h"
 
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +25,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -704,6 +707,86 @@ TEST_F(GpuTimerTest, TimerQueryRingSurvivesMoreSpansThanSlots) {
         EXPECT_TRUE(std::isfinite(ms)) << ms;
         EXPECT_GE(ms, 0.0);
     }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// PassTimer
+// ---------------------------------------------------------------------------------------------------------
+
+using PassTimerTest = GlTest;
+
+TEST_F(PassTimerTest, WallClockAttributesEachSpanToTheMarkedPass) {
+    SmallDraw scene;
+    gl::PassTimer timer(gl::GpuTimer::Clock::WallAroundFinish, 3);
+    EXPECT_TRUE(contains(timer.clockName(), "glFinish")) << timer.clockName();
+    EXPECT_FALSE(timer.poll().has_value()) << "no frame yet";
+    timer.beginFrame();
+    scene.draw();
+    timer.mark(0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(30)); // pass 2's span: 30 ms of nothing
+    timer.mark(2);
+    scene.draw();
+    timer.mark(0); // a pass marked twice sums its spans
+    timer.endFrame();
+    const auto ms = timer.poll();
+    ASSERT_TRUE(ms.has_value());
+    ASSERT_EQ(ms->size(), 3u);
+    EXPECT_GT((*ms)[0], 0.0);
+    EXPECT_EQ((*ms)[1], 0.0) << "pass 1 was never marked";
+    EXPECT_GE((*ms)[2], 29.0);
+    EXPECT_LT((*ms)[2], 5000.0);
+    EXPECT_FALSE(timer.poll().has_value()) << "poll() hands out each frame once";
+}
+
+TEST_F(PassTimerTest, MisuseThrowsLogicError) {
+    for (gl::GpuTimer::Clock clock :
+         {gl::GpuTimer::Clock::WallAroundFinish, gl::GpuTimer::Clock::TimerQuery}) {
+        gl::PassTimer timer(clock, 2);
+        const std::string markFirst = messageOf<std::logic_error>([&] { timer.mark(0); });
+        EXPECT_TRUE(markFirst.starts_with("PassTimer::mark()")) << markFirst;
+        EXPECT_THROW(timer.endFrame(), std::logic_error);
+        timer.beginFrame();
+        EXPECT_THROW(timer.beginFrame(), std::logic_error);
+        const std::string outside = messageOf<std::logic_error>([&] { timer.mark(2); });
+        EXPECT_TRUE(contains(outside, "pass 2 outside [0, 2)")) << outside;
+        timer.mark(1);
+        timer.endFrame();
+        glFinish();
+        timer.drain();
+    }
+    EXPECT_THROW(gl::PassTimer(gl::GpuTimer::Clock::WallAroundFinish, 0), std::logic_error);
+    EXPECT_THROW(gl::PassTimer(gl::GpuTimer::Clock::TimerQuery, 1, 0), std::logic_error);
+}
+
+TEST_F(PassTimerTest, TimestampRingSurvivesMoreFramesThanSlots) {
+    SmallDraw scene;
+    gl::PassTimer timer(gl::GpuTimer::Clock::TimerQuery, 2, 3);
+    EXPECT_TRUE(contains(timer.clockName(), "GL_TIMESTAMP")) << timer.clockName();
+    // A GpuTimer span around the frames: glQueryCounter is allowed inside GL_TIME_ELAPSED (they nest).
+    gl::GpuTimer outer(gl::GpuTimer::Clock::TimerQuery);
+    outer.begin();
+    int frames = 0;
+    for (int i = 0; i < 7; ++i) {
+        timer.beginFrame(); // frames 4..7 have to wait for frames 1..4's timestamps
+        scene.draw();
+        timer.mark(0);
+        scene.draw();
+        timer.mark(1);
+        timer.endFrame();
+        frames += timer.poll().has_value() ? 1 : 0;
+    }
+    outer.end();
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    glFinish();
+    timer.drain();
+    const auto last = timer.poll();
+    ASSERT_TRUE(last.has_value()) << "drain() leaves the newest frame for poll()";
+    ASSERT_EQ(last->size(), 2u);
+    for (double ms : *last) { // llvmpipe's timestamps are not meaningful (NOTES-platform.md): sanity only
+        EXPECT_TRUE(std::isfinite(ms)) << ms;
+        EXPECT_GE(ms, 0.0);
+    }
+    EXPECT_LE(frames, 7);
 }
 
 // ---------------------------------------------------------------------------------------------------------

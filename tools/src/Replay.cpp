@@ -15,6 +15,7 @@
 #include "engine/gl/FrameTargets.h"
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GpuTimer.h"
+#include "engine/gl/PassTimer.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
@@ -27,6 +28,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <numbers>
 #include <unistd.h>
 #include <vector>
@@ -284,6 +287,15 @@ void runReplay(const ReplayOptions& o) {
         extraViews.push_back({v, suffix, std::make_unique<color::Tonemapper>(other)});
     }
     gl::GpuTimer gpuTimer(context->info());
+    // --profile: the ocean's passes (OceanRenderer::setPassTiming), the replay's own GPU passes (objects,
+    // extra and main tonemaps) with the same clock, readback and encoding on the CPU's steady_clock.
+    enum ReplayPass { PassObjects, PassTonemap, ReplayPassCount };
+    std::unique_ptr<gl::PassTimer> passTimer;
+    if (o.profile) {
+        renderer.setPassTiming(gpuTimer.clock());
+        passTimer = std::make_unique<gl::PassTimer>(gpuTimer.clock(), ReplayPassCount);
+    }
+    std::map<std::string, std::vector<double>> passSamples; // per pass name, one value per view frame
     const std::vector<ReplayObject> objects =
         o.objects ? replayObjects(input, start, end) : std::vector<ReplayObject>{};
     std::unique_ptr<ObjectRenderer> objectRenderer;
@@ -374,21 +386,32 @@ void runReplay(const ReplayOptions& o) {
                     drawn.push_back(object);
             gpuTimer.begin();
             renderer.render(registry, frame);
+            if (passTimer)
+                passTimer->beginFrame();
             const int objectsDrawn =
                 objectRenderer
                     ? objectRenderer->draw(drawn, frame.camera, target.sceneFramebuffer().id(), view.width,
                                            view.height, oceanDesc.lighting.sunDirection, drawEarthRadius)
                     : 0;
+            if (passTimer)
+                passTimer->mark(PassObjects);
             tonemapper.run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
+            if (passTimer) {
+                passTimer->mark(PassTonemap);
+                passTimer->endFrame();
+            }
             gpuTimer.end();
+            const auto r0 = std::chrono::steady_clock::now();
             target.readScene(scene);
             target.readDisplay(display);
+            const auto r1 = std::chrono::steady_clock::now();
 
             char name[96];
             std::snprintf(name, sizeof name, "%s%sframe_%05lld", view.name.c_str(),
                           view.name.empty() ? "" : "_", k);
             const std::string exrName = std::string(name) + ".exr", pngName = std::string(name) + ".png";
             uint64_t hash = 0;
+            double extraTonemapMs = 0.0; // extra views: their tonemap + readback, timed on the CPU
             if (writeImages) {
                 capture::Metadata meta;
                 meta.numbers = {{"frame", static_cast<double>(k)},   {"time_s", t},
@@ -413,14 +436,19 @@ void runReplay(const ReplayOptions& o) {
                 video->addFrame(display.data());
             nlohmann::json extraPngs = nlohmann::json::array();
             for (ExtraView& e : extraViews) {
+                const auto e0 = std::chrono::steady_clock::now();
                 e.pass->run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
-                if (writeImages) {
+                if (writeImages)
                     target.readDisplay(display);
+                extraTonemapMs +=
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - e0).count();
+                if (writeImages) {
                     const std::string png = std::string(name) + "." + e.suffix + ".png";
                     capture::writePng8(out->staged(png), view.width, view.height, 4, display.data());
                     extraPngs.push_back({{"view", e.view}, {"png", png}});
                 }
             }
+            const auto r2 = std::chrono::steady_clock::now();
 
             nlohmann::json fj;
             fj["index"] = k;
@@ -457,6 +485,31 @@ void runReplay(const ReplayOptions& o) {
                               {"events_rejected", fx.rejected},
                               {"objects_drawn", objectsDrawn},
                               {"tonemap_passes", 1 + extraViews.size()}};
+            if (passTimer) {
+                // The ocean's and the replay's pass timers: on hardware the newest frame whose timestamps
+                // have arrived (a few frames behind), on llvmpipe this one.
+                const ocean::OceanPassTimes& pt = st.passTimes;
+                auto ms = [](std::chrono::steady_clock::duration d) {
+                    return std::chrono::duration<double, std::milli>(d).count();
+                };
+                nlohmann::json pj;
+                if (pt.measured)
+                    pj = {{"compute", pt.computeMs},
+                          {"sky", pt.skyMs},
+                          {"sea", pt.seaMs},
+                          {"effects", pt.effectsMs}};
+                if (auto own = passTimer->poll()) {
+                    pj["objects"] = (*own)[PassObjects];
+                    pj["tonemap"] = (*own)[PassTonemap];
+                }
+                pj["readback"] = ms(r1 - r0);
+                pj["encode"] = ms(r2 - r1) - extraTonemapMs; // EXR + PNG (or the hash), video frame
+                if (!extraViews.empty())
+                    pj["extra_views"] = extraTonemapMs;
+                for (const auto& [pass, value] : pj.items())
+                    passSamples[pass].push_back(value.get<double>());
+                fj["pass_ms"] = std::move(pj);
+            }
             viewFrames[vi].push_back(std::move(fj));
         }
         const auto f1 = std::chrono::steady_clock::now();
@@ -529,6 +582,14 @@ void runReplay(const ReplayOptions& o) {
         {"total_s", totalSeconds},
         {"frames_per_second_overall", static_cast<double>(frameCount) / totalSeconds},
         {"frames_per_second_steady", 1000.0 / std::max(median(frameWallMs), 1e-9)}};
+    if (passTimer) {
+        nlohmann::json medians;
+        for (const auto& [name, v] : passSamples)
+            medians[name] = median(v);
+        summary["timings"]["passes_ms_median"] = std::move(medians);
+        summary["timings"]["pass_clock"] = std::string(renderer.passTimingClock()) +
+                                           " (GPU passes); steady_clock (readback, encode, extra_views)";
+    }
     if (out)
         out->commit(summary);
     logInfo("replay: " + std::to_string(frameCount) + " frames in " + std::to_string(totalSeconds) +

@@ -43,6 +43,10 @@ struct ReplayOptions {
     std::optional<std::filesystem::path> ocioConfig;
     bool writeImages = true; ///< false: render, tonemap and read back, but write no images (benchmarks)
     bool progress = true;    ///< progress line when stderr is a TTY
+    /// --profile: per-pass times in every frame's "pass_ms" and their medians in timings.passes_ms_median
+    /// (docs/PERFORMANCE.md): the ocean's passes (OceanRenderer::setPassTiming), objects, tonemap, readback
+    /// and image encoding. On llvmpipe it puts a glFinish between passes, which costs a little overlap.
+    bool profile = false;
     float fovYDeg = 60.0f;
     ocean::OceanDesc ocean; ///< the ocean to render (surface model, grid, lighting)
     /// --env: HDR lat-long environment (EXR, 3 or 4 channels) for the sky and reflections; it replaces

@@ -68,6 +68,8 @@ int main(int argc, char** argv) {
     CLI::Option* ocioOpt = rp->add_option("--ocio-config", ocioConfig, "OCIO config file (overrides $OCIO)");
     rp->add_flag("--no-images", noImages, "render and read back but write no images (benchmarking)");
     rp->add_flag("--no-progress", noProgress, "no progress line");
+    rp->add_flag("--profile", replay.profile,
+                 "time every pass (sky, sea, effects, objects, tonemap, readback, encode) into summary.json");
     bool noEvents = false, noObjects = false;
     rp->add_flag("--no-objects", noObjects, "do not draw the recording's aircraft, ships and weapons");
     rp->add_flag("--no-events", noEvents,

@@ -19,6 +19,7 @@
 
 #include "engine/Ecs.h"
 #include "engine/Space.h"
+#include "engine/gl/PassTimer.h"
 #include "ocean/Effects.h"
 #include "ocean/FftOcean.h"
 #include "ocean/GerstnerWaves.h"
@@ -100,6 +101,17 @@ struct EffectKindStats {
 
 /// What the last render() did: render and compute passes, draw calls, buffer/texture uploads, vertices
 /// (totals, effects included), and the effects' share per kind.
+/// Where a frame's GPU time went, per pass (OceanRenderer::setPassTiming; docs/PERFORMANCE.md). Hardware:
+/// GL_TIMESTAMP queries, the newest frame whose results have arrived (a few frames behind); llvmpipe: wall
+/// clock after glFinish between passes, this frame. compute: the surface model's update (FFT, octave
+/// combine, uploads); sky; sea: the base grid incl. the effects' per-frame uploads; effects: the secondary
+/// grids. Absent passes measure ~0.
+struct OceanPassTimes {
+    bool measured = false; ///< false while timing is off or no frame's results have arrived yet
+    double computeMs = 0.0, skyMs = 0.0, seaMs = 0.0, effectsMs = 0.0;
+    double totalMs() const { return computeMs + skyMs + seaMs + effectsMs; }
+};
+
 struct OceanStats {
     int passes = 0;
     int draws = 0;
@@ -107,6 +119,7 @@ struct OceanStats {
     long long vertices = 0;
     int programsBuilt = 0; ///< shader programs compiled this frame (a variant is built on first use only)
     EffectKindStats explosions, wakes;
+    OceanPassTimes passTimes; ///< only with OceanRenderer::setPassTiming()
 };
 
 class LightingGpu; // implementation detail (ocean/src/gpu/LightingGpu.h)
@@ -134,6 +147,13 @@ public:
                                                    const OceanFrame& frame);
     const OceanStats& lastStats() const { return mStats; }
 
+    /// Per-pass GPU timing into lastStats().passTimes (docs/PERFORMANCE.md). Off by default: then no query
+    /// is issued and nothing waits. On llvmpipe use GpuTimer::Clock::WallAroundFinish (a glFinish between
+    /// passes: the passes no longer overlap, so the sum can exceed an untimed frame); std::nullopt turns it
+    /// off. passTimingClock(): the clock's name for reports, "" when off.
+    void setPassTiming(std::optional<gl::GpuTimer::Clock> clock);
+    const char* passTimingClock() const;
+
     /// The displaced vertices of every drawn secondary grid of one effect kind (transform feedback, nothing
     /// drawn), instance after instance, each instance in the grid's vertex order. Effects are gathered from
     /// the registry at frame.time as render() does. For tests comparing the GPU with oceanHeightAt().
@@ -148,6 +168,7 @@ public:
     struct Programs; ///< implementation detail: compiled shader programs
 
 private:
+    void renderPasses(ecs::Registry& registry, const OceanFrame& frame);
     Gpu& prepare(ecs::Entity e, const OceanComponent& ocean);
     /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once).
     unsigned effectProgram(Gpu& gpu, bool feedback);
@@ -156,6 +177,8 @@ private:
     std::unique_ptr<EffectsGpu> mEffects;
     std::unordered_map<ecs::Entity, std::unique_ptr<Gpu>> mGpu;
     OceanStats mStats;
+    std::unique_ptr<gl::PassTimer> mPassTimer;
+    OceanPassTimes mPassTimes; // the newest measured frame's
 };
 
 } // namespace pacifica::ocean
