@@ -171,6 +171,9 @@ std::vector<Setting> sweep(bool quick) {
             for (int n : {64, 128}) // 256 = baseline
                 add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
         add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
+        for (double px : {0.5, 1.0, 2.0}) // screen-space ring thinning (0 = baseline: every ring)
+            add(m, "min_ring_pixels", bench::num(px),
+                [px](ocean::OceanDesc& d) { d.grid.minRingPixels = px; });
     }
     // Presets: a cheap setting per model and a combined-displacement octave sea.
     add(SurfaceKind::Octaves, "preset", "fast", [](ocean::OceanDesc& d) {
@@ -583,6 +586,10 @@ int main(int argc, char** argv) {
     int width = 320, height = 180, frames = 15;
     app.add_option("--out", outDir, "output directory (accuracy.csv, accuracy.md, accuracy.png)");
     app.add_flag("--quick", quick, "tiny sweep for the test: baseline + 3 settings, 160x90, 3 frames");
+    std::vector<std::string> knobs;
+    app.add_option("--knob", knobs,
+                   "only this knob (repeatable; e.g. min_ring_pixels, grid, vertex_filter): each model's "
+                   "reference and baseline and that knob's settings");
     app.add_option("--width", width, "render width")->check(CLI::Range(16, 4096));
     app.add_option("--height", height, "render height")->check(CLI::Range(16, 4096));
     app.add_option("--frames", frames, "timed frames per setting (default 15; 5 on software GL)")
@@ -611,7 +618,18 @@ int main(int argc, char** argv) {
         ocean::OceanRenderer renderer;
         ecs::Registry registry;
 
-        const std::vector<Setting> settings = sweep(quick);
+        std::vector<Setting> settings = sweep(quick);
+        if (!knobs.empty()) {
+            std::erase_if(settings, [&](const Setting& st) {
+                return st.knob != "reference" && st.knob != "baseline" &&
+                       std::find(knobs.begin(), knobs.end(), st.knob) == knobs.end();
+            });
+            size_t matched = 0;
+            for (const Setting& st : settings)
+                matched += st.knob != "reference" && st.knob != "baseline";
+            if (matched == 0)
+                throw std::runtime_error("--knob: no setting has knob '" + knobs.front() + "'");
+        }
         std::vector<Result> results;
         std::map<ocean::SurfaceKind, std::vector<float>> refImages;
         std::map<ocean::SurfaceKind, double> refHs;

@@ -1,0 +1,52 @@
+#!/usr/bin/env python3
+"""bench_frame_quick: runs `pacifica-bench-frame --quick` (the 3 presets at 160x90, 3 frames) and checks its
+report: one row per preset, finite positive frame times, the per-pass split measured (sky and sea > 0, no effect
+time above the frame), vertices growing low < medium < high, the sky and sea passes and draws counted, GL_RENDERER
+and both clocks named, CSV and Markdown written; a bad --size is refused with exit 2. Asserts nothing about speed
+(docs/PERFORMANCE.md has the figures). Usage: test_frame_bench.py BENCH_EXE OUT_DIR"""
+import csv
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+exe, out = sys.argv[1], sys.argv[2]
+shutil.rmtree(out, ignore_errors=True)
+p = subprocess.run([exe, "--quick", "--out", out], capture_output=True, text=True, timeout=240)
+print(p.stdout, p.stderr)
+failed = []
+
+
+def check(ok, what):
+    print(("  ok    " if ok else "  FAIL  ") + what)
+    if not ok:
+        failed.append(what)
+
+
+check(p.returncode == 0, "the benchmark exits 0")
+report = json.load(open(os.path.join(out, "frame.json"))) if p.returncode == 0 else {"rows": []}
+rows = {r["setting"]: r for r in report["rows"]}
+check(sorted(rows) == ["high", "low", "medium"], f"one row per preset (got {sorted(rows)})")
+for name, r in rows.items():
+    check(r["width"] == 160 and r["height"] == 90 and r["samples"] >= 1, f"{name}: 160x90, frames timed")
+    check(math.isfinite(r["ms_median"]) and r["ms_median"] > 0 and r["ms_p90"] >= r["ms_median"],
+          f"{name}: frame ms median {r['ms_median']} > 0, p90 >= median")
+    check(r["sky_ms"] > 0 and r["sea_ms"] > 0, f"{name}: sky {r['sky_ms']} and sea {r['sea_ms']} ms measured")
+    check(0 <= r["effects_ms"] < r["sea_ms"], f"{name}: no effects: effects span {r['effects_ms']} below the sea's")
+    check(r["passes"] == 2 and r["draws"] == 2, f"{name}: sky + sea = 2 passes, 2 draws (got {r['passes']}, {r['draws']})")
+if len(rows) == 3:
+    check(rows["low"]["vertices"] < rows["medium"]["vertices"] < rows["high"]["vertices"],
+          "vertices grow low < medium < high")
+check(report.get("renderer", "") != "" and report.get("clock", "") != "" and report.get("pass_clock", "") != "",
+      "renderer, frame clock and pass clock named")
+with open(os.path.join(out, "frame.csv")) as f:
+    check(len(list(csv.DictReader(f))) == 3, "frame.csv has the 3 rows")
+check(os.path.exists(os.path.join(out, "frame.md")), "Markdown table written")
+p2 = subprocess.run([exe, "--out", out, "--size", "huge"], capture_output=True, text=True, timeout=60)
+check(p2.returncode == 2 and "--size" in p2.stderr, "a bad --size is refused")
+p3 = subprocess.run([exe, "--quick"], capture_output=True, text=True, timeout=60)
+check(p3.returncode == 2 and "--out" in p3.stderr, "a missing --out is refused")
+print("FAILED: " + "; ".join(failed) if failed else "all checks passed")
+sys.exit(1 if failed else 0)

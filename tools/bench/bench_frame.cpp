@@ -1,0 +1,359 @@
+// pacifica-bench-frame: what a whole ocean frame costs per quality preset and screen size, and where the
+// time goes (docs/PERFORMANCE.md). For each setting it renders the same view (the performance issue's:
+// 20 m above the sea, 60 degree vertical field of view, looking toward the horizon) with two renderers:
+//   - timed: OceanRenderer::render inside the engine's GpuTimer (GL_TIME_ELAPSED on hardware, wall clock
+//     around glFinish on llvmpipe): the frame time, nothing added;
+//   - profiled: the same with OceanRenderer::setPassTiming (GL_TIMESTAMP between passes on hardware, a
+//     glFinish between passes on llvmpipe): the per-pass split (compute, sky, sea, effects).
+// Settings: the presets low, medium, high, and the high preset with one knob changed at a time (sky off,
+// vertex filter, lighting octaves, displaced octaves, grid density, culling) — the cost of each feature is
+// the difference to high. Settings are interleaved frame by frame (round robin) so a shared machine's load
+// hits them alike; figures are medians (and p90) over the timed frames. No OpenImageIO: it runs on the
+// NVIDIA H100 benchmark machine too.
+#include "engine/Ecs.h"
+#include "engine/Space.h"
+#include "engine/gl/FrameTargets.h"
+#include "engine/gl/GlContext.h"
+#include "engine/gl/GpuTimer.h"
+#include "ocean/Ocean.h"
+#include "ocean/Presets.h"
+
+#include "BenchText.h"
+
+#include <epoxy/gl.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace pacifica;
+
+namespace {
+
+using bench::csvQuote;
+using bench::num;
+
+constexpr double T0 = 100.0;            // simulation time of the first frame, s
+constexpr double FRAME_DT = 1.0 / 60.0; // simulation time between frames, s
+constexpr double FOV_Y_DEG = 60.0;
+constexpr int WARMUP_FRAMES = 2; // first use compiles shaders, uploads the grid, JITs on llvmpipe
+// The performance issue's view: 20 m up, toward the horizon (pitch -3 degrees), away from the origin so the
+// camera-relative float path is exercised as in a game.
+constexpr glm::dvec3 CAMERA{2000.0, -1500.0, 20.0};
+constexpr double HEADING_DEG = 70.0, PITCH_DEG = -3.0;
+
+double quantile(std::vector<double> v, double q) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const size_t i = static_cast<size_t>(pos);
+    const double f = pos - static_cast<double>(i);
+    return i + 1 < v.size() ? v[i] * (1.0 - f) + v[i + 1] * f : v[i];
+}
+
+struct Setting {
+    std::string name, knob;
+    ocean::OceanDesc desc;
+};
+
+std::vector<Setting> settings(bool quick) {
+    using ocean::Quality;
+    std::vector<Setting> out;
+    for (Quality q : {Quality::Low, Quality::Medium, Quality::High})
+        out.push_back({ocean::toString(q), "preset", ocean::oceanPreset(q)});
+    if (quick)
+        return out;
+    auto high = [&](const std::string& name, const std::string& knob,
+                    const std::function<void(ocean::OceanDesc&)>& change) {
+        ocean::OceanDesc d = ocean::oceanPreset(Quality::High);
+        change(d);
+        out.push_back({name, knob, d});
+    };
+    high("high/no-sky", "sky pass off", [](ocean::OceanDesc& d) { d.drawSky = false; });
+    high("high/vertex-nearest", "vertex filter nearest (1 fetch/octave/slice)",
+         [](ocean::OceanDesc& d) { d.octaves.vertexFilter = ocean::VertexFilter::Nearest; });
+    high("high/vertex-bilinear", "vertex filter bilinear (4 fetches)",
+         [](ocean::OceanDesc& d) { d.octaves.vertexFilter = ocean::VertexFilter::Bilinear; });
+    high("high/vertex-packed4tap", "vertex filter packed 4-tap (1 fetch, listing 18-2)",
+         [](ocean::OceanDesc& d) { d.octaves.vertexFilter = ocean::VertexFilter::Packed4Tap; });
+    high("high/lighting-3", "lighting octaves 5 -> 3 (fragment fetches)",
+         [](ocean::OceanDesc& d) { d.octaves.octaves.resize(3); });
+    high("high/displaced-1", "displaced octaves 3 -> 1 (vertex fetches)",
+         [](ocean::OceanDesc& d) { d.octaves.displacedOctaves = 1; });
+    high("high/grid-128x256", "grid 256x512 -> 128x256 (vertices, triangles)", [](ocean::OceanDesc& d) {
+        d.grid.rings = 128;
+        d.grid.segments = 256;
+    });
+    high("high/no-cull", "per-vertex frustum test off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
+    return out;
+}
+
+struct Scene {
+    Setting setting;
+    ecs::Registry registry;
+    ocean::OceanRenderer timed, profiled;
+    std::vector<double> ms, compute, sky, sea, effects;
+    ocean::OceanStats stats;
+
+    Scene(Setting s, gl::GpuTimer::Clock clock) : setting(std::move(s)) {
+        const ecs::Entity e = registry.create();
+        registry.emplace<ocean::OceanComponent>(e, ocean::makeOcean(setting.desc));
+        profiled.setPassTiming(clock);
+    }
+
+    ocean::OceanFrame frameAt(double t, const gl::FrameTargets& targets) const {
+        Pose pose;
+        pose.position = CAMERA;
+        pose.headingDeg = HEADING_DEG;
+        pose.pitchDeg = PITCH_DEG;
+        ocean::OceanFrame f;
+        f.camera = makeCameraFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
+                                   static_cast<float>(targets.width()) / static_cast<float>(targets.height()),
+                                   0.05f);
+        f.time = t;
+        f.targetFramebuffer = targets.sceneFramebuffer().id();
+        f.width = targets.width();
+        f.height = targets.height();
+        return f;
+    }
+
+    void frame(gl::GpuTimer& timer, const gl::FrameTargets& targets, double t, bool record) {
+        const ocean::OceanFrame f = frameAt(t, targets);
+        timer.begin();
+        timed.render(registry, f);
+        timer.end();
+        if (auto v = timer.poll(); v && record)
+            ms.push_back(*v);
+        stats = timed.lastStats();
+        profiled.render(registry, f);
+        const ocean::OceanPassTimes& p = profiled.lastStats().passTimes;
+        if (record && p.measured) {
+            compute.push_back(p.computeMs);
+            sky.push_back(p.skyMs);
+            sea.push_back(p.seaMs);
+            effects.push_back(p.effectsMs);
+        }
+    }
+};
+
+std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    char date[64];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
+    return date;
+}
+
+struct Row {
+    std::string setting, knob;
+    int width = 0, height = 0;
+    double ms = 0, p90 = 0, compute = 0, sky = 0, sea = 0, effects = 0;
+    long long vertices = 0;
+    int passes = 0, draws = 0, samples = 0;
+};
+
+bool parseSize(const std::string& text, int& w, int& h) {
+    char x = 0;
+    char rest = 0;
+    return std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) == 3 && x == 'x' && w >= 16 && h >= 16 &&
+           w <= 8192 && h <= 8192;
+}
+
+int usage(const char* argv0, int code) {
+    (code == 0 ? std::cout : std::cerr)
+        << "usage: " << argv0
+        << " --out DIR [--size WxH]... [--frames N] [--quick]\n"
+           "  Frame time per quality preset and size, and per-pass split (docs/PERFORMANCE.md).\n"
+           "  Default sizes: 640x360 and 1280x720 on a software renderer, 1920x1080 on hardware;\n"
+           "  default frames 15 (llvmpipe) / 120 (hardware). --quick: the presets at 160x90, 3 frames.\n";
+    return code;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::string outDir;
+    std::vector<std::pair<int, int>> sizes;
+    std::optional<int> framesArg;
+    bool quick = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::optional<std::string> {
+            if (i + 1 >= argc)
+                return std::nullopt;
+            return std::string(argv[++i]);
+        };
+        if (a == "--help" || a == "-h")
+            return usage(argv[0], 0);
+        if (a == "--quick") {
+            quick = true;
+        } else if (a == "--out") {
+            const auto v = value();
+            if (!v || v->empty()) {
+                std::cerr << "pacifica-bench-frame: --out expects a directory\n";
+                return 2;
+            }
+            outDir = *v;
+        } else if (a == "--size") {
+            const auto v = value();
+            int w = 0, h = 0;
+            if (!v || !parseSize(*v, w, h)) {
+                std::cerr << "pacifica-bench-frame: --size expects WxH (16..8192 each), e.g. 1920x1080\n";
+                return 2;
+            }
+            sizes.emplace_back(w, h);
+        } else if (a == "--frames") {
+            const auto v = value();
+            char* end = nullptr;
+            const long n = v ? std::strtol(v->c_str(), &end, 10) : 0;
+            if (!v || *end != '\0' || n < 1 || n > 10000) {
+                std::cerr << "pacifica-bench-frame: --frames expects an integer in 1..10000\n";
+                return 2;
+            }
+            framesArg = static_cast<int>(n);
+        } else {
+            std::cerr << "pacifica-bench-frame: unknown argument '" << a << "'\n";
+            return usage(argv[0], 2);
+        }
+    }
+    if (outDir.empty()) {
+        std::cerr << "pacifica-bench-frame: --out DIR is required\n";
+        return usage(argv[0], 2);
+    }
+    std::string commandLine;
+    for (int i = 0; i < argc; ++i)
+        commandLine += (i ? " " : "") + std::string(argv[i]);
+
+    try {
+        std::filesystem::create_directories(outDir);
+        auto context = gl::createHeadlessContext({.debug = false});
+        const gl::ContextInfo info = context->info();
+        gl::GpuTimer timer(info);
+        if (sizes.empty()) {
+            if (quick)
+                sizes = {{160, 90}};
+            else if (info.software)
+                sizes = {{640, 360}, {1280, 720}};
+            else
+                sizes = {{1920, 1080}};
+        }
+        const int frames = framesArg.value_or(quick ? 3 : (info.software ? 15 : 120));
+        std::string passClock;
+        std::vector<Row> rows;
+        for (const auto& [width, height] : sizes) {
+            std::fprintf(stderr,
+                         "pacifica-bench-frame: GL_RENDERER %s; clock: %s; %dx%d, %d frames per setting\n",
+                         info.renderer.c_str(), timer.clockName(), width, height, frames);
+            gl::FrameTargets targets(width, height);
+            std::vector<std::unique_ptr<Scene>> scenes;
+            for (Setting& s : settings(quick))
+                scenes.push_back(std::make_unique<Scene>(std::move(s), timer.clock()));
+            passClock = scenes.front()->profiled.passTimingClock();
+            double t = T0;
+            for (int i = 0; i < WARMUP_FRAMES; ++i, t += FRAME_DT)
+                for (auto& scene : scenes)
+                    scene->frame(timer, targets, t, false);
+            // Round robin, the starting scene rotating from round to round.
+            for (int f = 0; f < frames; ++f, t += FRAME_DT)
+                for (size_t k = 0; k < scenes.size(); ++k)
+                    scenes[(k + static_cast<size_t>(f)) % scenes.size()]->frame(timer, targets, t, true);
+            timer.drain();
+            for (auto& scene : scenes) {
+                while (auto v = timer.poll()) // TimerQuery: spans still in flight belong to the last scenes;
+                    (void)v;                  // they are few and dropped (each scene keeps >= frames - 4)
+                Row r;
+                r.setting = scene->setting.name;
+                r.knob = scene->setting.knob;
+                r.width = width;
+                r.height = height;
+                r.ms = quantile(scene->ms, 0.5);
+                r.p90 = quantile(scene->ms, 0.9);
+                r.compute = quantile(scene->compute, 0.5);
+                r.sky = quantile(scene->sky, 0.5);
+                r.sea = quantile(scene->sea, 0.5);
+                r.effects = quantile(scene->effects, 0.5);
+                r.vertices = scene->stats.vertices;
+                r.passes = scene->stats.passes;
+                r.draws = scene->stats.draws;
+                r.samples = static_cast<int>(scene->ms.size());
+                if (r.samples == 0 || !(r.ms > 0.0))
+                    throw std::runtime_error("setting " + r.setting + ": no frame time measured");
+                rows.push_back(r);
+                std::fprintf(stderr, "  %-22s %8.3f ms (p90 %8.3f)  sky %7.3f  sea %8.3f  compute %6.3f\n",
+                             r.setting.c_str(), r.ms, r.p90, r.sky, r.sea, r.compute);
+            }
+        }
+
+        const std::string date = utcNow();
+        std::ofstream csv(std::filesystem::path(outDir) / "frame.csv");
+        csv << "setting,knob,width,height,ms_median,ms_p90,samples,compute_ms,sky_ms,sea_ms,effects_ms,"
+               "vertices,passes,draws,clock,pass_clock,renderer\n";
+        for (const Row& r : rows)
+            csv << r.setting << "," << csvQuote(r.knob) << "," << r.width << "," << r.height << ","
+                << num(r.ms) << "," << num(r.p90) << "," << r.samples << "," << num(r.compute) << ","
+                << num(r.sky) << "," << num(r.sea) << "," << num(r.effects) << "," << r.vertices << ","
+                << r.passes << "," << r.draws << "," << csvQuote(timer.clockName()) << ","
+                << csvQuote(passClock) << "," << csvQuote(info.renderer) << "\n";
+        std::ofstream md(std::filesystem::path(outDir) / "frame.md");
+        md << "# Ocean frame cost per preset (pacifica-bench-frame)\n\n"
+           << "- GL_RENDERER: " << info.renderer << "\n- frame clock: " << timer.clockName()
+           << "\n- pass clock: " << passClock << " (a separate renderer, same frames)\n- date: " << date
+           << "\n- command: `" << commandLine << "`\n- view: 20 m up, pitch " << PITCH_DEG
+           << " deg, vertical fov " << FOV_Y_DEG << " deg; median (p90) of " << frames
+           << " frames per setting, round robin\n\n"
+           << "| setting | size | ms median | p90 | sky | sea | compute | vertices | vs high |\n"
+           << "|---|---|---|---|---|---|---|---|---|\n";
+        for (const Row& r : rows) {
+            double high = 0.0;
+            for (const Row& h : rows)
+                if (h.setting == "high" && h.width == r.width && h.height == r.height)
+                    high = h.ms;
+            md << "| " << r.setting << " | " << r.width << "x" << r.height << " | " << num(r.ms, 4) << " | "
+               << num(r.p90, 4) << " | " << num(r.sky, 3) << " | " << num(r.sea, 4) << " | "
+               << num(r.compute, 3) << " | " << r.vertices << " | " << (high > 0 ? num(r.ms / high, 3) : "-")
+               << " |\n";
+        }
+        nlohmann::json js;
+        js["renderer"] = info.renderer;
+        js["clock"] = timer.clockName();
+        js["pass_clock"] = passClock;
+        js["date"] = date;
+        js["command"] = commandLine;
+        js["frames"] = frames;
+        for (const Row& r : rows)
+            js["rows"].push_back({{"setting", r.setting},
+                                  {"knob", r.knob},
+                                  {"width", r.width},
+                                  {"height", r.height},
+                                  {"ms_median", r.ms},
+                                  {"ms_p90", r.p90},
+                                  {"samples", r.samples},
+                                  {"compute_ms", r.compute},
+                                  {"sky_ms", r.sky},
+                                  {"sea_ms", r.sea},
+                                  {"effects_ms", r.effects},
+                                  {"vertices", r.vertices},
+                                  {"passes", r.passes},
+                                  {"draws", r.draws}});
+        std::ofstream(std::filesystem::path(outDir) / "frame.json") << js.dump(2) << "\n";
+        return 0;
+    } catch (const gl::ContextError& e) {
+        std::cerr << "pacifica-bench-frame: no GL context: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "pacifica-bench-frame: " << e.what() << "\n";
+        return 1;
+    }
+}
