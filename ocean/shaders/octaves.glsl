@@ -19,7 +19,9 @@
 // HeightOctaves::MAX_COMBINED_LEVELS (OctavesGpu checks that the two agree).
 #define OCTAVES_MAX_COMBINED_LEVELS 16
 
-uniform sampler2DArray uMaps[MAX_OCTAVES];
+// Every octave's map (h, dh/du, dh/dv, |grad h|^2), mipmapped, layer = octave * frames + frame: one sampler
+// and one texture unit for the lighting loop, however many octaves.
+uniform sampler2DArray uLightMaps;
 uniform int uOctaveCount;     // octaves used for lighting normals
 uniform int uDisplacedCount;  // leading octaves that displace vertices
 uniform int uMapSize;
@@ -30,7 +32,7 @@ uniform float uAmplitude[MAX_OCTAVES]; // A_i
 uniform float uFramePos[MAX_OCTAVES];  // wrap(t, T_i) / T_i * frames, computed in double on the CPU
 
 // The displaced octaves' heights for the vertex filters, one array for all of them, layer = octave * frames
-// + frame (one sampler: with uMaps[i] indexed dynamically llvmpipe was 1.3-3.6x slower per lookup): an
+// + frame (one sampler: with a sampler array indexed dynamically llvmpipe was 1.3-3.6x slower per lookup): an
 // R16F copy of h (Nearest, Bilinear via texelFetch; HardwareBilinear with GL_LINEAR and GL_REPEAT), or the
 // RGBA16F packed texels of listing 18-2 (HeightOctaves::packedTexel; Packed4Tap: level 0, Trilinear: the
 // whole mip chain).
@@ -174,9 +176,10 @@ vec3 filteredGradient(vec2 rel) {
         vec2 uv = octaveUv(i, rel);
         float f0 = floor(uFramePos[i]);
         float at = uFramePos[i] - f0;
-        float l0 = mod(f0, float(uFrames));
-        float l1 = mod(f0 + 1.0, float(uFrames));
-        vec3 d = mix(texture(uMaps[i], vec3(uv, l0)).yzw, texture(uMaps[i], vec3(uv, l1)).yzw, at);
+        float base = float(i * uFrames);
+        float l0 = base + mod(f0, float(uFrames));
+        float l1 = base + mod(f0 + 1.0, float(uFrames));
+        vec3 d = mix(texture(uLightMaps, vec3(uv, l0)).yzw, texture(uLightMaps, vec3(uv, l1)).yzw, at);
         float scale = uAmplitude[i] * uInvTile[i];
         g.xy += scale * d.xy;
         g.z += scale * scale * max(d.z - dot(d.xy, d.xy), 0.0);

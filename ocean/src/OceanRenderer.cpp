@@ -1,7 +1,7 @@
 // OceanRenderer: the ocean render system — per OceanComponent GPU resources (radial grid buffers and the
 // surface model's GPU twin), shader programs compiled per surface model (a model the scene doesn't use
-// costs no shader work), and the frame's passes: sky (optional) then the sea, into a framebuffer the host
-// lends.
+// costs no shader work), and the frame's passes: the sea, its effects, then the sky (optional) where no sea
+// was drawn, into a framebuffer the host lends.
 #include "ocean/Ocean.h"
 
 #include "engine/Log.h"
@@ -79,7 +79,14 @@ struct OceanRenderer::Gpu {
     GridKind gridKind = GridKind::Radial;
     RadialGridDesc gridDesc;
     std::unique_ptr<ProjectedGrid> projected; // when gridKind == Projected
+    std::unique_ptr<RadialGrid> radial;       // when gridKind == Radial
     GridMesh mesh; // the grid's vertices (RadialGrid or ProjectedGrid), uploaded when the grid changes
+    // Ring thinning (RadialGridDesc::minRingPixels): the rings drawn and their index buffer, rebuilt when
+    // the (quantised) view changes the selection.
+    std::vector<int> thinRings;
+    gl::Buffer thinIndices;
+    int thinIndexCount = 0;
+    bool thinBound = false; // the VAO's element buffer is thinIndices (else mesh.indices)
 };
 
 namespace {
@@ -141,8 +148,55 @@ void buildGrid(OceanRenderer::Gpu& gpu, const OceanDesc& desc) {
         return;
     }
     gpu.projected.reset();
-    const RadialGrid grid(desc.grid);
-    gpu.mesh = GridMesh::upload(grid.vertices(), grid.indices());
+    gpu.radial = std::make_unique<RadialGrid>(desc.grid);
+    gpu.mesh = GridMesh::upload(gpu.radial->vertices(), gpu.radial->indices());
+    gpu.thinRings.clear();
+    gpu.thinIndices = {};
+    gpu.thinIndexCount = 0;
+    gpu.thinBound = false;
+}
+
+/// Rounds v > 0 up to the ladder 2^(k/8) (steps of 9%), so the thinning selection changes only when the
+/// camera's height or the screen changes by that much, not every frame.
+double ladderUp(double v) {
+    return std::exp2(std::ceil(8.0 * std::log2(v)) / 8.0);
+}
+
+/// The sea's index range for this frame: every triangle of the grid, or with ring thinning only those
+/// joining the rings drawn (rebuilt and uploaded when the selection changes; counted in `stats`). Binds
+/// the matching element buffer to the grid's VAO. Returns the index count; `vertices` = vertices shaded.
+int seaIndices(OceanRenderer::Gpu& gpu, const OceanComponent& ocean, const OceanFrame& frame,
+               OceanStats& stats, long long& vertices) {
+    const double minPixels = ocean.desc.grid.minRingPixels;
+    const bool thin = gpu.radial && minPixels > 0.0 && frame.height > 0;
+    if (!thin) {
+        if (gpu.thinBound) {
+            glVertexArrayElementBuffer(gpu.mesh.vao.id(), gpu.mesh.indices.id());
+            gpu.thinBound = false;
+        }
+        vertices = gpu.mesh.vertexCount;
+        return gpu.mesh.indexCount;
+    }
+    RingView view;
+    view.height = ladderUp(std::max(std::abs(frame.camera.origin.z), 0.01) +
+                           2.0 * ocean.surface->significantWaveHeight());
+    view.pixelsPerRadian = ladderUp(std::abs(frame.camera.proj[1][1]) * 0.5 * frame.height);
+    view.earthRadius = ocean.desc.earthCurvature ? EARTH_RADIUS : 0.0;
+    std::vector<int> rings = gpu.radial->ringsFor(view, minPixels);
+    if (rings != gpu.thinRings || !gpu.thinIndices) {
+        const std::vector<uint32_t> indices = gpu.radial->indicesFor(rings);
+        gpu.thinIndices = gl::Buffer::create(indices.size() * sizeof(uint32_t), indices.data());
+        gpu.thinIndexCount = static_cast<int>(indices.size());
+        gpu.thinRings = std::move(rings);
+        gpu.thinBound = false;
+        stats.uploads += 1;
+    }
+    if (!gpu.thinBound) {
+        glVertexArrayElementBuffer(gpu.mesh.vao.id(), gpu.thinIndices.id());
+        gpu.thinBound = true;
+    }
+    vertices = 1 + static_cast<long long>(gpu.thinRings.size()) * (ocean.desc.grid.segments + 1);
+    return gpu.thinIndexCount;
 }
 
 /// The uniforms every displaced-grid vertex stage shares (ocean.vert, ocean_projected.vert, effects.vert):
@@ -342,7 +396,13 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
         mStats.uploads += work.uploads;
         marks.mark(PassCompute);
 
-        if (ocean.desc.drawSky) {
+        // The sky after the sea and its effects (no overdraw): its fullscreen triangle lies at depth 0
+        // (infinitely far in reverse-Z) and GL_GEQUAL passes only where nothing nearer was drawn, so the
+        // early depth test spares the sky's shading on every sea pixel. (A host's 24-bit depth buffer rounds
+        // the skirt's depth to 0 beyond ~840 km; there the sky pass draws its own flat distant sea.)
+        auto drawSky = [&] {
+            if (!ocean.desc.drawSky)
+                return;
             if (!mPrograms->sky) {
                 ++mStats.programsBuilt;
                 mPrograms->sky =
@@ -356,7 +416,8 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
             mLighting->bind(sky, LIGHTING_FIRST_UNIT, ocean.desc, frame);
             glProgramUniformMatrix4fv(sky, glGetUniformLocation(sky, "uInvViewProj"), 1, GL_FALSE,
                                       glm::value_ptr(invViewProj));
-            glDisable(GL_DEPTH_TEST);
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_GEQUAL);
             glDepthMask(GL_FALSE);
             glBindVertexArray(mPrograms->emptyVao.id());
             glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -364,7 +425,7 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
             mStats.draws += 1;
             mStats.vertices += 3;
             marks.mark(PassSky);
-        }
+        };
 
         // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
         const bool effects = hasEffects(registry);
@@ -391,24 +452,30 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
         }
         const GLuint sea = seaProgram.id();
         glUseProgram(sea);
-        if (!setSeaUniforms(sea, ocean, gpu, frame))
-            return; // no sea in view: the sky pass alone
+        if (!setSeaUniforms(sea, ocean, gpu, frame)) {
+            drawSky(); // no sea in view: the sky pass alone
+            return;
+        }
         mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
         if (holes)
             mEffects->bind(sea);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
+        long long seaVertices = 0;
+        const int indexCount = seaIndices(gpu, ocean, frame, mStats, seaVertices);
         glBindVertexArray(gpu.mesh.vao.id());
-        glDrawElements(GL_TRIANGLES, gpu.mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+        glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
         mStats.passes += 1;
         mStats.draws += 1;
-        mStats.vertices += gpu.mesh.vertexCount;
+        mStats.vertices += seaVertices;
         marks.mark(PassSea);
 
         // The secondary grids, one instanced draw per kind in view (after the base grid: same depth test).
-        if (!holes)
+        if (!holes) {
+            drawSky();
             return;
+        }
         const GLuint fx = effectProgram(gpu, false);
         glUseProgram(fx);
         setSurfaceUniforms(fx, ocean, gpu, frame);
@@ -427,6 +494,7 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
             mStats.vertices += vertices;
         }
         marks.mark(PassEffects);
+        drawSky();
     });
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }

@@ -36,17 +36,19 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
     const int m = desc.segments;
     require(desc.skirtRings >= 1 && desc.skirtRings <= 256,
             "RadialGridDesc.skirtRings must be in [1, 256], got " + std::to_string(desc.skirtRings));
+    require(std::isfinite(desc.minRingPixels) && desc.minRingPixels >= 0.0 && desc.minRingPixels <= 1000.0,
+            "RadialGridDesc.minRingPixels must be in [0, 1000], got " + std::to_string(desc.minRingPixels));
     const int skirt = desc.skirtRadius > 0.0 ? desc.skirtRings : 0;
-    const int ringCount = desc.rings + skirt;
-    mVertices.reserve(static_cast<size_t>(2 * (1 + ringCount * (m + 1))));
+    const int ringsTotal = desc.rings + skirt;
+    mVertices.reserve(static_cast<size_t>(2 * (1 + ringsTotal * (m + 1))));
     mVertices.insert(mVertices.end(), {0.5f, 0.0f}); // centre
-    for (int i = 0; i < ringCount; ++i) {
+    for (int i = 0; i < ringsTotal; ++i) {
         // Skirt ring s = 1..K at rMax * (skirtRadius / rMax)^(s / K): geometric, ending exactly at
         // skirtRadius.
-        const double r = i < desc.rings       ? radius(i)
-                         : i == ringCount - 1 ? desc.skirtRadius
-                                              : desc.rMax * std::pow(desc.skirtRadius / desc.rMax,
-                                                                     double(i - desc.rings + 1) / skirt);
+        const double r = i < desc.rings        ? radius(i)
+                         : i == ringsTotal - 1 ? desc.skirtRadius
+                                               : desc.rMax * std::pow(desc.skirtRadius / desc.rMax,
+                                                                      double(i - desc.rings + 1) / skirt);
         // M + 1 columns u = j / M: the sector's two edges are separate vertices (for a full circle they
         // coincide), so the same mesh serves any view sector.
         for (int j = 0; j <= m; ++j) {
@@ -54,16 +56,69 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
             mVertices.push_back(static_cast<float>(r));
         }
     }
+    std::vector<int> all(static_cast<size_t>(ringsTotal));
+    for (int i = 0; i < ringsTotal; ++i)
+        all[static_cast<size_t>(i)] = i;
+    mIndices = indicesFor(all);
+}
+
+int RadialGrid::ringCount() const {
+    return mDesc.rings + (mDesc.skirtRadius > 0.0 ? mDesc.skirtRings : 0);
+}
+
+std::vector<uint32_t> RadialGrid::indicesFor(const std::vector<int>& rings) const {
+    const int m = mDesc.segments;
     auto ringVertex = [m](int ring, int col) { return static_cast<uint32_t>(1 + ring * (m + 1) + col); };
+    std::vector<uint32_t> out;
+    if (rings.empty())
+        return out;
+    out.reserve(static_cast<size_t>(3 * m) + (rings.size() - 1) * static_cast<size_t>(6 * m));
     for (int j = 0; j < m; ++j) // centre fan
-        mIndices.insert(mIndices.end(), {0u, ringVertex(0, j), ringVertex(0, j + 1)});
-    for (int i = 0; i + 1 < ringCount; ++i) {
+        out.insert(out.end(), {0u, ringVertex(rings.front(), j), ringVertex(rings.front(), j + 1)});
+    for (size_t k = 0; k + 1 < rings.size(); ++k) {
+        const int i = rings[k], n = rings[k + 1];
         for (int j = 0; j < m; ++j) {
             const uint32_t a = ringVertex(i, j), b = ringVertex(i, j + 1);
-            const uint32_t c = ringVertex(i + 1, j), d = ringVertex(i + 1, j + 1);
-            mIndices.insert(mIndices.end(), {a, c, d, a, d, b});
+            const uint32_t c = ringVertex(n, j), d = ringVertex(n, j + 1);
+            out.insert(out.end(), {a, c, d, a, d, b});
         }
     }
+    return out;
+}
+
+std::vector<int> RadialGrid::ringsFor(const RingView& view, double minPixels) const {
+    const int total = ringCount();
+    std::vector<int> out;
+    out.reserve(static_cast<size_t>(total));
+    if (!(minPixels > 0.0) || !(view.pixelsPerRadian > 0.0) || !std::isfinite(view.height)) {
+        for (int i = 0; i < total; ++i)
+            out.push_back(i);
+        return out;
+    }
+    // Depression angle of the sea point at radius r seen from height h above it: the sea drops r^2 / 2R.
+    const double h = std::max(std::abs(view.height), 1e-3);
+    const double k = view.earthRadius > 0.0 ? 0.5 / view.earthRadius : 0.0;
+    auto depression = [&](double r) { return std::atan2(h + k * r * r, r); };
+    const double minAngle = minPixels / view.pixelsPerRadian;
+    const int last = mDesc.rings - 1;
+    out.push_back(0);
+    double kept = depression(radius(0));
+    // Keep chords short too (each kept ring within RING_MAX_RATIO of the previous one's radius): near the
+    // horizon the rings crowd into a few pixels, and long chords there moved the horizon by a pixel and
+    // bent the perspective interpolation of the lighting's grid coordinate (image RMSE x10 without it).
+    constexpr double RING_MAX_RATIO = 1.1;
+    double keptRadius = radius(0);
+    for (int i = 1; i < last; ++i) {
+        const double d = depression(radius(i));
+        if (std::abs(kept - d) >= minAngle || radius(i + 1) > RING_MAX_RATIO * keptRadius) {
+            out.push_back(i);
+            kept = d;
+            keptRadius = radius(i);
+        }
+    }
+    for (int i = last; i < total; ++i)
+        out.push_back(i);
+    return out;
 }
 
 ViewSector computeViewSector(const CameraFrame& camera, double guardRad) {

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using pacifica::ocean::RadialGrid;
 using pacifica::ocean::RadialGridDesc;
@@ -133,4 +135,66 @@ TEST(RadialGrid, InvalidDescriptionsNameTheField) {
     EXPECT_NE(message({.rMax = 0.05}).find("RadialGridDesc.rMax"), std::string::npos);
     EXPECT_NE(message({.skirtRadius = 10.0}).find("RadialGridDesc.skirtRadius"), std::string::npos);
     EXPECT_NE(message({.skirtRings = 0}).find("RadialGridDesc.skirtRings"), std::string::npos);
+    EXPECT_NE(message({.minRingPixels = -1.0}).find("RadialGridDesc.minRingPixels"), std::string::npos);
+    EXPECT_NE(message({.minRingPixels = NAN}).find("RadialGridDesc.minRingPixels"), std::string::npos);
+}
+
+// Screen-space ring thinning (RadialGridDesc::minRingPixels, docs/PERFORMANCE.md).
+TEST(RadialGridThinning, ZeroPixelsKeepsEveryRingAndTheSeedIndices) {
+    const RadialGrid grid(RadialGridDesc{});
+    const pacifica::ocean::RingView view{20.0, 311.8, 6371000.0};
+    const std::vector<int> all = grid.ringsFor(view, 0.0);
+    ASSERT_EQ(static_cast<int>(all.size()), grid.ringCount());
+    EXPECT_EQ(grid.ringCount(), 256 + 16);
+    EXPECT_EQ(grid.indicesFor(all), grid.indices());
+}
+
+TEST(RadialGridThinning, KeptRingsAreAtLeastMinPixelsApartAndEndsAreKept) {
+    const RadialGrid grid(RadialGridDesc{});
+    constexpr double R = 6371000.0;
+    // 20 m + 2 Hs up, 360 px over a 60 degree fov: pixels per radian = 180 / tan(30 deg).
+    const double ppr = 180.0 / std::tan(30.0 * PI / 180.0);
+    const pacifica::ocean::RingView view{20.0, ppr, R};
+    auto depression = [&](double r) { return std::atan2(20.0 + r * r / (2.0 * R), r); };
+    for (double px : {0.5, 1.0, 2.0}) {
+        const std::vector<int> kept = grid.ringsFor(view, px);
+        ASSERT_GE(kept.size(), 3u);
+        EXPECT_EQ(kept.front(), 0);
+        // The last displaced ring and the whole skirt are always there.
+        const int last = grid.desc().rings - 1;
+        ASSERT_TRUE(std::find(kept.begin(), kept.end(), last) != kept.end());
+        EXPECT_EQ(kept.back(), grid.ringCount() - 1);
+        EXPECT_TRUE(std::is_sorted(kept.begin(), kept.end()));
+        // Between ring 0 and the last displaced ring, a ring is kept when it is >= px from the last kept
+        // ring on screen or the next ring lies beyond 1.1 times the last kept radius; a skipped ring is
+        // neither.
+        size_t k = 1;
+        for (int i = 1; i < last; ++i) {
+            const double prevRadius = grid.radius(kept[k - 1]);
+            const double pixels = std::abs(depression(prevRadius) - depression(grid.radius(i))) * ppr;
+            const bool chord = grid.radius(i + 1) > 1.1 * prevRadius;
+            if (kept[k] == i) {
+                EXPECT_TRUE(pixels >= px || chord) << "ring " << i;
+                ++k;
+            } else {
+                EXPECT_TRUE(pixels < px && !chord) << "ring " << i << " was skipped";
+            }
+            // No two kept rings more than 1.1 x apart unless they are neighbours.
+            if (k >= 2 && kept[k - 1] == i && kept[k - 2] != i - 1) {
+                EXPECT_LE(grid.radius(i), 1.1 * grid.radius(kept[k - 2]) * (1.0 + 1e-12)) << "ring " << i;
+            }
+        }
+        // From 20 m many rings are sub-pixel slivers: well under the 256 + 16 rings are drawn.
+        EXPECT_LT(kept.size(), 200u) << px << " px";
+        const std::vector<uint32_t> idx = grid.indicesFor(kept);
+        EXPECT_EQ(idx.size(), 3u * 512u * (1u + 2u * (kept.size() - 1)));
+        for (uint32_t i : idx)
+            ASSERT_LT(i, grid.vertexCount());
+    }
+    // Higher up the rings spread over more pixels: more are kept; 1 px keeps fewer than 0.5 px.
+    const pacifica::ocean::RingView high{5000.0, ppr, R};
+    EXPECT_GT(grid.ringsFor(high, 1.0).size(), grid.ringsFor(view, 1.0).size());
+    EXPECT_LT(grid.ringsFor(view, 1.0).size(), grid.ringsFor(view, 0.5).size());
+    // A non-finite height keeps every ring (never a hole).
+    EXPECT_EQ(static_cast<int>(grid.ringsFor({NAN, ppr, R}, 1.0).size()), grid.ringCount());
 }

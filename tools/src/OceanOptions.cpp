@@ -166,6 +166,9 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
         ->default_val("octaves");
     app.add_option("--grid-rings", o.rings, "radial grid rings N (default 256)");
     app.add_option("--grid-segments", o.segments, "radial grid segments M (default 512)");
+    app.add_option("--min-ring-pixels", o.minRingPixels,
+                   "radial grid: skip rings closer than this many pixels on screen to the last drawn one "
+                   "(0 = draw every ring; docs/PERFORMANCE.md)");
     app.add_option("--gerstner-steepness", o.steepness,
                    "Gerstner steepness scale (clamped to the fold limit)");
     app.add_option("--grid", o.grid, "grid: radial (GPU Gems 2 §18.2.3) or projected (Johanson 2004)")
@@ -311,6 +314,8 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
         d.grid.rings = o.rings;
     if (o.segments != 0)
         d.grid.segments = o.segments;
+    if (o.minRingPixels >= 0.0)
+        d.grid.minRingPixels = o.minRingPixels;
     if (o.steepness >= 0.0)
         d.gerstner.steepnessScale = o.steepness;
     applyLighting(o, d.lighting);
@@ -318,7 +323,7 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     try {
         (void)ocean::RadialGrid(d.grid); // validate here so the message names the option
     } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string("--grid-rings/--grid-segments: ") + e.what());
+        throw UsageError(std::string("--grid-rings/--grid-segments/--min-ring-pixels: ") + e.what());
     }
     return d;
 }

@@ -19,6 +19,7 @@ struct OceanOptions {
     std::string model = "octaves"; ///< octaves | gerstner | fft
     int rings = 0;                 ///< 0 = the default radial grid
     int segments = 0;
+    double minRingPixels = -1.0; ///< --min-ring-pixels; < 0 = the preset's
     double steepness = -1.0;     ///< Gerstner steepness scale; < 0 = default
     std::string grid = "radial"; ///< radial | projected
     std::string vertexFilter =

@@ -29,6 +29,19 @@ struct RadialGridDesc {
     double skirtRadius = 1e6; ///< undisplaced outer rings reach this radius for the horizon; 0 disables them
     int skirtRings = 16; ///< rings from rMax to skirtRadius, geometrically spaced, so the Earth-curvature
                          ///< drop (d^2 / 2R, interpolated linearly per triangle) follows the sphere
+    /// Screen-space ring thinning (docs/PERFORMANCE.md): per frame, a ring is drawn only if it lies at least
+    /// this many pixels (vertically, on the screen) beyond the last drawn ring, seen from the camera's height
+    /// plus the waves' reach; the rings in between are skipped (their vertices are not shaded). From 20 m up
+    /// most of the fixed i^4 rings beyond ~500 m are sub-pixel slivers. 0 = draw every ring (GPU Gems 2).
+    double minRingPixels = 0.0;
+};
+
+/// What ring thinning sees of a frame: the camera's height above mean sea level plus the vertical reach of
+/// the waves (2 Hs), the screen's pixels per radian (vertical), the Earth's radius (0 = flat).
+struct RingView {
+    double height = 0.0;
+    double pixelsPerRadian = 0.0;
+    double earthRadius = 0.0;
 };
 
 /// The horizontal directions a camera can see: azimuths center +- halfWidth (radians, atan2(y, x) of the
@@ -62,6 +75,18 @@ public:
     const std::vector<float>& vertices() const { return mVertices; }
     /// Triangle list indices (counter-clockwise seen from above, +z up).
     const std::vector<uint32_t>& indices() const { return mIndices; }
+
+    /// Ring thinning (RadialGridDesc::minRingPixels): the rings to draw for `view`, ascending. Ring 0 (the
+    /// centre fan's), the last displaced ring (rMax) and every skirt ring are always kept; ring i in between
+    /// is kept when the depression angle below the horizon, atan((h + r^2 / 2R) / r), differs from the last
+    /// kept ring's by at least minPixels / pixelsPerRadian, or when ring i + 1 lies more than 1.1 times the
+    /// last kept ring's radius out (short chords: the horizon stays put). minPixels <= 0 keeps every ring.
+    std::vector<int> ringsFor(const RingView& view, double minPixels) const;
+    /// Triangle list indices joining consecutive rings of `rings` (from ringsFor), same winding as indices();
+    /// ringsFor(view, 0) gives exactly indices().
+    std::vector<uint32_t> indicesFor(const std::vector<int>& rings) const;
+    /// Rings including the skirt.
+    int ringCount() const;
     size_t vertexCount() const { return mVertices.size() / 2; }
 
 private:

@@ -97,18 +97,29 @@ const char* OctavesGpu::variantFile(VertexFilter filter) {
 OctavesGpu::OctavesGpu(std::shared_ptr<const HeightOctaves> surface) : mSurface(std::move(surface)) {
     if (!mSurface)
         throw std::invalid_argument("OctavesGpu::OctavesGpu(): surface is null");
-    for (const OctaveMap& map : mSurface->maps()) {
-        const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(map.size)));
-        gl::Texture t = gl::Texture::createArray2D(GL_RGBA16F, map.size, map.size, map.frames, levels);
-        // The CPU copy already holds half-rounded values, so this conversion is exact.
-        std::vector<uint16_t> half(map.texels.size());
-        for (size_t i = 0; i < half.size(); ++i)
-            half[i] = glm::packHalf1x16(map.texels[i]);
-        glTextureSubImage3D(t.id(), 0, 0, 0, 0, map.size, map.size, map.frames, GL_RGBA, GL_HALF_FLOAT,
-                            half.data());
-        glGenerateTextureMipmap(t.id());
-        t.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
-        mMaps.push_back(std::move(t));
+    // Every octave's map in one mipmapped array, layer = octave * frames + frame (all maps share mapSize and
+    // frames): one sampler and one texture unit for the lighting loop, however many octaves (it was a
+    // sampler array, one unit per octave). glGenerateTextureMipmap filters each layer on its own, as it did
+    // per texture: the pixels are bit-identical.
+    const std::vector<OctaveMap>& maps = mSurface->maps();
+    if (!maps.empty()) {
+        const int size = maps.front().size, frames = maps.front().frames;
+        const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(size)));
+        mLightLayers = static_cast<int>(maps.size()) * frames;
+        mLightMaps = gl::Texture::createArray2D(GL_RGBA16F, size, size, mLightLayers, levels);
+        for (size_t o = 0; o < maps.size(); ++o) {
+            const OctaveMap& map = maps[o];
+            if (map.size != size || map.frames != frames)
+                throw std::logic_error("OctavesGpu::OctavesGpu(): octave maps differ in size or frames");
+            // The CPU copy already holds half-rounded values, so this conversion is exact.
+            std::vector<uint16_t> half(map.texels.size());
+            for (size_t i = 0; i < half.size(); ++i)
+                half[i] = glm::packHalf1x16(map.texels[i]);
+            glTextureSubImage3D(mLightMaps.id(), 0, 0, 0, static_cast<int>(o) * frames, size, size, frames,
+                                GL_RGBA, GL_HALF_FLOAT, half.data());
+        }
+        glGenerateTextureMipmap(mLightMaps.id());
+        mLightMaps.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
     }
     mFilterMaps = createFilterMaps(*mSurface);
 
@@ -146,13 +157,13 @@ std::vector<std::string> OctavesGpu::glslFiles() const {
 
 int OctavesGpu::unitsUsed() const {
     const bool extra = mSurface->desc().combinedDisplacement || mFilterMaps;
-    return static_cast<int>(mMaps.size()) + (extra ? 1 : 0);
+    return 1 + (extra ? 1 : 0);
 }
 
 SurfaceGpuStats OctavesGpu::update(double time, const glm::dvec3& cameraWorld) {
     SurfaceGpuStats s;
     if (!mUploadReported) { // the textures were uploaded at construction: count them once, on first use
-        s.uploads = static_cast<int>(mMaps.size()) + (mFilterMaps ? 1 : 0);
+        s.uploads = static_cast<int>(mSurface->maps().size()) + (mFilterMaps ? 1 : 0); // one per map
         mUploadReported = true;
     }
     if (!mCombined)
@@ -176,18 +187,15 @@ void OctavesGpu::bindOctaves(unsigned prog, int firstUnit, double time, const gl
                              bool filterTexture) {
     const std::vector<OctaveFrameParams> params = mSurface->frameParams(glm::dvec2(cameraWorld), time);
     const int n = static_cast<int>(params.size());
+    glBindTextureUnit(static_cast<GLuint>(firstUnit), mLightMaps.id());
+    glProgramUniform1i(prog, location(prog, "uLightMaps"), firstUnit);
     for (int i = 0; i < n; ++i) {
         const OctaveFrameParams& p = params[static_cast<size_t>(i)];
-        glBindTextureUnit(static_cast<GLuint>(firstUnit + i), mMaps[static_cast<size_t>(i)].id());
-        glProgramUniform1i(prog, arrayLocation(prog, "uMaps", i), firstUnit + i);
         glProgramUniform2f(prog, arrayLocation(prog, "uUvOffset", i), p.uvOffset.x, p.uvOffset.y);
         glProgramUniform1f(prog, arrayLocation(prog, "uInvTile", i), p.invTileSize);
         glProgramUniform1f(prog, arrayLocation(prog, "uAmplitude", i), p.amplitude);
         glProgramUniform1f(prog, arrayLocation(prog, "uFramePos", i), p.framePosition);
     }
-    // Unused sampler slots must still name a unit holding a 2D array texture.
-    for (int i = n; i < MAX_OCTAVES; ++i)
-        glProgramUniform1i(prog, arrayLocation(prog, "uMaps", i), firstUnit);
     const HeightOctavesDesc& d = mSurface->desc();
     glProgramUniform1i(prog, location(prog, "uOctaveCount"), n);
     glProgramUniform1i(prog, location(prog, "uDisplacedCount"), d.displacedOctaves);
@@ -196,9 +204,9 @@ void OctavesGpu::bindOctaves(unsigned prog, int firstUnit, double time, const gl
 
     // The filter's texture and uniforms (absent from programs whose variant does not declare them: -1).
     if (filterTexture && mFilterMaps)
-        glBindTextureUnit(static_cast<GLuint>(firstUnit + n), mFilterMaps.id());
+        glBindTextureUnit(static_cast<GLuint>(firstUnit + 1), mFilterMaps.id());
     glProgramUniform1i(prog, location(prog, "uFilterMaps"),
-                       filterTexture && mFilterMaps ? firstUnit + n : firstUnit);
+                       filterTexture && mFilterMaps ? firstUnit + 1 : firstUnit);
     glProgramUniform1f(prog, location(prog, "uLodTexels"), static_cast<float>(d.trilinearLodTexels));
     glProgramUniform1i(prog, location(prog, "uMaxLevel"), mSurface->mipLevels() - 1);
     glProgramUniform2f(prog, location(prog, "uTrilinearBand"),
@@ -219,7 +227,7 @@ void OctavesGpu::bindOctaves(unsigned prog, int firstUnit, double time, const gl
 void OctavesGpu::bind(unsigned prog, int firstUnit, double time, const glm::dvec3& cameraWorld) {
     const bool combined = static_cast<bool>(mCombined);
     bindOctaves(prog, firstUnit, time, cameraWorld, !combined);
-    const int unit = firstUnit + static_cast<int>(mMaps.size());
+    const int unit = firstUnit + 1;
     if (combined)
         glBindTextureUnit(static_cast<GLuint>(unit), mCombined.id());
     glProgramUniform1i(prog, location(prog, "uCombined"), combined ? unit : firstUnit);

@@ -5,10 +5,11 @@
 // combinedDisplacement, the combine compute pass of GPU Gems 2 §18.2.5 run by update() every frame into an
 // R32F array (one layer per combined level).
 //
-// Texture units from bind()'s firstUnit: [0, octaves) the maps; then one more for the filter texture
-// (per-vertex paths) or the combined texture (combined path). update() uses units [0, octaves]
-// and image unit 0, and leaves them bound (texture bindings are not part of the saved state); it restores
-// the program. bind() must follow update() with the same camera: the combined texture is centred on it.
+// Texture units from bind()'s firstUnit: 0 every octave's maps (one 2D array, layer = octave * frames +
+// frame); 1 the filter texture (per-vertex paths) or the combined texture (combined path). update() uses
+// units 0 and 1 and image unit 0, and leaves them bound (texture bindings are not part of the saved state);
+// it restores the program. bind() must follow update() with the same camera: the combined texture is
+// centred on it.
 #pragma once
 
 #include "gpu/SurfaceGpu.h"
@@ -34,13 +35,14 @@ public:
     static const char* variantFile(VertexFilter filter);
 
 private:
-    /// Per-octave uniforms, maps at [firstUnit, firstUnit + octaves), the filter texture (if asked and
-    /// present) at firstUnit + octaves, and the filter's and the combined levels' uniforms.
+    /// Per-octave uniforms, the maps at firstUnit, the filter texture (if asked and present) at
+    /// firstUnit + 1, and the filter's and the combined levels' uniforms.
     void bindOctaves(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld,
                      bool filterTexture);
 
     std::shared_ptr<const HeightOctaves> mSurface;
-    std::vector<gl::Texture> mMaps;
+    gl::Texture mLightMaps; // every octave's (h, dh/du, dh/dv, |grad h|^2), layer = octave * frames + frame
+    int mLightLayers = 0;
     gl::Texture mFilterMaps; ///< R16F heights or packed RGBA16F (Packed4Tap, Trilinear); none without
                              ///< displaced octaves
     gl::Texture mCombined;   ///< R32F, combinedSize^2 x combinedLevels (combined path only)
