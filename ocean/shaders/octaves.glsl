@@ -19,9 +19,9 @@
 // HeightOctaves::MAX_COMBINED_LEVELS (OctavesGpu checks that the two agree).
 #define OCTAVES_MAX_COMBINED_LEVELS 16
 
-// Every octave's map (h, dh/du, dh/dv, |grad h|^2), mipmapped, layer = octave * frames + frame: one sampler
-// and one texture unit for the lighting loop, however many octaves.
-uniform sampler2DArray uLightMaps;
+// Every octave's map (h, dh/du, dh/dv, |grad h|^2) at this frame's time, mipmapped, one layer per octave:
+// the two time slices mixed once per frame by octaves_light_mix.comp (OctavesGpu::update), not per pixel.
+uniform sampler2DArray uLightNow;
 uniform int uOctaveCount;     // octaves used for lighting normals
 uniform int uDisplacedCount;  // leading octaves that displace vertices
 uniform int uMapSize;
@@ -173,13 +173,7 @@ float combinedHeight(vec2 rel) {
 vec3 filteredGradient(vec2 rel) {
     vec3 g = vec3(0.0);
     for (int i = 0; i < uOctaveCount; ++i) {
-        vec2 uv = octaveUv(i, rel);
-        float f0 = floor(uFramePos[i]);
-        float at = uFramePos[i] - f0;
-        float base = float(i * uFrames);
-        float l0 = base + mod(f0, float(uFrames));
-        float l1 = base + mod(f0 + 1.0, float(uFrames));
-        vec3 d = mix(texture(uLightMaps, vec3(uv, l0)).yzw, texture(uLightMaps, vec3(uv, l1)).yzw, at);
+        vec3 d = texture(uLightNow, vec3(octaveUv(i, rel), float(i))).yzw;
         float scale = uAmplitude[i] * uInvTile[i];
         g.xy += scale * d.xy;
         g.z += scale * scale * max(d.z - dot(d.xy, d.xy), 0.0);

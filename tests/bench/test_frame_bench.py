@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """bench_frame_quick: runs `pacifica-bench-frame --quick` (the 3 presets at 160x90, 3 frames) and checks its
 report: one row per preset, finite positive frame times, the per-pass split measured (sky and sea > 0, no effect
-time above the frame), vertices growing low < medium < high, the sky and sea passes and draws counted, GL_RENDERER
+time above the frame), vertices growing low < medium < high, the compute, sea and sky passes and the two draws counted, GL_RENDERER
 and both clocks named, CSV and Markdown written; a bad --size is refused with exit 2. Asserts nothing about speed
 (docs/PERFORMANCE.md has the figures). Usage: test_frame_bench.py BENCH_EXE OUT_DIR"""
 import csv
@@ -35,7 +35,8 @@ for name, r in rows.items():
           f"{name}: frame ms median {r['ms_median']} > 0, p90 >= median")
     check(r["sky_ms"] > 0 and r["sea_ms"] > 0, f"{name}: sky {r['sky_ms']} and sea {r['sea_ms']} ms measured")
     check(0 <= r["effects_ms"] < r["sea_ms"], f"{name}: no effects: effects span {r['effects_ms']} below the sea's")
-    check(r["passes"] == 2 and r["draws"] == 2, f"{name}: sky + sea = 2 passes, 2 draws (got {r['passes']}, {r['draws']})")
+    check(r["passes"] == 3 and r["draws"] == 2,
+          f"{name}: lighting-map compute + sea + sky = 3 passes, 2 draws (got {r['passes']}, {r['draws']})")
 if len(rows) == 3:
     check(rows["low"]["vertices"] < rows["medium"]["vertices"] < rows["high"]["vertices"],
           "vertices grow low < medium < high")

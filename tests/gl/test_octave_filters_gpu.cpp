@@ -109,13 +109,14 @@ TEST_P(OctaveFiltersGpu, GpuMatchesTheDoubleCpuPathOutTo40km) {
     const auto surface = std::make_shared<const HeightOctaves>(desc);
     ocean::OctavesGpu gpu(surface);
 
-    // Work accounting: textures counted once, the combine pass every update when enabled.
+    // Work accounting: textures counted once; every update mixes the lighting maps to its time (1 pass),
+    // plus the combine pass when enabled.
     const ocean::SurfaceGpuStats first = gpu.update(0.0, glm::dvec3(0.0));
     EXPECT_EQ(first.uploads, static_cast<int>(desc.octaves.size()) + 1); // the maps + the filter's texture
-    EXPECT_EQ(first.computePasses, mode.combined ? 1 : 0);
+    EXPECT_EQ(first.computePasses, mode.combined ? 2 : 1);
     const ocean::SurfaceGpuStats second = gpu.update(0.0, glm::dvec3(0.0));
     EXPECT_EQ(second.uploads, 0);
-    EXPECT_EQ(second.computePasses, mode.combined ? 1 : 0);
+    EXPECT_EQ(second.computePasses, mode.combined ? 2 : 1);
     EXPECT_LE(gpu.unitsUsed(), 12); // OceanRenderer's lighting textures start at unit 12
 
     // Bounds. Float: the GPU forms tile coordinates rel * B + fract(camera * B) in float; at 40 km that is
@@ -193,6 +194,41 @@ INSTANTIATE_TEST_SUITE_P(
                       Mode{VertexFilter::Bilinear, true}, Mode{VertexFilter::HardwareBilinear, true},
                       Mode{VertexFilter::Packed4Tap, true}, Mode{VertexFilter::Trilinear, true}),
     [](const ::testing::TestParamInfo<Mode>& p) { return modeName(p.param); });
+
+// The lighting maps are mixed to the frame's time once per frame (octaves_light_mix.comp) instead of per
+// pixel: halfway between two time slices the lighting gradient is the mean of the two slices' (filtering is
+// linear), up to the one rounding of the mix to half; at a slice's own instant it is that slice. One octave
+// (61 m tile, 12 s loop, 32 slices: a slice every 0.375 s).
+TEST(OctaveLightingGpu, LightingMapsFollowTimeLinearlyBetweenSlices) {
+    auto ctx = gl::createHeadlessContext();
+    HeightOctavesDesc desc;
+    desc.octaves = {{61.0, 0.13, 12.0}};
+    desc.displacedOctaves = 1;
+    const auto surface = std::make_shared<const HeightOctaves>(desc);
+    ocean::OctavesGpu gpu(surface);
+    const std::vector<glm::vec2> rel = probePoints(500);
+    const glm::dvec3 camera(1.0e7 + 0.37, -1.0e7 + 0.81, 30.0);
+    const double slice = 12.0 / 32.0, t0 = 1.0e6 * 12.0 + 5.0 * slice; // whole loops: slice 5 exactly
+    const ocean::ProbeResult a = ocean::probeSurface(gpu, rel, camera, t0);
+    const ocean::ProbeResult b = ocean::probeSurface(gpu, rel, camera, t0 + slice);
+    const ocean::ProbeResult m = ocean::probeSurface(gpu, rel, camera, t0 + 0.5 * slice);
+    double scale = 0.0, worst = 0.0, change = 0.0;
+    for (size_t i = 0; i < rel.size(); ++i)
+        scale = std::max({scale, double(std::abs(a.lighting[i].x)), double(std::abs(a.lighting[i].y))});
+    ASSERT_GT(scale, 0.0);
+    for (size_t i = 0; i < rel.size(); ++i) {
+        for (int c = 0; c < 2; ++c) {
+            const double mean = 0.5 * (double(a.lighting[i][c]) + double(b.lighting[i][c]));
+            worst = std::max(worst, std::abs(double(m.lighting[i][c]) - mean));
+            change = std::max(change, std::abs(double(a.lighting[i][c]) - double(b.lighting[i][c])));
+        }
+    }
+    std::printf(
+        "lighting gradient: max |mid - mean of slices| = %.3g, max slice-to-slice change %.3g, scale %.3g\n",
+        worst, change, scale);
+    EXPECT_GT(change, 1e-2 * scale) << "the two slices differ, so the test can tell";
+    EXPECT_LE(worst, 2e-3 * scale) << "one half rounding of the mixed map (2^-11 relative) and float noise";
+}
 
 double minMs(const std::vector<double>& v) {
     return *std::min_element(v.begin(), v.end());

@@ -119,7 +119,16 @@ OctavesGpu::OctavesGpu(std::shared_ptr<const HeightOctaves> surface) : mSurface(
                                 GL_RGBA, GL_HALF_FLOAT, half.data());
         }
         glGenerateTextureMipmap(mLightMaps.id());
-        mLightMaps.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
+        mLightMaps.setSampling(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST, GL_REPEAT); // texelFetch only
+        mLightLevels = levels;
+        mLightSize = size;
+        mLightNow = gl::Texture::createArray2D(GL_RGBA16F, size, size, static_cast<int>(maps.size()), levels);
+        mLightNow.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
+        mLightMixProgram = gl::buildProgram(
+            {{gl::ShaderStage::Compute,
+              {{"<ocean constants>", shaderConstantDefines()},
+               {"octaves_light_mix.comp", std::string(shaderText("octaves_light_mix.comp"))}}}},
+            "octaves lighting time mix");
     }
     mFilterMaps = createFilterMaps(*mSurface);
 
@@ -166,6 +175,31 @@ SurfaceGpuStats OctavesGpu::update(double time, const glm::dvec3& cameraWorld) {
         s.uploads = static_cast<int>(mSurface->maps().size()) + (mFilterMaps ? 1 : 0); // one per map
         mUploadReported = true;
     }
+    if (mLightNow) {
+        // The lighting maps at this time: every level of every octave, mix of its two time slices.
+        gl::StateGuard guard; // restores the program
+        const GLuint prog = mLightMixProgram.id();
+        glUseProgram(prog);
+        const std::vector<OctaveFrameParams> params = mSurface->frameParams(glm::dvec2(cameraWorld), time);
+        const int n = static_cast<int>(params.size());
+        for (int i = 0; i < n; ++i)
+            glProgramUniform1f(prog, arrayLocation(prog, "uFramePos", i),
+                               params[static_cast<size_t>(i)].framePosition);
+        glProgramUniform1i(prog, location(prog, "uOctaveCount"), n);
+        glProgramUniform1i(prog, location(prog, "uFrames"), mSurface->desc().frames);
+        glBindTextureUnit(0, mLightMaps.id());
+        glProgramUniform1i(prog, location(prog, "uLightMaps"), 0);
+        for (int level = 0; level < mLightLevels; ++level) {
+            const int size = std::max(1, mLightSize >> level);
+            glProgramUniform1i(prog, location(prog, "uLevel"), level);
+            glBindImageTexture(0, mLightNow.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            const GLuint groups = static_cast<GLuint>((size + 7) / 8);
+            glDispatchCompute(groups, groups, static_cast<GLuint>(n));
+        }
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        s.computePasses += 1;
+    }
     if (!mCombined)
         return s;
     // §18.2.5 pass 1: sum the displaced octaves into the combined levels around this camera.
@@ -179,7 +213,7 @@ SurfaceGpuStats OctavesGpu::update(double time, const glm::dvec3& cameraWorld) {
     glDispatchCompute(groups, groups, static_cast<GLuint>(mSurface->combinedLevels()));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    s.computePasses = 1;
+    s.computePasses += 1;
     return s;
 }
 
@@ -187,8 +221,8 @@ void OctavesGpu::bindOctaves(unsigned prog, int firstUnit, double time, const gl
                              bool filterTexture) {
     const std::vector<OctaveFrameParams> params = mSurface->frameParams(glm::dvec2(cameraWorld), time);
     const int n = static_cast<int>(params.size());
-    glBindTextureUnit(static_cast<GLuint>(firstUnit), mLightMaps.id());
-    glProgramUniform1i(prog, location(prog, "uLightMaps"), firstUnit);
+    glBindTextureUnit(static_cast<GLuint>(firstUnit), mLightNow.id());
+    glProgramUniform1i(prog, location(prog, "uLightNow"), firstUnit);
     for (int i = 0; i < n; ++i) {
         const OctaveFrameParams& p = params[static_cast<size_t>(i)];
         glProgramUniform2f(prog, arrayLocation(prog, "uUvOffset", i), p.uvOffset.x, p.uvOffset.y);
