@@ -23,6 +23,10 @@ TEST(Presets, LevelsAreValidAndOrdered) {
     EXPECT_EQ(oceanPreset(Quality::Low).grid.rings, 64);
     EXPECT_EQ(oceanPreset(Quality::High).grid.rings, OceanDesc{}.grid.rings); // high is the default
     EXPECT_FALSE(oceanPreset(Quality::Reference).cullVertices);
+    // The same bilinear heights from one fetch (listing 18-2) in the presets; the reference keeps the seed's.
+    for (Quality q : {Quality::Low, Quality::Medium, Quality::High})
+        EXPECT_EQ(oceanPreset(q).octaves.vertexFilter, VertexFilter::Packed4Tap) << toString(q);
+    EXPECT_EQ(oceanPreset(Quality::Reference).octaves.vertexFilter, VertexFilter::Bilinear);
 }
 
 TEST(Presets, NamesRoundTripAndUnknownNamesListTheValidOnes) {

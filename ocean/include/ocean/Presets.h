@@ -1,6 +1,8 @@
 // Presets: quality levels picked from the Pareto front of the accuracy sweep (docs/ACCURACY.md, measured on
 // llvmpipe and on an NVIDIA H100 at 1920x1080). Each is an OceanDesc for the octave model; choose another
-// surface model or override single knobs afterwards.
+// surface model or override single knobs afterwards. low, medium and high use the packed 4-tap vertex filter
+// (listing 18-2: the same bilinear heights from one fetch, bit-identical pixels, cheaper); reference keeps
+// the seed's bilinear path. Frame times per preset: docs/PERFORMANCE.md (`./pacifica bench frame`).
 //
 //   level      grid (rings x segments)  lighting octaves  culling   H100 1080p  image RMSE vs reference
 //   low        64 x 128                 3                 on        ~2.8 ms     ~0.0033
