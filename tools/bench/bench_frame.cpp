@@ -105,10 +105,14 @@ struct Scene {
     Setting setting;
     ecs::Registry registry;
     ocean::OceanRenderer timed, profiled;
-    std::vector<double> ms, compute, sky, sea, effects;
+    // Its own timer: on hardware results arrive frames later, and one timer shared by the round robin
+    // would hand a scene another scene's span.
+    gl::GpuTimer timer;
+    std::vector<double> compute, sky, sea, effects;
+    size_t warmupSpans = 0; // the timer's first spans belong to the warm-up frames
     ocean::OceanStats stats;
 
-    Scene(Setting s, gl::GpuTimer::Clock clock) : setting(std::move(s)) {
+    Scene(Setting s, gl::GpuTimer::Clock clock) : setting(std::move(s)), timer(clock) {
         const ecs::Entity e = registry.create();
         registry.emplace<ocean::OceanComponent>(e, ocean::makeOcean(setting.desc));
         profiled.setPassTiming(clock);
@@ -130,13 +134,13 @@ struct Scene {
         return f;
     }
 
-    void frame(gl::GpuTimer& timer, const gl::FrameTargets& targets, double t, bool record) {
+    void frame(const gl::FrameTargets& targets, double t, bool record) {
         const ocean::OceanFrame f = frameAt(t, targets);
+        if (!record)
+            ++warmupSpans;
         timer.begin();
         timed.render(registry, f);
         timer.end();
-        if (auto v = timer.poll(); v && record)
-            ms.push_back(*v);
         stats = timed.lastStats();
         profiled.render(registry, f);
         const ocean::OceanPassTimes& p = profiled.lastStats().passTimes;
@@ -264,22 +268,23 @@ int main(int argc, char** argv) {
             double t = T0;
             for (int i = 0; i < WARMUP_FRAMES; ++i, t += FRAME_DT)
                 for (auto& scene : scenes)
-                    scene->frame(timer, targets, t, false);
+                    scene->frame(targets, t, false);
             // Round robin, the starting scene rotating from round to round.
             for (int f = 0; f < frames; ++f, t += FRAME_DT)
                 for (size_t k = 0; k < scenes.size(); ++k)
-                    scenes[(k + static_cast<size_t>(f)) % scenes.size()]->frame(timer, targets, t, true);
-            timer.drain();
+                    scenes[(k + static_cast<size_t>(f)) % scenes.size()]->frame(targets, t, true);
             for (auto& scene : scenes) {
-                while (auto v = timer.poll()) // TimerQuery: spans still in flight belong to the last scenes;
-                    (void)v;                  // they are few and dropped (each scene keeps >= frames - 4)
+                scene->timer.drain(); // every span in order, the warm-up frames' first
+                const std::vector<double>& all = scene->timer.samples();
+                const std::vector<double> ms(
+                    all.begin() + static_cast<long>(std::min(scene->warmupSpans, all.size())), all.end());
                 Row r;
                 r.setting = scene->setting.name;
                 r.knob = scene->setting.knob;
                 r.width = width;
                 r.height = height;
-                r.ms = quantile(scene->ms, 0.5);
-                r.p90 = quantile(scene->ms, 0.9);
+                r.ms = quantile(ms, 0.5);
+                r.p90 = quantile(ms, 0.9);
                 r.compute = quantile(scene->compute, 0.5);
                 r.sky = quantile(scene->sky, 0.5);
                 r.sea = quantile(scene->sea, 0.5);
@@ -287,7 +292,7 @@ int main(int argc, char** argv) {
                 r.vertices = scene->stats.vertices;
                 r.passes = scene->stats.passes;
                 r.draws = scene->stats.draws;
-                r.samples = static_cast<int>(scene->ms.size());
+                r.samples = static_cast<int>(ms.size());
                 if (r.samples == 0 || !(r.ms > 0.0))
                     throw std::runtime_error("setting " + r.setting + ": no frame time measured");
                 rows.push_back(r);
