@@ -6,6 +6,7 @@
 #include "ObjectRenderer.h"
 #include "ReplayInput.h"
 #include "VideoWriter.h"
+#include "WorkerQueue.h"
 #include "engine/Ecs.h"
 #include "engine/Log.h"
 #include "engine/Space.h"
@@ -27,10 +28,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <fstream>
+#include <future>
 #include <map>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <unistd.h>
 #include <vector>
 
@@ -352,7 +356,28 @@ void runReplay(const ReplayOptions& o) {
     if (o.video)
         video = std::make_unique<VideoWriter>(*o.video, input.views.front().width, input.views.front().height,
                                               o.fps);
+    // Image encoding (EXR ZIP + PNG) runs on a worker thread while the next frame renders; at most two
+    // frames wait (WorkerQueue.h). Declared after `out`: it finishes its jobs before the staging directory
+    // goes. Each frame's EXR hash comes back through a future and is filled into its JSON entry.
+    std::optional<WorkerQueue<uint64_t>> encoder;
+    if (writeImages)
+        encoder.emplace(2);
+    struct PendingImage {
+        size_t view, frame; // viewFrames[view][frame]; frame == npos: an extra view's PNG (no hash)
+        std::future<uint64_t> hash;
+    };
+    std::deque<PendingImage> pendingImages;
     std::vector<nlohmann::json> viewFrames(input.views.size(), nlohmann::json::array());
+    auto collectImages = [&](bool wait) { // rethrows a failed write as soon as it is seen
+        while (!pendingImages.empty() && (wait || pendingImages.front().hash.wait_for(std::chrono::seconds(
+                                                      0)) == std::future_status::ready)) {
+            PendingImage p = std::move(pendingImages.front());
+            pendingImages.pop_front();
+            const uint64_t h = p.hash.get();
+            if (p.frame != std::string::npos)
+                viewFrames[p.view][p.frame]["exr_pixel_hash"] = hex64(h);
+        }
+    };
     std::vector<float> scene, display;
     std::vector<double> frameWallMs;
     double firstFrameSeconds = 0.0;
@@ -425,9 +450,14 @@ void runReplay(const ReplayOptions& o) {
                                 {"flight", o.flight.filename().string()},
                                 {"rig", view.rig},
                                 {"environment", environmentName}};
-                hash = capture::writeExrHalf(out->staged(exrName), view.width, view.height, 4, scene.data(),
-                                             meta);
-                capture::writePng8(out->staged(pngName), view.width, view.height, 4, display.data());
+                pendingImages.push_back(
+                    {vi, viewFrames[vi].size(),
+                     encoder->submit([exr = out->staged(exrName), png = out->staged(pngName), w = view.width,
+                                      h = view.height, sceneCopy = scene, displayCopy = display, meta] {
+                         const uint64_t exrHash = capture::writeExrHalf(exr, w, h, 4, sceneCopy.data(), meta);
+                         capture::writePng8(png, w, h, 4, displayCopy.data());
+                         return exrHash;
+                     })});
             } else {
                 const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
                 hash = capture::hashHalfPixels(half.data(), half.size());
@@ -444,7 +474,12 @@ void runReplay(const ReplayOptions& o) {
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - e0).count();
                 if (writeImages) {
                     const std::string png = std::string(name) + "." + e.suffix + ".png";
-                    capture::writePng8(out->staged(png), view.width, view.height, 4, display.data());
+                    pendingImages.push_back({vi, std::string::npos,
+                                             encoder->submit([path = out->staged(png), w = view.width,
+                                                              h = view.height, displayCopy = display] {
+                                                 capture::writePng8(path, w, h, 4, displayCopy.data());
+                                                 return uint64_t{0};
+                                             })});
                     extraPngs.push_back({{"view", e.view}, {"png", png}});
                 }
             }
@@ -462,7 +497,9 @@ void runReplay(const ReplayOptions& o) {
                 if (!extraViews.empty())
                     fj["extra_views"] = extraPngs;
             }
-            fj["exr_pixel_hash"] = hex64(hash);
+            fj["exr_pixel_hash"] = writeImages
+                                       ? nlohmann::json(nullptr)
+                                       : nlohmann::json(hex64(hash)); // images: filled by collectImages
             // What the frame cost and did (OceanStats, EffectCounters): absent effects show zeros.
             const ocean::OceanStats& st = renderer.lastStats();
             const ocean::EffectCounters& fx = effects.counters();
@@ -503,7 +540,9 @@ void runReplay(const ReplayOptions& o) {
                     pj["tonemap"] = (*own)[PassTonemap];
                 }
                 pj["readback"] = ms(r1 - r0);
-                pj["encode"] = ms(r2 - r1) - extraTonemapMs; // EXR + PNG (or the hash), video frame
+                // Main-thread time handing the images to the encoder (copies; waits when two frames are
+                // queued) or hashing them, and the video frame; the encoding itself overlaps rendering.
+                pj["encode"] = ms(r2 - r1) - extraTonemapMs;
                 if (!extraViews.empty())
                     pj["extra_views"] = extraTonemapMs;
                 for (const auto& [pass, value] : pj.items())
@@ -512,6 +551,7 @@ void runReplay(const ReplayOptions& o) {
             }
             viewFrames[vi].push_back(std::move(fj));
         }
+        collectImages(false);
         const auto f1 = std::chrono::steady_clock::now();
         frameWallMs.push_back(std::chrono::duration<double, std::milli>(f1 - f0).count());
         if (k == 0)
@@ -529,6 +569,7 @@ void runReplay(const ReplayOptions& o) {
     }
     if (tty)
         std::fprintf(stderr, "\n");
+    collectImages(true); // every image written (or the first failure thrown) before the summary
     if (video)
         video->finish(); // the video is in place only now; a failure before leaves none
 
