@@ -246,6 +246,18 @@ bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
     return true;
 }
 
+/// The effect grids' per-vertex frustum test (effects.vert uCull), as the sea's but with the guard widened by
+/// the effect field's reach (effectHeightBound) and the model's horizontal displacement.
+void setEffectCull(GLuint prog, const OceanComponent& ocean, const OceanFrame& frame) {
+    const double hs = ocean.surface->significantWaveHeight();
+    const double horizontalGuard = ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * hs;
+    const double c0 = 1.0 + ocean.desc.cullGuardNdc;
+    const double bound = 2.0 * hs + EFFECT_HEIGHT_LIMIT + horizontalGuard;
+    const double scale = std::max(std::abs(frame.camera.proj[0][0]), std::abs(frame.camera.proj[1][1]));
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "uCull"), ocean.desc.cullVertices ? 1.0f : 0.0f,
+                       static_cast<float>(c0), static_cast<float>(bound * (scale + c0)));
+}
+
 bool hasEffects(ecs::Registry& registry) {
     auto explosions = registry.view<Explosion>();
     auto trails = registry.view<ShipTrail>();
@@ -479,6 +491,7 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
         const GLuint fx = effectProgram(gpu, false);
         glUseProgram(fx);
         setSurfaceUniforms(fx, ocean, gpu, frame);
+        setEffectCull(fx, ocean, frame); // the feedback programs (tests) leave it off: every vertex evaluated
         mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
         mEffects->bind(fx);
         for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {

@@ -11,6 +11,7 @@
 #include "engine/Space.h"
 #include "engine/gl/FrameTargets.h"
 #include "engine/gl/GlContext.h"
+#include "engine/gl/GpuTimer.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
@@ -408,6 +409,46 @@ TEST_F(EffectsGl, TightCircleWakeMatchesCpuAndStaysFinite) {
     const double err = compareWithCpu(f, EffectKind::Wake, {w.ship});
     std::printf("[wake tight circle] max |GPU - CPU| = %.3g m\n", err);
     EXPECT_LT(err, bound(f.camera.origin, 0.0));
+}
+
+// The effect grids' per-vertex frustum test (effects.vert uCull, docs/PERFORMANCE.md): a wake seen from its
+// side at 30 m, mostly outside the view, draws exactly the pixels it draws with every vertex evaluated
+// (OceanDesc::cullVertices = false), and the time of its pass falls (printed, not asserted: llvmpipe
+// evaluates wake vertices on one thread, ~5x less work in the replay's demo view at t = 20 s).
+TEST_F(EffectsGl, EffectCullingChangesNoPixel) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 80.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    for (int i = 0; i <= 120; ++i) { // 120 s at 10 m/s heading north
+        registry.get<Ship>(ship).position = {0.0, i * 10.0};
+        events.dispatch();
+        fx.update(i, {-300.0, 1100.0, 30.0});
+    }
+    // 300 m west of the bow, looking north-east: the ship and the first ~100 m of its wake in view.
+    const OceanFrame f = frameAt({-300.0, 1100.0, 30.0}, 60.0, -8.0, 120.0);
+    std::vector<float> culled, full;
+    gl::GpuTimer timer(gl::GpuTimer::Clock::WallAroundFinish);
+    renderer.render(registry, f); // builds the programs
+    timer.begin();
+    renderer.render(registry, f);
+    timer.end();
+    ASSERT_EQ(renderer.lastStats().wakes.drawn, 1);
+    targets.readScene(culled);
+    registry.get<OceanComponent>(oceanEntity).desc.cullVertices = false;
+    renderer.render(registry, f);
+    timer.begin();
+    renderer.render(registry, f);
+    timer.end();
+    targets.readScene(full);
+    std::printf("[effect culling] frame %.1f ms culled, %.1f ms every vertex\n", timer.samples()[0],
+                timer.samples()[1]);
+    ASSERT_EQ(culled.size(), full.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < culled.size(); ++i)
+        differing += culled[i] != full[i];
+    EXPECT_EQ(differing, 0u) << "values differ with effect culling";
+    EXPECT_EQ(nonFinitePixels(), 0u);
 }
 
 TEST_F(EffectsGl, WakeIsVisibleFromTenKilometres) {
