@@ -215,6 +215,21 @@ void setSurfaceUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer:
                        ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
 }
 
+/// Horizontal displacement bound of the model: 2 Hs for Gerstner and FFT, 0 for the octaves (vertical only).
+double horizontalGuard(const OceanComponent& ocean) {
+    return ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * ocean.surface->significantWaveHeight();
+}
+
+/// §18.2.5's per-vertex frustum test (uCull of ocean.vert and effects.vert): displace only if |clip.xy| <
+/// clip.w C0 + C1, the guard C1 from the vertical `reach` of the displaced surface plus the horizontal guard.
+void setCullUniform(GLuint prog, const OceanComponent& ocean, const OceanFrame& frame, double reach) {
+    const double c0 = 1.0 + ocean.desc.cullGuardNdc;
+    const double bound = reach + horizontalGuard(ocean);
+    const double scale = std::max(std::abs(frame.camera.proj[0][0]), std::abs(frame.camera.proj[1][1]));
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "uCull"), ocean.desc.cullVertices ? 1.0f : 0.0f,
+                       static_cast<float>(c0), static_cast<float>(bound * (scale + c0)));
+}
+
 /// Per-frame uniforms of the sea's vertex stage: setSurfaceUniforms(), the view sector and the cull test.
 /// Returns false when the sea is not in view at all (projected grid: nothing of the wave volume on screen).
 bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
@@ -223,19 +238,13 @@ bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
     // Horizontal displacement (Gerstner, FFT) can move a vertex from outside the sector into view: widen the
     // sector near the camera by asin(guard / r) (whole circle within guard), guard = 2 Hs, and the cull test
     // by the displacement bound.
-    const double hs = ocean.surface->significantWaveHeight();
-    const double horizontalGuard = ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * hs;
     const ViewSector sector =
         ocean.desc.viewSector
             ? computeViewSector(frame.camera, ocean.desc.sectorGuardDeg * std::numbers::pi / 180.0)
             : ViewSector{};
     glProgramUniform3f(prog, glGetUniformLocation(prog, "uSector"), static_cast<float>(sector.center),
-                       static_cast<float>(sector.halfWidth), static_cast<float>(horizontalGuard));
-    const double c0 = 1.0 + ocean.desc.cullGuardNdc;
-    const double bound = 2.0 * hs + horizontalGuard;
-    const double scale = std::max(std::abs(frame.camera.proj[0][0]), std::abs(frame.camera.proj[1][1]));
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "uCull"), ocean.desc.cullVertices ? 1.0f : 0.0f,
-                       static_cast<float>(c0), static_cast<float>(bound * (scale + c0)));
+                       static_cast<float>(sector.halfWidth), static_cast<float>(horizontalGuard(ocean)));
+    setCullUniform(prog, ocean, frame, 2.0 * ocean.surface->significantWaveHeight());
     if (gpu.projected) {
         const ProjectedGrid::Frame f =
             gpu.projected->frame(frame.camera, ocean.desc.earthCurvature ? EARTH_RADIUS : 0.0);
@@ -244,18 +253,6 @@ bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
         return f.visible;
     }
     return true;
-}
-
-/// The effect grids' per-vertex frustum test (effects.vert uCull), as the sea's but with the guard widened by
-/// the effect field's reach (effectHeightBound) and the model's horizontal displacement.
-void setEffectCull(GLuint prog, const OceanComponent& ocean, const OceanFrame& frame) {
-    const double hs = ocean.surface->significantWaveHeight();
-    const double horizontalGuard = ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * hs;
-    const double c0 = 1.0 + ocean.desc.cullGuardNdc;
-    const double bound = 2.0 * hs + EFFECT_HEIGHT_LIMIT + horizontalGuard;
-    const double scale = std::max(std::abs(frame.camera.proj[0][0]), std::abs(frame.camera.proj[1][1]));
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "uCull"), ocean.desc.cullVertices ? 1.0f : 0.0f,
-                       static_cast<float>(c0), static_cast<float>(bound * (scale + c0)));
 }
 
 bool hasEffects(ecs::Registry& registry) {
@@ -491,7 +488,9 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
         const GLuint fx = effectProgram(gpu, false);
         glUseProgram(fx);
         setSurfaceUniforms(fx, ocean, gpu, frame);
-        setEffectCull(fx, ocean, frame); // the feedback programs (tests) leave it off: every vertex evaluated
+        // The effect grids' guard adds the effect field's reach; the feedback programs (tests) leave the test
+        // off: every vertex evaluated.
+        setCullUniform(fx, ocean, frame, effectHeightBound(ocean));
         mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
         mEffects->bind(fx);
         for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {

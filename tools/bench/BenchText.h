@@ -1,11 +1,15 @@
-// BenchText: number and CSV formatting shared by the benchmark report writers (bench_accuracy.cpp,
-// bench_effects.cpp). Header-only.
+// BenchText: number and CSV formatting, the report date and --size parsing shared by the benchmark report
+// writers (bench_accuracy.cpp, bench_effects.cpp, bench_frame.cpp). Header-only.
 #pragma once
 
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace pacifica::bench {
 
@@ -29,6 +33,24 @@ inline std::string csvQuote(const std::string& s) {
         out += c;
     }
     return out + "\"";
+}
+
+/// "YYYY-MM-DD HH:MM:SS UTC" of now, for report headers.
+inline std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    char date[64];
+    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
+    return date;
+}
+
+/// "WxH" (or "WXH") with both sides in 16..8192, else nullopt.
+inline std::optional<std::pair<int, int>> parseSize(const std::string& s) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 16 ||
+        h < 16 || w > 8192 || h > 8192)
+        return std::nullopt;
+    return std::pair{w, h};
 }
 
 } // namespace pacifica::bench

@@ -49,6 +49,8 @@ namespace {
 
 using bench::csvQuote;
 using bench::num;
+using bench::parseSize;
+using bench::utcNow;
 
 constexpr double T0 = 100.0;            // simulation time of the first frame, s
 constexpr double FRAME_DT = 1.0 / 60.0; // simulation time between frames, s
@@ -342,13 +344,6 @@ std::string loadAverage() {
     return a + " " + b + " " + c;
 }
 
-std::string utcNow() {
-    const std::time_t now = std::time(nullptr);
-    char date[64];
-    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
-    return date;
-}
-
 // effects.csv (one row per setting), effects.md (the tables docs/EFFECTS_BENCH.md quotes) and effects.json
 // (the per-kind summary, for scripts).
 void writeReports(const std::string& outDir, const std::vector<Row>& rows, const gl::ContextInfo& info,
@@ -468,15 +463,6 @@ void writeReports(const std::string& outDir, const std::vector<Row>& rows, const
               << "; zero-effect/plain " << fixed(zero.msMedian / plainMs, 3) << " (paired "
               << fixed(pairedMedian, 3) << ", p10-p90 " << fixed(pairedP10, 3) << "-" << fixed(pairedP90, 3)
               << ")\n";
-}
-
-std::optional<std::pair<int, int>> parseSize(const std::string& s) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(s.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 16 ||
-        h < 16 || w > 8192 || h > 8192)
-        return std::nullopt;
-    return std::pair{w, h};
 }
 
 int usage(const char* argv0, int rc) {

@@ -44,6 +44,8 @@ namespace {
 
 using bench::csvQuote;
 using bench::num;
+using bench::parseSize;
+using bench::utcNow;
 
 constexpr double T0 = 100.0;            // simulation time of the first frame, s
 constexpr double FRAME_DT = 1.0 / 60.0; // simulation time between frames, s
@@ -153,13 +155,6 @@ struct Scene {
     }
 };
 
-std::string utcNow() {
-    const std::time_t now = std::time(nullptr);
-    char date[64];
-    std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
-    return date;
-}
-
 struct Row {
     std::string setting, knob;
     int width = 0, height = 0;
@@ -167,13 +162,6 @@ struct Row {
     long long vertices = 0;
     int passes = 0, draws = 0, samples = 0;
 };
-
-bool parseSize(const std::string& text, int& w, int& h) {
-    char x = 0;
-    char rest = 0;
-    return std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) == 3 && x == 'x' && w >= 16 && h >= 16 &&
-           w <= 8192 && h <= 8192;
-}
 
 int usage(const char* argv0, int code) {
     (code == 0 ? std::cout : std::cerr)
@@ -212,12 +200,12 @@ int main(int argc, char** argv) {
             outDir = *v;
         } else if (a == "--size") {
             const auto v = value();
-            int w = 0, h = 0;
-            if (!v || !parseSize(*v, w, h)) {
+            const auto size = v ? parseSize(*v) : std::nullopt;
+            if (!size) {
                 std::cerr << "pacifica-bench-frame: --size expects WxH (16..8192 each), e.g. 1920x1080\n";
                 return 2;
             }
-            sizes.emplace_back(w, h);
+            sizes.push_back(*size);
         } else if (a == "--frames") {
             const auto v = value();
             char* end = nullptr;

@@ -105,8 +105,8 @@ OctavesGpu::OctavesGpu(std::shared_ptr<const HeightOctaves> surface) : mSurface(
     if (!maps.empty()) {
         const int size = maps.front().size, frames = maps.front().frames;
         const int levels = 1 + static_cast<int>(std::log2(static_cast<double>(size)));
-        mLightLayers = static_cast<int>(maps.size()) * frames;
-        mLightMaps = gl::Texture::createArray2D(GL_RGBA16F, size, size, mLightLayers, levels);
+        const int layers = static_cast<int>(maps.size()) * frames;
+        mLightMaps = gl::Texture::createArray2D(GL_RGBA16F, size, size, layers, levels);
         for (size_t o = 0; o < maps.size(); ++o) {
             const OctaveMap& map = maps[o];
             if (map.size != size || map.frames != frames)

@@ -46,7 +46,7 @@ private:
 
     std::shared_ptr<const HeightOctaves> mSurface;
     gl::Texture mLightMaps; // every octave's (h, dh/du, dh/dv, |grad h|^2), layer = octave * frames + frame
-    int mLightLayers = 0, mLightLevels = 0, mLightSize = 0;
+    int mLightLevels = 0, mLightSize = 0;
     gl::Texture mLightNow; ///< the same at update()'s time: one layer per octave, mipmapped
     gl::Program mLightMixProgram;
     gl::Texture mFilterMaps; ///< R16F heights or packed RGBA16F (Packed4Tap, Trilinear); none without
