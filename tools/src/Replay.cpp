@@ -3,7 +3,7 @@
 #include "Replay.h"
 
 #include "FlightPath.h"
-#include "ObjectRenderer.h"
+#include <engine/gl/ObjectRenderer.h>
 #include "ReplayInput.h"
 #include "VideoWriter.h"
 #include "WorkerQueue.h"

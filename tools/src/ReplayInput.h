@@ -4,7 +4,7 @@
 #pragma once
 
 #include "FlightPath.h"
-#include "ObjectRenderer.h"
+#include <engine/gl/ObjectRenderer.h>
 
 #include <recording/CameraRig.h>
 #include <recording/EarthFrame.h>
@@ -20,6 +20,10 @@
 #include <vector>
 
 namespace pacifica::tools {
+
+using gl::DrawnObject;
+using gl::ObjectRenderer;
+using gl::ObjectShape;
 
 /// One camera of a run: its rig and its own image size and field of view.
 struct ReplayView {

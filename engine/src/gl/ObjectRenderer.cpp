@@ -1,15 +1,14 @@
 // ObjectRenderer: procedural meshes in body units (x forward, y right, z up; length 1), one draw per object.
-#include "ObjectRenderer.h"
+#include "engine/gl/ObjectRenderer.h"
 
-#include <engine/gl/Shader.h>
-#include <recording/EarthFrame.h>
+#include "engine/gl/Shader.h"
 
 #include <epoxy/gl.h>
 
 #include <array>
 #include <cmath>
 
-namespace pacifica::tools {
+namespace pacifica::gl {
 
 namespace {
 
@@ -127,17 +126,17 @@ void main() {
 } // namespace
 
 ObjectRenderer::ObjectRenderer() {
-    mProgram = gl::buildProgram({{gl::ShaderStage::Vertex, {{"objects.vert", VERT}}},
-                                 {gl::ShaderStage::Fragment, {{"objects.frag", FRAG}}}},
-                                "replay objects");
+    mProgram = buildProgram(
+        {{ShaderStage::Vertex, {{"objects.vert", VERT}}}, {ShaderStage::Fragment, {{"objects.frag", FRAG}}}},
+        "replay objects");
     std::vector<glm::vec3> all;
     const Tri meshes[5] = {aircraft(), rotorcraft(), ship(false), ship(true), weapon()};
     for (int i = 0; i < 5; ++i) {
         mRanges[i] = {static_cast<int>(all.size()), static_cast<int>(meshes[i].size())};
         all.insert(all.end(), meshes[i].begin(), meshes[i].end());
     }
-    mVertices = gl::Buffer::create(all.size() * sizeof(glm::vec3), all.data());
-    mVao = gl::VertexArray::create();
+    mVertices = Buffer::create(all.size() * sizeof(glm::vec3), all.data());
+    mVao = VertexArray::create();
     glVertexArrayVertexBuffer(mVao.id(), 0, mVertices.id(), 0, sizeof(glm::vec3));
     glEnableVertexArrayAttrib(mVao.id(), 0);
     glVertexArrayAttribFormat(mVao.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
@@ -148,7 +147,7 @@ int ObjectRenderer::draw(const std::vector<DrawnObject>& objects, const CameraFr
                          int w, int h, const glm::dvec3& sunDirection, double earthRadius) {
     if (objects.empty())
         return 0;
-    gl::StateGuard guard;
+    StateGuard guard;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE); // reverse-Z, as the ocean draws (engine/Space.h)
@@ -168,9 +167,10 @@ int ObjectRenderer::draw(const std::vector<DrawnObject>& objects, const CameraFr
     int drawn = 0;
     for (const DrawnObject& o : objects) {
         glm::dvec3 rel = o.pose.position - camera.origin;
-        if (earthRadius > 0.0) // the same drop as the sea (ocean/OceanConstants.h)
-            rel.z =
-                recording::EarthFrame::drawnZ(o.pose.position, camera.origin, earthRadius) - camera.origin.z;
+        if (earthRadius > 0.0) { // the same drop d^2 / 2R as the sea (ocean/OceanConstants.h)
+            const double d = std::hypot(rel.x, rel.y);
+            rel.z -= d * d / (2.0 * earthRadius);
+        }
         // Too far to cover a pixel (a 19 m aircraft beyond ~38 km): skip.
         const double dist = glm::length(rel);
         if (dist > 2000.0 * o.length + 1.0)
@@ -180,7 +180,8 @@ int ObjectRenderer::draw(const std::vector<DrawnObject>& objects, const CameraFr
         glUniformMatrix3fv(axesLoc, 1, GL_FALSE, &axesF[0][0]);
         glUniform3f(offLoc, static_cast<float>(rel.x), static_cast<float>(rel.y), static_cast<float>(rel.z));
         const int k = static_cast<int>(o.shape);
-        const glm::vec3 albedo = o.shape == ObjectShape::Ship || o.shape == ObjectShape::Carrier
+        const glm::vec3 albedo = o.albedo.x >= 0.0f ? o.albedo
+                                 : o.shape == ObjectShape::Ship || o.shape == ObjectShape::Carrier
                                      ? glm::vec3(0.22f, 0.23f, 0.25f)
                                      : glm::vec3(0.30f, 0.32f, 0.35f);
         glUniform3f(albedoLoc, albedo.x, albedo.y, albedo.z);
@@ -190,4 +191,4 @@ int ObjectRenderer::draw(const std::vector<DrawnObject>& objects, const CameraFr
     return drawn;
 }
 
-} // namespace pacifica::tools
+} // namespace pacifica::gl

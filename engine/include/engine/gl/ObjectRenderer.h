@@ -1,0 +1,46 @@
+// ObjectRenderer: draws aircraft, ships and weapons (a recording's in replay, the game's own in the game) as
+// simple procedural meshes into the frame the ocean was rendered to, depth-tested against the sea (a ship's
+// hull below the waterline is hidden), so a chase or orbit replay shows what it follows. Lit by the ocean's
+// sun with a sky ambient; flat-shaded from screen-space derivatives. It saves and restores the GL state it
+// touches (gl::StateGuard), like the ocean.
+#pragma once
+
+#include "engine/Pose.h"
+#include "engine/Space.h"
+#include "engine/gl/GlObjects.h"
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace pacifica::gl {
+
+enum class ObjectShape { Aircraft, Rotorcraft, Ship, Carrier, Weapon };
+
+struct DrawnObject {
+    ObjectShape shape = ObjectShape::Aircraft;
+    double length = 19.0;    ///< metres, nose to tail / bow to stern
+    Pose pose;               ///< world pose (heading, pitch, roll: engine/Pose.h)
+    glm::vec3 albedo{-1.0f}; ///< scene-linear colour; negative = the shape's default grey
+};
+
+class ObjectRenderer {
+public:
+    ObjectRenderer();
+    /// Draws into framebuffer fbo (colour + the ocean's depth, reverse-Z) of size w x h. Positions are made
+    /// camera-relative in double and dropped by the ocean's Earth-curvature term (earthRadius; 0 = flat), as
+    /// the sea is. Returns the number of objects drawn (in front of the camera).
+    int draw(const std::vector<DrawnObject>& objects, const CameraFrame& camera, unsigned fbo, int w, int h,
+             const glm::dvec3& sunDirection, double earthRadius);
+
+private:
+    struct Range {
+        int first = 0, count = 0;
+    };
+    Program mProgram;
+    VertexArray mVao;
+    Buffer mVertices;
+    Range mRanges[5];
+};
+
+} // namespace pacifica::gl
