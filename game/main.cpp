@@ -1,38 +1,50 @@
-// pacifica-game: a small flight viewer that embeds the ocean component through its public API only.
-// Keys: W/S pitch, A/D roll, Q/E yaw, R/F throttle, B drops a bomb on the sea ahead, Escape quits. A ship
-// circles ahead of the start, leaving its wake (ocean/Effects.h: effects are created by events). The
-// simulation runs on a fixed step in double precision; the camera starts far from the origin (10^6 m) to
-// exercise camera-relative rendering.
-//   pacifica-game [--frames N] [--record FILE.txt.acmi]
-//     --frames N   N > 0: fly a scripted manoeuvre for N frames, check the image, exit
-//                  (0 = rendered finite, non-black frames; 1 = not).
-//     --record F   write the session as Tacview ACMI 2.2 (the player, the ship, bombs and their impacts) for
-//                  `pacifica replay F` or Tacview; the world is placed on the Earth at MAP_ORIGIN
-//                  (EarthFrame).
+// pacifica-game: a small flight game embedding the ocean the way a studio would -- only public headers and
+// Pacifica:: targets. The game owns its loop, window, camera, framebuffers and GL state and lends the scene
+// framebuffer to the ocean. Take off from the carrier, sink the three target ships with bombs and rockets,
+// don't fly into the sea (README.md in this folder has the controls).
+//
+//   pacifica-game [options]           (--help lists them; bad values exit 2 naming the option)
+//
+// Scripted runs (--autopilot, --frames N) step exactly 1/--fps seconds per frame, so a run is the same on
+// any machine; --screenshot T:FILE writes the window (HUD included) at game time T; --summary FILE writes
+// what happened as JSON; --record FILE writes the session as Tacview ACMI 2.2 for `pacifica replay`; --bench
+// FILE times each quality preset (docs/GAME.md).
+#include "Hud.h"
+#include "Input.h"
+#include "Options.h"
+
 #include <engine/Ecs.h>
 #include <engine/Log.h>
 #include <engine/Space.h>
 #include <engine/Time.h>
+#if PACIFICA_GAME_SCREENSHOTS
+#include <engine/capture/Capture.h>
+#endif
 #include <engine/color/ColorPipeline.h>
 #include <engine/color/Tonemapper.h>
 #include <engine/gl/FrameTargets.h>
 #include <engine/gl/GlContext.h>
+#include <engine/gl/GpuTimer.h>
+#include <engine/gl/ObjectRenderer.h>
+#include <game/Autopilot.h>
+#include <game/SessionRecorder.h>
+#include <game/World.h>
 #include <ocean/Effects.h>
 #include <ocean/Ocean.h>
-#include <recording/AcmiWriter.h>
-#include <recording/EarthFrame.h>
+#include <ocean/OceanConstants.h>
+#include <ocean/Presets.h>
+#include <recording/CameraRig.h>
 
 #include <epoxy/gl.h>
-// GLFW only for its key codes: the window itself comes from engine's GlContext.
-#include <GLFW/glfw3.h>
+#include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <exception>
+#include <deque>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -40,272 +52,544 @@
 #include <string>
 #include <vector>
 
+using namespace pacifica;
+
 namespace {
 
-struct Aircraft {
-    pacifica::Pose pose;
-    double speed = 120.0; // m/s
+constexpr double STEP = 1.0 / 120.0;        ///< simulation step, s
+constexpr double HISTORY_S = 20.0;          ///< the player's track kept for the chase camera
+constexpr double WATCH_S = 10.0;            ///< the weapon camera watches an impact this long
+constexpr double PREHISTORY_S = 120.0;      ///< ships sail this long before the first frame (wakes)
+constexpr double AIRCRAFT_LENGTH = 17.0;    ///< m, the drawn jet
+constexpr double SCRIPTED_RECORD_HZ = 10.0; ///< recording rate of positions (events keep their own time)
+
+double median(std::vector<double> v) {
+    if (v.empty())
+        return 0.0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// The ocean for a quality preset, surface model and sea state (GameOptions.h: windSpeed).
+ocean::OceanComponent buildOcean(const game::SeaSettings& s) {
+    ocean::OceanDesc d = ocean::oceanPreset(ocean::parseQuality(s.quality));
+    d.model = static_cast<ocean::SurfaceKind>(game::parseSurfaceModelIndex(s.model));
+    // Sea state: the FFT spectrum takes the wind speed; the octave and Gerstner seas (tuned at 12 m/s) scale
+    // their heights with U^2, as the fully developed significant wave height Hs = 0.21 U^2 / g does
+    // (Pierson & Moskowitz 1964).
+    const double scale = (s.windSpeed * s.windSpeed) / (12.0 * 12.0);
+    d.fft.windSpeed = s.windSpeed;
+    for (ocean::OctaveDesc& o : d.octaves.octaves)
+        o.amplitude *= scale;
+    d.gerstner.waves = ocean::GerstnerWaves::defaultWaves(8, d.octaves.windDirectionDeg, d.gerstner.seed);
+    for (ocean::GerstnerWave& w : d.gerstner.waves)
+        w.amplitude *= scale;
+    return ocean::makeOcean(d);
+}
+
+/// Everything a sortie owns; rebuilt for a new sortie.
+struct Sortie {
+    ecs::Registry registry;
+    ecs::EventQueue events;
+    ecs::Entity ocean;
+    std::unique_ptr<ocean::EffectsSystem> effects;
+    std::unique_ptr<game::World> world;
+    game::Autopilot autopilot;
+    std::deque<std::pair<double, Pose>> history;
+    FixedStepClock clock{STEP};
+    /// The newest impact or splash (the weapon camera watches it for WATCH_S).
+    std::optional<game::GameEvent> lastImpact;
+    std::vector<game::GameEvent> splashes; ///< impacts and ditchings still drawn as a plume
+    glm::dvec2 impactFrom{0.0, 1.0};       ///< horizontal direction the weapon came from (unit)
+
+    explicit Sortie(const game::SeaSettings& sea) {
+        ocean = registry.create();
+        registry.emplace<ocean::OceanComponent>(ocean, buildOcean(sea));
+        effects = std::make_unique<ocean::EffectsSystem>(registry, events);
+        world = std::make_unique<game::World>(registry, events, ocean);
+    }
+    /// The ships' wakes before the first frame (their routes run backwards in time).
+    void prehistory(game::SessionRecorder* rec) {
+        for (double t = -PREHISTORY_S; t < 0.0; t += 0.5) {
+            world->placeShips(t);
+            events.dispatch();
+            effects->update(t, world->player().pose.position);
+            if (rec)
+                rec->recordShips(*world, t);
+        }
+        world->placeShips(0.0);
+        history.emplace_back(0.0, world->player().pose);
+    }
+    Pose playerAt(double t) const {
+        if (t >= history.back().first)
+            return history.back().second;
+        if (t <= history.front().first)
+            return history.front().second;
+        const auto it = std::lower_bound(history.begin(), history.end(), t,
+                                         [](const auto& h, double v) { return h.first < v; });
+        const auto& b = *it;
+        const auto& a = *(it - 1);
+        return interpolatePose(a.second, b.second, (t - a.first) / (b.first - a.first));
+    }
 };
 
-struct Controls {
-    double pitch = 0, roll = 0, yaw = 0, throttle = 0; // -1..1
-};
-
-Controls readKeys(const pacifica::gl::GlContext& ctx) {
-    auto axis = [&](int plus, int minus) {
-        return (ctx.keyDown(plus) ? 1.0 : 0.0) - (ctx.keyDown(minus) ? 1.0 : 0.0);
-    };
-    return {axis(GLFW_KEY_S, GLFW_KEY_W), axis(GLFW_KEY_D, GLFW_KEY_A), axis(GLFW_KEY_E, GLFW_KEY_Q),
-            axis(GLFW_KEY_R, GLFW_KEY_F)};
+Pose cameraPose(const Sortie& s, game::CameraMode mode, double t, double orbitAzimuth) {
+    const game::World& w = *s.world;
+    switch (mode) {
+    case game::CameraMode::Cockpit:
+        return recording::cockpitPose(w.player().pose, {4.0, 0.0, 1.3});
+    case game::CameraMode::Orbit:
+        return recording::orbitPose(w.player().pose.position, 90.0, 12.0, orbitAzimuth);
+    case game::CameraMode::Weapon: {
+        // The newest weapon in flight, from behind and above; then the place it hit, from 250 m back.
+        const auto& ws = w.weapons();
+        if (!ws.empty()) {
+            const game::Weapon& wp = ws.back();
+            glm::dvec2 dir(wp.velocity);
+            dir = glm::length(dir) > 1e-6 ? glm::normalize(dir) : glm::dvec2(0.0, 1.0);
+            return recording::lookAtPose(wp.position - 40.0 * glm::dvec3(dir, 0.0) + glm::dvec3(0, 0, 12.0),
+                                         wp.position);
+        }
+        if (s.lastImpact && t - s.lastImpact->time < WATCH_S) {
+            const glm::dvec3 at = s.lastImpact->position;
+            return recording::lookAtPose(at - 250.0 * glm::dvec3(s.impactFrom, 0.0) + glm::dvec3(0, 0, 60.0),
+                                         at + glm::dvec3(0, 0, 10.0));
+        }
+        break;
+    }
+    case game::CameraMode::Chase:
+        break;
+    }
+    Pose p = recording::chasePose([&](double tt) { return s.playerAt(tt); }, t, 45.0, 9.0, 0.8);
+    // Never below the waves (the chase camera of an aircraft skimming the sea).
+    const double floor = w.seaHeight(glm::dvec2(p.position)) + 1.5;
+    p.position.z = std::max(p.position.z, floor);
+    return p;
 }
 
-/// The scripted manoeuvre for unattended runs: a gentle climbing right turn.
-Controls scripted(double t) {
-    return {0.25 * std::sin(t * 0.7), 0.5, 0.1, 0.0};
+/// A splash's white water column: rises to H = 45 m x strength^(1/3) (a 500 kg bomb ~45 m) with
+/// 1 - e^(-tau / 0.35 s), stands, then falls back into the sea between 2 and SPLASH_S seconds. The ocean's
+/// explosion effect (rings and crown foam) carries on after it.
+constexpr double SPLASH_S = 6.0;
+std::optional<gl::DrawnObject> splashPlume(const game::GameEvent& e, double t) {
+    const double tau = t - e.time;
+    if (tau < 0.0 || tau > SPLASH_S || e.strength <= 0.0)
+        return std::nullopt;
+    const double height = 45.0 * std::cbrt(e.strength) * (1.0 - std::exp(-tau / 0.35));
+    gl::DrawnObject o;
+    o.shape = gl::ObjectShape::Plume;
+    o.length = height;
+    o.pose.position =
+        e.position - glm::dvec3(0.0, 0.0, height * std::clamp((tau - 2.0) / (SPLASH_S - 2.0), 0.0, 1.0));
+    o.albedo = glm::vec3(0.82f, 0.85f, 0.86f);
+    return o;
 }
 
-void step(Aircraft& a, const Controls& c, double dt) {
-    a.pose.pitchDeg = std::clamp(a.pose.pitchDeg + c.pitch * 30.0 * dt, -80.0, 80.0);
-    a.pose.rollDeg = std::clamp(a.pose.rollDeg + c.roll * 60.0 * dt, -85.0, 85.0);
-    // Coordinated turn: heading rate from bank angle, g tan(roll) / v (plus rudder).
-    const double turnRate = 9.81 * std::tan(a.pose.rollDeg * std::numbers::pi / 180.0) / a.speed;
-    a.pose.headingDeg = std::fmod(
-        a.pose.headingDeg + (turnRate * 180.0 / std::numbers::pi + c.yaw * 10.0) * dt + 360.0, 360.0);
-    a.speed = std::clamp(a.speed + c.throttle * 20.0 * dt, 30.0, 400.0);
-    const glm::dmat3 att = pacifica::attitudeMatrix(a.pose.headingDeg, a.pose.pitchDeg, a.pose.rollDeg);
-    a.pose.position += att[0] * a.speed * dt;
-    a.pose.position.z = std::max(a.pose.position.z, 2.0); // do not fly into the sea
+/// The game's own objects: carrier, ships (settling when sunk), the player's jet, weapons in flight,
+/// splashes.
+std::vector<gl::DrawnObject> sceneObjects(const Sortie& sortie, game::CameraMode mode) {
+    const game::World& w = *sortie.world;
+    std::vector<gl::DrawnObject> out;
+    for (const game::GameEvent& e : sortie.splashes)
+        if (const auto p = splashPlume(e, w.time()))
+            out.push_back(*p);
+    for (const game::ShipState& s : w.ships()) {
+        if (!s.visibleAt(w.time()))
+            continue;
+        gl::DrawnObject o;
+        o.shape = s.spec.carrier ? gl::ObjectShape::Carrier : gl::ObjectShape::Ship;
+        o.length = s.spec.length;
+        o.pose = s.pose;
+        o.albedo = s.sunkAt ? glm::vec3(0.08f, 0.07f, 0.06f)
+                            : (s.spec.target ? glm::vec3(0.26f, 0.2f, 0.18f) : glm::vec3(0.2f, 0.22f, 0.24f));
+        out.push_back(o);
+    }
+    if (mode != game::CameraMode::Cockpit && w.state() != game::SortieState::Ditched) {
+        gl::DrawnObject o;
+        o.shape = gl::ObjectShape::Aircraft;
+        o.length = AIRCRAFT_LENGTH;
+        o.pose = w.player().pose;
+        o.albedo = glm::vec3(0.45f, 0.47f, 0.5f);
+        out.push_back(o);
+    }
+    for (const game::Weapon& wp : w.weapons()) {
+        gl::DrawnObject o;
+        o.shape = gl::ObjectShape::Weapon;
+        o.length = wp.kind == game::WeaponKind::Bomb ? 3.3 : 2.7;
+        o.pose.position = wp.position;
+        const double horiz = std::hypot(wp.velocity.x, wp.velocity.y);
+        o.pose.headingDeg = std::atan2(wp.velocity.x, wp.velocity.y) * 180.0 / std::numbers::pi;
+        o.pose.pitchDeg = std::atan2(wp.velocity.z, horiz) * 180.0 / std::numbers::pi;
+        o.albedo = glm::vec3(0.3f, 0.3f, 0.28f);
+        out.push_back(o);
+    }
+    return out;
 }
 
-/// Where the game's flat world sits on the Earth, for recordings: the world point MAP_ORIGIN_WORLD (the
-/// start, far from the world origin to exercise camera-relative rendering) is at MAP_ORIGIN_LAT/LON (the
-/// Black Sea).
-constexpr double MAP_ORIGIN_LAT = 44.5, MAP_ORIGIN_LON = 37.0;
-const glm::dvec3 MAP_ORIGIN_WORLD{1.0e6, -2.0e6, 0.0};
-/// Recording time = game time + this, so the ship's history before the first frame has positive times.
-constexpr double RECORD_OFFSET_S = 180.0;
-
-/// Writes the session as ACMI: world poses -> WGS84 through the EarthFrame, grid headings -> true headings.
-class SessionRecorder {
+/// The OCIO view pipelines, built on first use.
+class Tonemappers {
 public:
-    explicit SessionRecorder(const std::string& file)
-        : mFile(file), mTmp(file + ".tmp"), mOut(mTmp, std::ios::binary | std::ios::trunc),
-          mFrame(MAP_ORIGIN_LAT, MAP_ORIGIN_LON),
-          mWriter(mOut, {"2024-06-01T10:00:00Z", MAP_ORIGIN_LON, MAP_ORIGIN_LAT, "Pacifica game session"}) {
-        if (!mOut)
-            throw std::runtime_error(file + ": cannot write the recording");
+    explicit Tonemappers(color::ColorPipeline base) : mBase(std::move(base)) {}
+    color::Tonemapper& get(const std::string& view) {
+        auto it = mByView.find(view);
+        if (it == mByView.end()) {
+            color::ColorPipeline p = mBase;
+            p.select(mBase.defaultDisplay(), view);
+            it = mByView.emplace(view, std::make_unique<color::Tonemapper>(p)).first;
+        }
+        return *it->second;
     }
-    using Properties = std::vector<std::pair<std::string, std::string>>;
-    void pose(double t, uint64_t id, const pacifica::Pose& p, bool declare, const Properties& props) {
-        double lat = 0, lon = 0, alt = 0;
-        mFrame.toGeodetic(p.position - MAP_ORIGIN_WORLD, lat, lon, alt);
-        const double trueYaw = p.headingDeg - mFrame.gridHeading(lat, lon, 0.0); // grid -> true north
-        mWriter.frame(t + RECORD_OFFSET_S);
-        if (declare)
-            mWriter.object(id, props);
-        mWriter.transform(id, lon, lat, alt, p.rollDeg, p.pitchDeg, std::fmod(trueYaw + 360.0, 360.0));
-    }
-    /// A bomb meeting the sea at world (x, y) at time t: a bomb object there, removed at once (replay turns a
-    /// weapon removed at sea level into an explosion at that place and time).
-    void impact(double t, const glm::dvec2& at) {
-        pacifica::Pose p;
-        p.position = {at.x, at.y, 0.0};
-        const uint64_t id = 0x300 + mBombs++;
-        pose(t, id, p, true, {{"Type", "Weapon+Bomb"}, {"Name", "Mk-82"}});
-        mWriter.remove(id);
-        double lat = 0, lon = 0, alt = 0;
-        mFrame.toGeodetic(p.position - MAP_ORIGIN_WORLD, lat, lon, alt);
-        std::printf("pacifica-game: impact t=%.6f lat=%.9f lon=%.9f\n", t + RECORD_OFFSET_S, lat, lon);
-    }
-    /// Prints where the ship is at the end (lat/lon), for the record -> replay test.
-    void report(double t, const glm::dvec2& ship) const {
-        double lat = 0, lon = 0, alt = 0;
-        mFrame.toGeodetic(glm::dvec3(ship, 0.0) - MAP_ORIGIN_WORLD, lat, lon, alt);
-        std::printf("pacifica-game: ship t=%.6f lat=%.9f lon=%.9f\n", t + RECORD_OFFSET_S, lat, lon);
-    }
-    /// Closes the file and moves it into place (a failed session leaves no half-written recording).
-    void finish() {
-        mOut.flush();
-        if (!mOut)
-            throw std::runtime_error(mFile + ": write failed");
-        mOut.close();
-        std::rename(mTmp.c_str(), mFile.c_str());
-        mDone = true;
-    }
-    ~SessionRecorder() {
-        if (!mDone)
-            std::remove(mTmp.c_str());
-    }
+    std::vector<std::string> views() const { return mBase.views(mBase.defaultDisplay()); }
+    std::string defaultView() const { return mBase.defaultView(mBase.defaultDisplay()); }
 
 private:
-    std::string mFile, mTmp;
-    std::ofstream mOut;
-    pacifica::recording::EarthFrame mFrame;
-    pacifica::recording::AcmiWriter mWriter;
-    int mBombs = 0;
-    bool mDone = false;
+    color::ColorPipeline mBase;
+    std::map<std::string, std::unique_ptr<color::Tonemapper>> mByView;
 };
+
+std::vector<float> readPixels(unsigned fbo, bool backBuffer, int w, int h) {
+    std::vector<unsigned char> bytes(static_cast<size_t>(w) * h * 4);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    if (backBuffer)
+        glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bytes.data());
+    std::vector<float> out(bytes.size());
+    for (int y = 0; y < h; ++y) // GL rows are bottom-up; images top-down
+        for (int x = 0; x < w * 4; ++x)
+            out[static_cast<size_t>(h - 1 - y) * w * 4 + x] =
+                bytes[static_cast<size_t>(y) * w * 4 + x] / 255.0f;
+    return out;
+}
+
+struct RunResult {
+    int exitCode = 0;
+    std::vector<double> cpuMs, gpuMs;
+    std::string renderer, gpuClock;
+};
+
+RunResult run(const game::Options& opt) {
+    std::unique_ptr<gl::GlContext> ctx =
+        opt.headless
+            ? gl::createHeadlessContext({.width = opt.width, .height = opt.height, .debug = true})
+            : gl::createWindowContext(
+                  {.width = opt.width, .height = opt.height, .title = "Pacifica", .vsync = !opt.scripted()});
+    color::ColorPipeline colour = color::ColorPipeline::fromEnvironmentOr(std::nullopt);
+    Tonemappers tonemappers(colour);
+    game::GameState gs;
+    gs.sea = opt.sea;
+    gs.camera = opt.camera;
+    gs.view = opt.view.empty() ? tonemappers.defaultView() : opt.view;
+    gs.wipeView = opt.wipeView;
+    gs.wipe = !opt.wipeView.empty();
+    gs.wipePosition = opt.wipePosition;
+    gs.hud = opt.hud;
+    gs.views = tonemappers.views();
+    for (const std::string& v : {gs.view, gs.wipeView})
+        if (!v.empty() && std::find(gs.views.begin(), gs.views.end(), v) == gs.views.end()) {
+            std::string list;
+            for (const std::string& x : gs.views)
+                list += (list.empty() ? "" : ", ") + x;
+            throw game::UsageError("--view/--wipe: no OCIO view '" + v + "' (this config has: " + list + ")");
+        }
+
+    // Scripted runs take every step of a long frame (--fps 4: 30 steps); play caps catch-up at 0.25 s.
+    const int maxSteps = opt.scripted() ? static_cast<int>(std::ceil(1.0 / (opt.fps * STEP))) + 1 : 30;
+    auto sortie = std::make_unique<Sortie>(gs.sea);
+    sortie->clock.setMaxStepsPerAdvance(maxSteps);
+    std::unique_ptr<game::SessionRecorder> recorder;
+    if (!opt.record.empty())
+        recorder = std::make_unique<game::SessionRecorder>(opt.record);
+    sortie->prehistory(recorder.get());
+
+    auto renderer = std::make_unique<ocean::OceanRenderer>();
+    gl::ObjectRenderer objects;
+    game::Input input(*ctx);
+    game::Hud hud(*ctx);
+    gl::GpuTimer gpuTimer(ctx->info());
+    std::unique_ptr<gl::FrameTargets> targets, wipeTargets;
+
+    std::vector<std::pair<double, std::string>> screenshots = opt.screenshots;
+    std::sort(screenshots.begin(), screenshots.end());
+    nlohmann::json shots = nlohmann::json::array();
+    std::vector<double> cpuMs, gpuMs;
+    long long frame = 0;
+    int glErrors = 0;
+    double lastRecord = -1e9;
+    std::vector<std::string> messages; // every banner shown, for the summary
+    double orbitAzimuth = 200.0;
+    auto last = std::chrono::steady_clock::now();
+
+    while (!ctx->shouldClose()) {
+        const auto frameStart = std::chrono::steady_clock::now();
+        ctx->pollEvents();
+        const game::InputState in =
+            opt.autopilot || opt.headless ? game::InputState{} : input.poll(hud.wantsInput());
+        if (in.quit)
+            break;
+        if (in.pause)
+            gs.paused = !gs.paused;
+        if (in.slowMotion)
+            gs.slowMotion = !gs.slowMotion;
+        if (in.nextCamera)
+            gs.camera = game::CameraMode((static_cast<int>(gs.camera) + 1) % game::CAMERA_MODES);
+        if (in.toggleHud)
+            gs.hud = !gs.hud;
+        if (in.restart || gs.restartRequested) {
+            gs.restartRequested = false;
+            sortie = std::make_unique<Sortie>(gs.sea);
+            sortie->clock.setMaxStepsPerAdvance(maxSteps);
+            sortie->prehistory(nullptr);
+            renderer = std::make_unique<ocean::OceanRenderer>(); // the old registry's GPU state goes
+            gs.banner = "New sortie";
+            gs.bannerUntil = 3.0;
+        }
+        if (gs.seaChanged) { // a live switch: the same sortie on the new sea
+            gs.seaChanged = false;
+            sortie->registry.emplaceOrReplace<ocean::OceanComponent>(sortie->ocean, buildOcean(gs.sea));
+        }
+
+        const double realDt =
+            opt.scripted() ? 1.0 / opt.fps : std::chrono::duration<double>(frameStart - last).count();
+        last = frameStart;
+        const double scale = gs.paused ? 0.0 : (gs.slowMotion ? 0.25 : 1.0);
+        game::World& world = *sortie->world;
+        const int steps = sortie->clock.advance((opt.scripted() ? realDt : std::min(realDt, 0.25)) * scale);
+        for (int s = 0; s < steps; ++s) {
+            game::FlightControls c = in.controls;
+            if (opt.autopilot || gs.autopilot) {
+                const game::AutopilotDecision d = sortie->autopilot.decide(world);
+                c = d.controls;
+                gs.autopilotPhase = d.phase;
+                if (d.releaseBomb)
+                    sortie->autopilot.released(world.fire(game::WeaponKind::Bomb), world.time());
+            } else {
+                if (in.bomb && s == 0)
+                    world.fire(game::WeaponKind::Bomb);
+                if (in.rocket)
+                    world.fire(game::WeaponKind::Rocket);
+            }
+            world.step(c, STEP);
+            sortie->history.emplace_back(world.time(), world.player().pose);
+            while (sortie->history.size() > 2 && sortie->history.front().first < world.time() - HISTORY_S)
+                sortie->history.pop_front();
+        }
+        const std::vector<game::GameEvent> events = world.takeEvents();
+        for (const game::GameEvent& e : events) {
+            game::announce(gs, world, e, messages);
+            if (e.kind == game::GameEvent::Kind::Impact || e.kind == game::GameEvent::Kind::Ditched) {
+                sortie->lastImpact = e;
+                sortie->splashes.push_back(e);
+                const double h = world.player().pose.headingDeg * std::numbers::pi / 180.0;
+                sortie->impactFrom = glm::dvec2(std::sin(h), std::cos(h)); // the way the player flew in
+            }
+        }
+        if (recorder && (!events.empty() || world.time() - lastRecord >= 1.0 / SCRIPTED_RECORD_HZ - 1e-9)) {
+            recorder->record(world, events);
+            lastRecord = world.time();
+        }
+
+        std::erase_if(sortie->splashes,
+                      [&](const game::GameEvent& e) { return world.time() - e.time > SPLASH_S; });
+        orbitAzimuth += 12.0 * realDt * scale;
+        const Pose camPose = cameraPose(*sortie, gs.camera, world.time(), orbitAzimuth);
+        sortie->events.dispatch();
+        sortie->effects->update(world.time(), camPose.position);
+
+        const glm::ivec2 size = opt.headless ? glm::ivec2(opt.width, opt.height) : ctx->framebufferSize();
+        if (size.x <= 0 || size.y <= 0)
+            continue; // minimised
+        if (!targets || targets->width() != size.x || targets->height() != size.y)
+            targets = std::make_unique<gl::FrameTargets>(size.x, size.y);
+        gpuTimer.begin();
+        ocean::OceanFrame f;
+        f.camera = makeCameraFrame(camPose, static_cast<float>(gs.fovDeg * std::numbers::pi / 180.0),
+                                   float(size.x) / float(size.y), 0.05f);
+        f.time = world.time();
+        f.targetFramebuffer = targets->sceneFramebuffer().id();
+        f.width = size.x;
+        f.height = size.y;
+        renderer->render(sortie->registry, f);
+        const ocean::OceanComponent& oc = sortie->registry.get<ocean::OceanComponent>(sortie->ocean);
+        gs.objectsDrawn = objects.draw(sceneObjects(*sortie, gs.camera), f.camera, f.targetFramebuffer,
+                                       size.x, size.y, oc.desc.lighting.sunDirection, ocean::EARTH_RADIUS);
+        // The display: the host's default framebuffer (window) or its own display target (headless).
+        const gl::Framebuffer display = opt.headless
+                                            ? gl::Framebuffer::wrap(targets->displayFramebuffer().id())
+                                            : gl::Framebuffer::wrap(0);
+        tonemappers.get(gs.view).run(targets->sceneColor(), display, size.x, size.y);
+        if (gs.wipe && !gs.wipeView.empty()) {
+            // Split screen: the second OCIO view right of the wipe line.
+            if (!wipeTargets || wipeTargets->width() != size.x || wipeTargets->height() != size.y)
+                wipeTargets = std::make_unique<gl::FrameTargets>(size.x, size.y);
+            tonemappers.get(gs.wipeView)
+                .run(targets->sceneColor(), wipeTargets->displayFramebuffer(), size.x, size.y);
+            const int x0 = std::clamp(static_cast<int>(gs.wipePosition * size.x), 0, size.x);
+            glBlitNamedFramebuffer(wipeTargets->displayFramebuffer().id(), display.id(), x0, 0, size.x,
+                                   size.y, x0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        }
+        gs.stats = renderer->lastStats();
+        gs.frameCpuMs = cpuMs.empty() ? 0.0 : cpuMs.back();
+        if (const auto g = gpuTimer.poll())
+            gs.frameGpuMs = *g;
+        gs.gpuClock = gpuTimer.clockName();
+        gs.gamepad = input.gamepadName();
+        if (gs.hud)
+            hud.draw(gs, world, display.id(), size.x, size.y);
+        gpuTimer.end();
+        for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError())
+            ++glErrors;
+
+        while (!screenshots.empty() && world.time() >= screenshots.front().first - 1e-9) {
+            const std::vector<float> px = readPixels(display.id(), !opt.headless, size.x, size.y);
+#if PACIFICA_GAME_SCREENSHOTS
+            capture::writePng8(screenshots.front().second, size.x, size.y, 4, px.data());
+#else
+            throw std::runtime_error(
+                "--screenshot: this build has no image writing (PACIFICA_WITH_OIIO=OFF)");
+#endif
+            shots.push_back(
+                {{"file", screenshots.front().second}, {"time_s", world.time()}, {"frame", frame}});
+            screenshots.erase(screenshots.begin());
+        }
+        ctx->swapBuffers();
+        cpuMs.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count());
+        ++frame;
+        if (opt.frames > 0 && frame >= opt.frames)
+            break;
+    }
+    gpuTimer.drain();
+    gpuMs = gpuTimer.samples();
+    if (recorder) {
+        recorder->record(*sortie->world, sortie->world->takeEvents());
+        recorder->finish();
+    }
+
+    const game::World& world = *sortie->world;
+    std::printf("pacifica-game: %lld frames, t = %.3f s, %s, targets left %d, GL errors %d, %s\n", frame,
+                world.time(), game::toString(world.state()), world.targetsLeft(), glErrors,
+                ctx->info().renderer.c_str());
+    if (!opt.summary.empty()) {
+        nlohmann::json j;
+        j["frames"] = frame;
+        j["time_s"] = world.time();
+        j["state"] = game::toString(world.state());
+        j["targets_left"] = world.targetsLeft();
+        j["gl_errors"] = glErrors;
+        j["gl_renderer"] = ctx->info().renderer;
+        j["gamepad"] =
+            input.gamepadName().empty() ? nlohmann::json(nullptr) : nlohmann::json(input.gamepadName());
+        j["hud"] = {{"shown", gs.hud}, {"vertices", hud.lastVertexCount()}};
+        j["screenshots"] = shots;
+        j["messages"] = messages;
+        j["cpu_ms_median"] = median(cpuMs);
+        j["objects_drawn"] = gs.objectsDrawn;
+        j["counters"] = {{"passes", gs.stats.passes},
+                         {"draws", gs.stats.draws},
+                         {"explosions", gs.stats.explosions.active},
+                         {"wakes", gs.stats.wakes.active}};
+        const glm::dvec3 p = world.player().pose.position;
+        j["player"] = {{"x", p.x}, {"y", p.y}, {"z", p.z}, {"on_deck", world.player().onDeck}};
+        nlohmann::json ev = nlohmann::json::array();
+        for (const game::GameEvent& e : world.history()) {
+            nlohmann::json x = {{"kind", game::toString(e.kind)},
+                                {"time_s", e.time},
+                                {"x", e.position.x},
+                                {"y", e.position.y},
+                                {"ship", e.ship},
+                                {"weapon", e.weapon},
+                                {"strength", e.strength}};
+            if (recorder) { // where and when the recording has it
+                const glm::dvec3 g = recorder->geodetic(e.position);
+                x["latitude_deg"] = g.x;
+                x["longitude_deg"] = g.y;
+                x["record_time_s"] = recorder->recordTime(e.time);
+            }
+            ev.push_back(x);
+        }
+        j["events"] = ev;
+        std::ofstream out(opt.summary);
+        out << j.dump(2) << "\n";
+        if (!out)
+            throw std::runtime_error(opt.summary + ": cannot write the summary");
+    }
+    if (!screenshots.empty())
+        std::fprintf(stderr,
+                     "pacifica-game: warning: %zu screenshot(s) after the last frame were not taken\n",
+                     screenshots.size());
+    RunResult r;
+    r.exitCode = glErrors == 0 ? 0 : 1;
+    r.cpuMs = std::move(cpuMs);
+    r.gpuMs = std::move(gpuMs);
+    r.renderer = ctx->info().renderer;
+    r.gpuClock = gs.gpuClock;
+    return r;
+}
+
+/// --bench FILE: the autopilot's sortie for --frames frames (after 30 unmeasured) at each quality preset;
+/// medians of the frame's wall time (CPU simulation + submission + the GPU's share where the clock waits)
+/// and of the GPU time; frames/s = 1000 / wall median. docs/GAME.md has the figures.
+int runBench(game::Options opt) {
+    nlohmann::json j;
+    j["size"] = std::to_string(opt.width) + "x" + std::to_string(opt.height);
+    j["frames"] = opt.frames;
+    j["presets"] = nlohmann::json::array();
+    const long long measured = opt.frames;
+    for (const char* q : {"low", "medium", "high"}) {
+        game::Options o = opt;
+        o.sea.quality = q;
+        o.autopilot = true;
+        o.frames = measured + 30;
+        o.summary.clear();
+        o.record.clear();
+        o.screenshots.clear();
+        RunResult r = run(o);
+        if (r.exitCode != 0)
+            return r.exitCode;
+        auto tail = [&](const std::vector<double>& v) {
+            const size_t n = std::min<size_t>(v.size(), static_cast<size_t>(measured));
+            return std::vector<double>(v.end() - static_cast<std::ptrdiff_t>(n), v.end());
+        };
+        const double cpu = median(tail(r.cpuMs)), gpu = median(tail(r.gpuMs));
+        j["gl_renderer"] = r.renderer;
+        j["gpu_clock"] = r.gpuClock;
+        j["presets"].push_back({{"quality", q},
+                                {"frame_ms_median", cpu},
+                                {"gpu_ms_median", gpu},
+                                {"fps", cpu > 0.0 ? 1000.0 / cpu : 0.0}});
+        std::printf("pacifica-game bench: %s %dx%d: frame %.2f ms (%.1f fps), GPU %.2f ms (%s)\n", q,
+                    opt.width, opt.height, cpu, cpu > 0.0 ? 1000.0 / cpu : 0.0, gpu, r.gpuClock.c_str());
+    }
+    std::ofstream out(opt.bench);
+    out << j.dump(2) << "\n";
+    if (!out)
+        throw std::runtime_error(opt.bench + ": cannot write the benchmark");
+    return 0;
+}
 
 } // namespace
 
 int main(int argc, char** argv) {
-    long long scriptedFrames = 0;
-    std::string recordFile;
-    for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--record") == 0 && i + 1 < argc) {
-            recordFile = argv[++i];
-            continue;
-        }
-        if (std::strcmp(argv[i], "--frames") == 0 && i + 1 < argc) {
-            scriptedFrames = std::atoll(argv[++i]);
-            if (scriptedFrames <= 0) {
-                std::fprintf(stderr, "pacifica-game: error: --frames needs a positive integer\n");
-                return 2;
-            }
-        } else {
-            std::fprintf(stderr, "usage: pacifica-game [--frames N] [--record FILE.txt.acmi]\n");
-            return 2;
-        }
+    game::Options opt;
+    try {
+        opt = game::parseOptions(argc, argv);
+        if (opt.help)
+            return 0;
+    } catch (const game::UsageError& e) {
+        std::fprintf(stderr, "pacifica-game: error: %s\n", e.what());
+        return 2;
     }
     try {
-        auto ctx = pacifica::gl::createWindowContext({.width = 1280, .height = 720, .title = "Pacifica"});
-        pacifica::color::ColorPipeline colour =
-            pacifica::color::ColorPipeline::fromEnvironmentOr(std::nullopt);
-        colour.select("", "");
-        pacifica::color::Tonemapper tonemapper(colour);
-
-        pacifica::ecs::Registry registry;
-        registry.emplace<pacifica::ocean::OceanComponent>(registry.create(), pacifica::ocean::makeOcean({}));
-        pacifica::ocean::OceanRenderer renderer;
-        pacifica::ecs::EventQueue events;
-        pacifica::ocean::EffectsSystem effects(registry, events);
-
-        Aircraft plane;
-        plane.pose.position = MAP_ORIGIN_WORLD + glm::dvec3(0.0, 0.0, 60.0);
-        plane.pose.headingDeg = 80.0;
-        plane.pose.pitchDeg = -3.0;
-
-        // A ship circling (radius 600 m, 12 m/s) 2 km ahead of the start; its path since t = -180 s is
-        // recorded before the first frame so the wake is already there.
-        const glm::dvec2 shipCentre =
-            glm::dvec2(plane.pose.position) + 2000.0 * glm::dvec2(std::sin(80.0 * std::numbers::pi / 180.0),
-                                                                  std::cos(80.0 * std::numbers::pi / 180.0));
-        auto shipAt = [&](double t) {
-            const double a = 12.0 / 600.0 * t;
-            return shipCentre + 600.0 * glm::dvec2(std::cos(a), std::sin(a));
-        };
-        const pacifica::ecs::Entity ship = registry.create();
-        registry.emplace<pacifica::ocean::Ship>(ship, pacifica::ocean::Ship{shipAt(-180.0), 80.0});
-        events.enqueue(pacifica::ocean::AttachShipTrail{ship, pacifica::ocean::WakeParams{}});
-        std::optional<SessionRecorder> recorder;
-        if (!recordFile.empty())
-            recorder.emplace(recordFile);
-        auto shipPose = [&](double t) {
-            const double a = 12.0 / 600.0 * t;
-            pacifica::Pose p;
-            p.position = glm::dvec3(shipAt(t), 0.0);
-            p.headingDeg =
-                std::fmod(std::atan2(-std::sin(a), std::cos(a)) * 180.0 / std::numbers::pi + 360.0, 360.0);
-            return p;
-        };
-        const SessionRecorder::Properties SHIP_PROPS = {
-            {"Type", "Sea+Watercraft+Warship"}, {"Name", "Circling Ship"}, {"Length", "80"}};
-        for (double t = -180.0; t < 0.0; t += 0.5) {
-            registry.get<pacifica::ocean::Ship>(ship).position = shipAt(t);
-            events.dispatch();
-            effects.update(t, plane.pose.position);
-            if (recorder)
-                recorder->pose(t, 0x200, shipPose(t), t == -180.0, SHIP_PROPS);
-        }
-        bool bombKeyWasDown = false;
-        pacifica::FixedStepClock clock(1.0 / 120.0);
-        std::unique_ptr<pacifica::gl::FrameTargets> targets;
-        auto last = std::chrono::steady_clock::now();
-        long long frame = 0;
-        int badFrames = 0;
-        while (!ctx->shouldClose()) {
-            ctx->pollEvents();
-            if (ctx->keyDown(GLFW_KEY_ESCAPE))
-                break;
-            const auto now = std::chrono::steady_clock::now();
-            // Scripted runs advance exactly one 1/30 s per frame so they are reproducible.
-            const double realDt =
-                scriptedFrames ? 1.0 / 30.0 : std::chrono::duration<double>(now - last).count();
-            last = now;
-            const int steps = clock.advance(realDt);
-            for (int s = 0; s < steps; ++s)
-                step(plane, scriptedFrames ? scripted(clock.time()) : readKeys(*ctx), clock.step());
-
-            // B (or the script's 2nd frame): a bomb hits the sea where the nose points, or 400 m ahead.
-            const bool bombKey = scriptedFrames ? frame == 1 : ctx->keyDown(GLFW_KEY_B);
-            if (bombKey && !bombKeyWasDown) {
-                const double h = glm::radians(plane.pose.headingDeg);
-                const glm::dvec2 at =
-                    glm::dvec2(plane.pose.position) + 400.0 * glm::dvec2(std::sin(h), std::cos(h));
-                // Strength 1 = a 500 kg bomb: what replay gives a recorded Weapon+Bomb (SeaDrivers.h).
-                events.enqueue(pacifica::ocean::SpawnExplosion{at, clock.time(), 1.0});
-                if (recorder)
-                    recorder->impact(clock.time(), at);
-            }
-            bombKeyWasDown = bombKey;
-            registry.get<pacifica::ocean::Ship>(ship).position = shipAt(clock.time());
-            if (recorder) {
-                recorder->pose(clock.time(), 0x100, plane.pose, frame == 0,
-                               {{"Type", "Air+FixedWing"},
-                                {"Name", "Pacifica Jet"},
-                                {"Pilot", "Player"},
-                                {"CallSign", "Pacifica1"}});
-                recorder->pose(clock.time(), 0x200, shipPose(clock.time()), false, SHIP_PROPS);
-            }
-            events.dispatch();
-            effects.update(clock.time(), plane.pose.position);
-
-            const glm::ivec2 size = ctx->framebufferSize();
-            if (size.x <= 0 || size.y <= 0)
-                continue; // minimised
-            if (!targets || targets->width() != size.x || targets->height() != size.y)
-                targets = std::make_unique<pacifica::gl::FrameTargets>(size.x, size.y);
-            pacifica::ocean::OceanFrame f;
-            f.camera = pacifica::makeCameraFrame(plane.pose, 60.0f * std::numbers::pi_v<float> / 180.0f,
-                                                 float(size.x) / float(size.y), 0.05f);
-            f.time = clock.time();
-            f.targetFramebuffer = targets->sceneFramebuffer().id();
-            f.width = size.x;
-            f.height = size.y;
-            renderer.render(registry, f);
-            // The host lends its default framebuffer to the tonemap pass.
-            tonemapper.run(targets->sceneColor(), pacifica::gl::Framebuffer::wrap(0), size.x, size.y);
-            if (scriptedFrames) {
-                float px[4] = {0, 0, 0, 0};
-                glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-                glReadBuffer(GL_BACK);
-                glReadPixels(size.x / 2, size.y / 3, 1, 1, GL_RGBA, GL_FLOAT, px);
-                if (!(std::isfinite(px[0]) && px[0] + px[1] + px[2] > 0.01f))
-                    ++badFrames;
-            }
-            ctx->swapBuffers();
-            ++frame;
-            if (scriptedFrames && frame >= scriptedFrames)
-                break;
-        }
-        if (recorder) {
-            recorder->finish();
-            recorder->report(clock.time(), shipAt(clock.time()));
-        }
-        if (scriptedFrames) {
-            const pacifica::ocean::OceanStats& st = renderer.lastStats();
-            std::printf("pacifica-game: %lld frames, t = %.3f s, position (%.1f, %.1f, %.1f), %d bad frames, "
-                        "explosions %d, wakes %d, %s\n",
-                        frame, clock.time(), plane.pose.position.x, plane.pose.position.y,
-                        plane.pose.position.z, badFrames, st.explosions.active, st.wakes.active,
-                        ctx->info().renderer.c_str());
-            // The script drops one bomb and the ship sails: both effects must be alive at the end.
-            const bool effectsAlive = st.explosions.active == 1 && st.wakes.active == 1;
-            return badFrames == 0 && frame == scriptedFrames && effectsAlive ? 0 : 1;
-        }
+        if (!opt.bench.empty())
+            return runBench(opt);
+        return run(opt).exitCode;
+    } catch (const game::UsageError& e) {
+        std::fprintf(stderr, "pacifica-game: error: %s\n", e.what());
+        return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pacifica-game: error: %s\n", e.what());
         return 1;
     }
-    return 0;
 }

@@ -43,6 +43,26 @@ const char* toString(SortieState s) {
     return "?";
 }
 
+const char* toString(GameEvent::Kind kind) {
+    switch (kind) {
+    case GameEvent::Kind::Launch:
+        return "launch";
+    case GameEvent::Kind::Impact:
+        return "impact";
+    case GameEvent::Kind::WeaponLost:
+        return "weapon_lost";
+    case GameEvent::Kind::ShipHit:
+        return "ship_hit";
+    case GameEvent::Kind::ShipSunk:
+        return "ship_sunk";
+    case GameEvent::Kind::Ditched:
+        return "ditched";
+    case GameEvent::Kind::MissionComplete:
+        return "mission_complete";
+    }
+    return "?";
+}
+
 void stepWeapon(Weapon& w, double time, double dt) {
     const double k = w.kind == WeaponKind::Bomb ? 5e-5 : 2e-4;
     const double speed = glm::length(w.velocity);

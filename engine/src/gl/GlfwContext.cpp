@@ -43,6 +43,7 @@ public:
     }
     void makeCurrent() override { glfwMakeContextCurrent(mWindow); }
     bool windowed() const override { return true; }
+    void* nativeWindow() const override { return mWindow; }
     void swapBuffers() override { glfwSwapBuffers(mWindow); }
     void pollEvents() override { glfwPollEvents(); }
     bool shouldClose() const override { return glfwWindowShouldClose(mWindow); }

@@ -89,6 +89,27 @@ Tri ship(bool carrier) {
     return t;
 }
 
+/// A splash column: rings from the sea (z = 0) to the top (z = 1), narrow at the base and opening into a
+/// crown, with a closed cap.
+Tri plume() {
+    Tri t;
+    constexpr int SEG = 14, RINGS = 6;
+    auto radius = [](float z) { return 0.08f + 0.22f * std::pow(z, 1.6f); };
+    for (int r = 0; r < RINGS; ++r) {
+        const float z0 = static_cast<float>(r) / RINGS, z1 = static_cast<float>(r + 1) / RINGS;
+        for (int k = 0; k < SEG; ++k) {
+            const float a0 = 6.2831853f * k / SEG, a1 = 6.2831853f * (k + 1) / SEG;
+            auto p = [&](float z, float a) {
+                return glm::vec3(radius(z) * std::cos(a), radius(z) * std::sin(a), z);
+            };
+            quad(t, p(z0, a0), p(z0, a1), p(z1, a1), p(z1, a0));
+            if (r == RINGS - 1)
+                t.insert(t.end(), {p(1.0f, a0), p(1.0f, a1), glm::vec3(0.0f, 0.0f, 0.93f)});
+        }
+    }
+    return t;
+}
+
 Tri weapon() {
     Tri t;
     lofted(t, {{0.5f, 0.0f, 0.0f, 0.0f},
@@ -130,8 +151,8 @@ ObjectRenderer::ObjectRenderer() {
         {{ShaderStage::Vertex, {{"objects.vert", VERT}}}, {ShaderStage::Fragment, {{"objects.frag", FRAG}}}},
         "replay objects");
     std::vector<glm::vec3> all;
-    const Tri meshes[5] = {aircraft(), rotorcraft(), ship(false), ship(true), weapon()};
-    for (int i = 0; i < 5; ++i) {
+    const Tri meshes[OBJECT_SHAPES] = {aircraft(), rotorcraft(), ship(false), ship(true), weapon(), plume()};
+    for (int i = 0; i < OBJECT_SHAPES; ++i) {
         mRanges[i] = {static_cast<int>(all.size()), static_cast<int>(meshes[i].size())};
         all.insert(all.end(), meshes[i].begin(), meshes[i].end());
     }

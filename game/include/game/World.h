@@ -95,6 +95,8 @@ struct GameEvent {
     double strength = 0.0; ///< Impact, Ditched: the explosion's strength
 };
 
+const char* toString(GameEvent::Kind kind);
+
 struct WorldDesc {
     glm::dvec3 origin{1.0e6, -2.0e6, 0.0}; ///< the carrier's start (far from 0: camera-relative rendering)
     double carrierHeadingDeg = 80.0;

@@ -71,12 +71,7 @@ public:
         mStart = mTrack.startTime();
         mEnd = mTrack.endTime();
     }
-    Pose poseAt(double t) const override {
-        Pose p = mTrack.poseAt(t);
-        const glm::dmat3 axes = attitudeMatrix(p.headingDeg, p.pitchDeg, p.rollDeg); // forward, right, up
-        p.position += axes * mEye;
-        return p;
-    }
+    Pose poseAt(double t) const override { return cockpitPose(mTrack.poseAt(t), mEye); }
 
 private:
     WorldTrack mTrack;
@@ -93,23 +88,7 @@ public:
         mEnd = mTrack.endTime();
     }
     Pose poseAt(double t) const override {
-        const Pose target = mTrack.poseAt(t);
-        // Heading smoothed by an exponential look-back window (weights e^(-age/tau), 0.05 s steps, 5 tau):
-        // the circular mean of the recorded headings, so the camera swings after the aircraft, not with it.
-        double sx = 0.0, sy = 0.0;
-        const double tau = mSmoothing;
-        const int steps = tau > 0.0 ? std::min(400, static_cast<int>(std::ceil(5.0 * tau / 0.05))) : 0;
-        for (int k = 0; k <= steps; ++k) {
-            const double age = 0.05 * k;
-            const double w = tau > 0.0 ? std::exp(-age / tau) : 1.0;
-            const double h = mTrack.poseAt(t - age).headingDeg * DEG;
-            sx += w * std::sin(h);
-            sy += w * std::cos(h);
-        }
-        const double heading = std::atan2(sx, sy);
-        const glm::dvec3 back(-std::sin(heading), -std::cos(heading), 0.0);
-        const glm::dvec3 eye = target.position + mDistance * back + glm::dvec3(0.0, 0.0, mHeight);
-        return lookAtPose(eye, target.position);
+        return chasePose([this](double tt) { return mTrack.poseAt(tt); }, t, mDistance, mHeight, mSmoothing);
     }
 
 private:
@@ -128,11 +107,7 @@ public:
         mEnd = mTrack.endTime();
     }
     Pose poseAt(double t) const override {
-        const glm::dvec3 c = mTrack.poseAt(t).position;
-        const double az = (mAzimuth + mRate * (t - mStart)) * DEG, el = mElevation * DEG;
-        const glm::dvec3 eye = c + mDistance * glm::dvec3(std::cos(el) * std::sin(az),
-                                                          std::cos(el) * std::cos(az), std::sin(el));
-        return lookAtPose(eye, c);
+        return orbitPose(mTrack.poseAt(t).position, mDistance, mElevation, mAzimuth + mRate * (t - mStart));
     }
 
 private:
@@ -315,6 +290,40 @@ std::unique_ptr<CameraRig> makeRig(const RigSpec& spec, const Recording& rec, co
         throw RigError("--rig " + spec.text + ": lookat needs target=OBJECT");
     const RecordedObject& to = selectObject(rec, it->second);
     return std::make_unique<LookAtRig>(o, to, frame, Params(spec, {"target", "up"}));
+}
+
+Pose cockpitPose(const Pose& object, const glm::dvec3& eye) {
+    Pose p = object;
+    const glm::dmat3 axes = attitudeMatrix(p.headingDeg, p.pitchDeg, p.rollDeg); // forward, right, up
+    p.position += axes * eye;
+    return p;
+}
+
+Pose chasePose(const TrackFn& track, double t, double distance, double height, double smoothing) {
+    const Pose target = track(t);
+    // Heading smoothed by an exponential look-back window (weights e^(-age/tau), 0.05 s steps, 5 tau): the
+    // circular mean of the track's headings, so the camera swings after the aircraft, not with it.
+    double sx = 0.0, sy = 0.0;
+    const double tau = smoothing;
+    const int steps = tau > 0.0 ? std::min(400, static_cast<int>(std::ceil(5.0 * tau / 0.05))) : 0;
+    for (int k = 0; k <= steps; ++k) {
+        const double age = 0.05 * k;
+        const double w = tau > 0.0 ? std::exp(-age / tau) : 1.0;
+        const double h = track(t - age).headingDeg * DEG;
+        sx += w * std::sin(h);
+        sy += w * std::cos(h);
+    }
+    const double heading = std::atan2(sx, sy);
+    const glm::dvec3 back(-std::sin(heading), -std::cos(heading), 0.0);
+    const glm::dvec3 eye = target.position + distance * back + glm::dvec3(0.0, 0.0, height);
+    return lookAtPose(eye, target.position);
+}
+
+Pose orbitPose(const glm::dvec3& centre, double distance, double elevationDeg, double azimuthDeg) {
+    const double az = azimuthDeg * DEG, el = elevationDeg * DEG;
+    const glm::dvec3 eye = centre + distance * glm::dvec3(std::cos(el) * std::sin(az),
+                                                          std::cos(el) * std::cos(az), std::sin(el));
+    return lookAtPose(eye, centre);
 }
 
 } // namespace pacifica::recording

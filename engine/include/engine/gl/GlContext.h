@@ -52,6 +52,9 @@ public:
     virtual bool shouldClose() const { return false; }
     virtual bool keyDown(int /*glfwKey*/) const { return false; }
     virtual glm::ivec2 framebufferSize() const { return {0, 0}; }
+    /// The window system's handle (a GLFWwindow* for GLFW windows; nullptr headless), for a host that adds
+    /// its own input or UI (e.g. Dear ImGui's GLFW backend).
+    virtual void* nativeWindow() const { return nullptr; }
 
 protected:
     GlContext() = default;

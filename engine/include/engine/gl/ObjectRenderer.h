@@ -15,7 +15,9 @@
 
 namespace pacifica::gl {
 
-enum class ObjectShape { Aircraft, Rotorcraft, Ship, Carrier, Weapon };
+/// Plume: a splash column standing on its origin, `length` tall, widening to a crown (a game's impacts).
+enum class ObjectShape { Aircraft, Rotorcraft, Ship, Carrier, Weapon, Plume };
+inline constexpr int OBJECT_SHAPES = 6;
 
 struct DrawnObject {
     ObjectShape shape = ObjectShape::Aircraft;
@@ -40,7 +42,7 @@ private:
     Program mProgram;
     VertexArray mVao;
     Buffer mVertices;
-    Range mRanges[5];
+    Range mRanges[OBJECT_SHAPES];
 };
 
 } // namespace pacifica::gl

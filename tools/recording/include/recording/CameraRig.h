@@ -19,6 +19,7 @@
 
 #include <engine/Pose.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -86,5 +87,16 @@ std::unique_ptr<CameraRig> makeRig(const RigSpec& spec, const Recording& rec, co
 
 /// The pose at `from` looking at `to` (roll 0), aiming where the renderer draws `to` (Earth-curvature drop).
 Pose lookAtPose(const glm::dvec3& from, const glm::dvec3& to);
+
+// The rigs' poses as functions of any track -- a recording's WorldTrack in replay, the game's live history
+// of its aircraft -- so the game's cockpit, chase and orbit cameras are the replay's.
+using TrackFn = std::function<Pose(double)>;
+/// The object's pose plus an eye offset in its body axes (forward, right, up; metres).
+Pose cockpitPose(const Pose& object, const glm::dvec3& eye);
+/// Behind and above the object, looking at it; the heading is the circular mean of the track's headings
+/// over an exponential look-back window of `smoothing` seconds (0 = none), so the camera swings after it.
+Pose chasePose(const TrackFn& track, double t, double distance, double height, double smoothing);
+/// On a sphere of `distance` around `centre` at elevation and compass azimuth (degrees), looking at it.
+Pose orbitPose(const glm::dvec3& centre, double distance, double elevationDeg, double azimuthDeg);
 
 } // namespace pacifica::recording

@@ -1,0 +1,150 @@
+#!/usr/bin/env python3
+"""The game end to end (pacifica-game under Xvfb), one ctest test per case:
+  sortie     the autopilot's scripted input flies a sortie: take-off from the carrier's deck, climb, a bomb run,
+             a hit that sinks a target; screenshots checked from the outside (the HUD is drawn, the splash is
+             visible), no GL errors, no gamepad present handled; the session recorded as ACMI and replayed by
+             `pacifica replay`: the same explosions at the same times and places, the ships with their wakes.
+  bad-input  bad command-line values exit 2 naming the option; no display exits 1 with a clear message.
+Usage: test_game.py --case CASE XVFB_RUN GAME_EXE PACIFICA_EXE     (python3 standard library only)"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
+from checks import Checks  # noqa: E402
+from pngread import luminance, read_png  # noqa: E402
+
+ap = argparse.ArgumentParser()
+ap.add_argument("--case", required=True, choices=["sortie", "bad-input"])
+ap.add_argument("xvfb")
+ap.add_argument("game")
+ap.add_argument("pacifica")
+args = ap.parse_args()
+tmp = tempfile.mkdtemp(prefix=f"pacifica-game-{args.case}-")
+started = time.monotonic()
+c = Checks()
+W, H = 640, 360
+
+
+def env():
+    e = dict(os.environ)
+    e.pop("OCIO", None)
+    e.setdefault("MESA_SHADER_CACHE_DISABLE", "true")
+    return e
+
+
+def game(*a, xvfb=True, timeout=600):
+    cmd = ([args.xvfb, "-a", "-s", "-screen 0 1280x720x24"] if xvfb else []) + [args.game, *a]
+    print("  $ " + " ".join(cmd))
+    return subprocess.run(cmd, cwd=tmp, env=env(), capture_output=True, text=True, timeout=timeout)
+
+
+def region(png, x0, y0, x1, y1):
+    """(mean luminance, fraction of pixels brighter than 0.85) of a rectangle of a screenshot."""
+    w, h, ch, rows = png
+    lum = [luminance(rows, ch, x, y) for y in range(y0, y1) for x in range(x0, x1)]
+    return sum(lum) / len(lum), sum(v > 0.85 for v in lum) / len(lum)
+
+
+if args.case == "sortie":
+    # Time 0 is the start on the deck; the autopilot's first bomb lands at ~44 s; the weapon camera follows it
+    # down, then watches the impact point for 10 s from the same place (so 44.5 s and 50.5 s differ by the
+    # splash: its plume lasts 6 s).
+    g = game("--autopilot", "--frames", "202", "--fps", "4", "--quality", "low", "--size", f"{W}x{H}",
+             "--camera", "weapon", "--screenshot", "1:deck.png", "--screenshot", "44.5:hit.png",
+             "--screenshot", "50.5:after.png", "--summary", "s.json", "--record", "s.txt.acmi")
+    print(g.stdout[-800:])
+    c.check(g.returncode == 0, "the scripted sortie runs (exit 0, no GL errors)", g.stderr[-800:])
+    s = json.load(open(os.path.join(tmp, "s.json"))) if os.path.exists(os.path.join(tmp, "s.json")) else {}
+    ev = s.get("events", [])
+    kinds = [e["kind"] for e in ev]
+    c.check(s.get("gl_errors") == 0, "no GL errors in any frame", str(s.get("gl_errors")))
+    c.check(s.get("frames") == 202 and abs(s.get("time_s", 0) - 50.5) < 1e-6, "202 frames of 0.25 s game time",
+            f"{s.get('frames')} frames, t = {s.get('time_s')}")
+    c.check(s.get("gamepad") is None, "no gamepad present: keyboard and mouse, no error", str(s.get("gamepad")))
+    p = s.get("player", {})
+    c.check(not p.get("on_deck", True) and p.get("z", 0) > 200, "took off and climbed above 200 m", str(p))
+    c.check("launch" in kinds and "impact" in kinds and "ship_sunk" in kinds,
+            "a bomb run: launch, impact, a target sunk", str(kinds))
+    impacts = [e for e in ev if e["kind"] == "impact"]
+    if impacts:
+        c.check(35.0 < impacts[0]["time_s"] < 46.0 and impacts[0]["strength"] == 1.0,
+                "the bomb lands ~44 s into the sortie with a 500 kg charge's strength", str(impacts[0]))
+    c.check(any("sunk" in m for m in s.get("messages", [])), "the HUD announced the sinking", str(s.get("messages")))
+    c.check(s.get("hud", {}).get("vertices", 0) > 500, "the HUD drew (ImGui vertices)", str(s.get("hud")))
+    c.check(len(s.get("screenshots", [])) == 3, "three screenshots taken", str(s.get("screenshots")))
+    c.check(s.get("counters", {}).get("wakes", 0) >= 1, "ship wakes drawn in the last frame", str(s.get("counters")))
+
+    shots = {}
+    for name in ("deck", "hit", "after"):
+        path = os.path.join(tmp, f"{name}.png")
+        if c.check(os.path.exists(path), f"{name}.png written"):
+            shots[name] = read_png(path)
+            c.check(shots[name][:2] == (W, H), f"{name}.png is {W}x{H}", str(shots[name][:2]))
+    if "deck" in shots:
+        # The HUD's flight panel (top left, 10..310 x 10..~160): dark translucent panel with white text. Without
+        # it this is bright sky and sea (mean luminance ~0.5, no pure white).
+        mean, bright = region(shots["deck"], 14, 30, 300, 150)
+        c.check(mean < 0.35 and bright > 0.01, "the HUD's flight panel is drawn (dark panel, white text)",
+                f"mean {mean:.3f}, white fraction {bright:.4f}")
+        # The carrier's flight deck fills the lower middle of the chase view at the start.
+        mean, _ = region(shots["deck"], 240, 250, 400, 320)
+        c.check(0.25 < mean < 0.8, "the carrier's deck is drawn under the aircraft", f"mean {mean:.3f}")
+    if "hit" in shots and "after" in shots:
+        # Same camera (watching the impact point) 0.7 s and 6.7 s after the impact: the splash's white column
+        # stands in the first only.
+        _, _, ch, a = shots["hit"]
+        _, _, _, b = shots["after"]
+        brighter = sum(1 for y in range(170, H) for x in range(0, W)
+                       if luminance(a, ch, x, y) - luminance(b, ch, x, y) > 0.25)
+        c.check(brighter > 150, "the splash is visible at the impact (pixels >0.25 brighter than 6 s later)",
+                f"{brighter} pixels")
+
+    # Record -> replay: the replay's readers and sea drivers see what the game did.
+    acmi = os.path.join(tmp, "s.txt.acmi")
+    if c.check(os.path.exists(acmi) and not os.path.exists(acmi + ".tmp"), "the session was recorded (ACMI)"):
+        out = os.path.join(tmp, "replay")
+        r = subprocess.run([args.pacifica, "replay", acmi, "--rig", "chase:Player", "--out", out, "--size",
+                            "160x90", "--fps", "1", "--start", "215", "--end", "230", "--no-progress"],
+                           env=env(), capture_output=True, text=True, timeout=600)
+        c.check(r.returncode == 0, "pacifica replay reads the game's recording", r.stderr[-600:])
+        if r.returncode == 0:
+            rs = json.load(open(os.path.join(out, "summary.json")))
+            x = rs["recording"]["explosions"]
+            c.check(len(x) == len(impacts) and all(e["type"] == "Weapon+Bomb" for e in x),
+                    "the replay's explosions are the game's bomb impacts", f"{x} vs {impacts}")
+            for e, gi in zip(x, impacts):
+                c.check(abs(e["time_s"] - gi["record_time_s"]) <= 1e-3, "at the game's time (1 ms)",
+                        f"{e['time_s']} vs {gi['record_time_s']}")
+                c.check(abs(e["latitude_deg"] - gi["latitude_deg"]) < 1e-6 and
+                        abs(e["longitude_deg"] - gi["longitude_deg"]) < 1e-6, "at the game's place (~0.1 m)",
+                        f"{e} vs {gi}")
+            ships = rs["recording"]["ships"]
+            c.check(len(ships) == 4, "the carrier and three targets are ships in the replay", str(ships))
+            last = rs["frames"][-1]["counters"]
+            c.check(last["wakes"]["active"] >= 1 and last["explosions"]["active"] >= 1,
+                    "wakes and the explosion are alive in the replay", str(last))
+
+elif args.case == "bad-input":
+    for bad, needle in [(["--frames", "-3"], "--frames"), (["--quality", "ultra"], "--quality"),
+                        (["--size", "10x10"], "--size"), (["--screenshot", "soon.png"], "--screenshot"),
+                        (["--camera", "drone"], "--camera"), (["--wind", "99"], "--wind"),
+                        (["--model", "waves"], "--model"), (["--fps", "0"], "--fps"),
+                        (["--bogus"], "--bogus"), (["--view", "No Such View", "--frames", "1"], "--view")]:
+        r = game(*bad)
+        c.check(r.returncode == 2 and needle in r.stderr and "error" in r.stderr,
+                f"{' '.join(bad)}: exit 2 naming {needle}", f"exit {r.returncode}: {r.stderr[-300:]}")
+    e = env()
+    e.pop("DISPLAY", None)
+    e.pop("WAYLAND_DISPLAY", None)
+    r = subprocess.run([args.game, "--frames", "1"], cwd=tmp, env=e, capture_output=True, text=True, timeout=120)
+    c.check(r.returncode == 1 and "window" in r.stderr.lower(), "no display: exit 1 with a clear message",
+            f"exit {r.returncode}: {r.stderr[-300:]}")
+    r = game("--help", xvfb=False)
+    c.check(r.returncode == 0 and "--autopilot" in r.stdout, "--help lists the options", r.stdout[-300:])
+
+sys.exit(c.finish(f"game {args.case}", started, tmp))
