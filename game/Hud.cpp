@@ -116,7 +116,7 @@ void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {
     if (a.stalled)
         ImGui::TextColored(ImVec4(1, 0.25f, 0.2f, 1), "STALL");
     else if (a.onDeck)
-        ImGui::TextColored(ImVec4(0.6f, 0.9f, 1, 1), "On deck: throttle up (R), pull up (S) at %.0f kt",
+        ImGui::TextColored(ImVec4(0.6f, 0.9f, 1, 1), "On deck: R throttle, S pull up at %.0f kt",
                            world.params().stallSpeed() * MS_TO_KT);
     ImGui::Separator();
     ImGui::Text("Bombs %d  Rockets %d  Targets left %d", world.bombsLeft(), world.rocketsLeft(),
