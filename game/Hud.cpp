@@ -82,9 +82,12 @@ Hud::~Hud() {
     ImGui::DestroyContext();
 }
 
-bool Hud::wantsInput() const {
-    const ImGuiIO& io = ImGui::GetIO();
-    return io.WantCaptureKeyboard || io.WantCaptureMouse;
+bool Hud::wantsKeyboard() const {
+    return mReady && ImGui::GetIO().WantCaptureKeyboard;
+}
+
+bool Hud::wantsMouse() const {
+    return mReady && ImGui::GetIO().WantCaptureMouse;
 }
 
 void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {

@@ -56,8 +56,10 @@ public:
 
     /// Draws into framebuffer fbo (w x h). Saves and restores the GL state it touches.
     void draw(GameState& gs, const World& world, unsigned fbo, int w, int h);
-    /// The HUD's widgets have the keyboard or mouse (the game ignores them then).
-    bool wantsInput() const;
+    /// The HUD's widgets have the keyboard (a text field or a focused widget) / the mouse (it is over a
+    /// panel): the game ignores that device then.
+    bool wantsKeyboard() const;
+    bool wantsMouse() const;
     /// Vertices in the last drawn frame (0 = nothing drawn): the tests' proof the HUD rendered.
     long long lastVertexCount() const { return mVertices; }
 

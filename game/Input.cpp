@@ -29,9 +29,14 @@ enum Edge {
 };
 } // namespace
 
-Input::Input(gl::GlContext& ctx) : mCtx(ctx) {}
+Input::Input(gl::GlContext& ctx) : mCtx(ctx) {
+    // Sticky keys: a key pressed and released between two polls still reads as pressed once, so a tap is
+    // never lost on a slow frame (llvmpipe: ~0.3 s).
+    if (auto* window = static_cast<GLFWwindow*>(mCtx.nativeWindow()))
+        glfwSetInputMode(window, GLFW_STICKY_KEYS, GLFW_TRUE);
+}
 
-InputState Input::poll(bool uiHasFocus) {
+InputState Input::poll(bool uiKeyboard, bool uiMouse) {
     InputState in;
     auto* window = static_cast<GLFWwindow*>(mCtx.nativeWindow());
     const double now = glfwGetTime();
@@ -42,7 +47,7 @@ InputState Input::poll(bool uiHasFocus) {
         mWas[slot] = down;
         return pressed;
     };
-    auto key = [&](int k) { return !uiHasFocus && mCtx.keyDown(k); };
+    auto key = [&](int k) { return !uiKeyboard && mCtx.keyDown(k); };
     auto axis = [&](int plus, int minus) { return (key(plus) ? 1.0 : 0.0) - (key(minus) ? 1.0 : 0.0); };
 
     in.controls.pitch =
@@ -65,7 +70,7 @@ InputState Input::poll(bool uiHasFocus) {
     if (window) {
         double mx = 0.0, my = 0.0;
         glfwGetCursorPos(window, &mx, &my);
-        const bool held = !uiHasFocus && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+        const bool held = !uiMouse && glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
         if (held && mMouseFlying) {
             mStickX = std::clamp(mStickX + (mx - mMouseX) / 300.0, -1.0, 1.0);
             mStickY = std::clamp(mStickY + (my - mMouseY) / 300.0, -1.0, 1.0);

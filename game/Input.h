@@ -27,8 +27,8 @@ struct InputState {
 class Input {
 public:
     explicit Input(gl::GlContext& ctx);
-    /// Reads the devices; uiHasFocus: the HUD's widgets take the keyboard and mouse (flight keys ignored).
-    InputState poll(bool uiHasFocus);
+    /// Reads the devices; uiKeyboard / uiMouse: the HUD's widgets have that device (the game ignores it).
+    InputState poll(bool uiKeyboard, bool uiMouse);
     /// The gamepad in use ("" = none present).
     const std::string& gamepadName() const { return mGamepad; }
 

@@ -330,7 +330,7 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
         const auto frameStart = std::chrono::steady_clock::now();
         ctx->pollEvents();
         const game::InputState in =
-            opt.autopilot || opt.headless ? game::InputState{} : input.poll(hud.wantsInput());
+            opt.autopilot || opt.headless ? game::InputState{} : input.poll(hud.wantsKeyboard(), hud.wantsMouse());
         if (in.quit)
             break;
         if (in.pause)
@@ -491,6 +491,11 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
         j["messages"] = messages;
         j["cpu_ms_median"] = median(cpuMs);
         j["objects_drawn"] = gs.objectsDrawn;
+        j["camera"] = game::toString(gs.camera);
+        j["paused"] = gs.paused;
+        j["slow_motion"] = gs.slowMotion;
+        j["throttle"] = world.player().throttle;
+        j["speed_over_deck_mps"] = glm::length(glm::dvec2(world.player().velocity) - world.ships()[0].velocity);
         j["counters"] = {{"passes", gs.stats.passes},
                          {"draws", gs.stats.draws},
                          {"explosions", gs.stats.explosions.active},

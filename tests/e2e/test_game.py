@@ -4,6 +4,9 @@
              a hit that sinks a target; screenshots checked from the outside (the HUD is drawn, the splash is
              visible), no GL errors, no gamepad present handled; the session recorded as ACMI and replayed by
              `pacifica replay`: the same explosions at the same times and places, the ships with their wakes.
+  keys       the real input path: keys typed into the window with xdotool (XTEST) under Xvfb -- throttle up
+             on the deck (the jet rolls ahead of the carrier), C cycles the camera, T slow motion, P pause,
+             Escape quits cleanly and the summary says so.
   bad-input  bad command-line values exit 2 naming the option; no display exits 1 with a clear message.
 Usage: test_game.py --case CASE XVFB_RUN GAME_EXE PACIFICA_EXE     (python3 standard library only)"""
 import argparse
@@ -19,7 +22,7 @@ from checks import Checks  # noqa: E402
 from pngread import luminance, read_png  # noqa: E402
 
 ap = argparse.ArgumentParser()
-ap.add_argument("--case", required=True, choices=["sortie", "bad-input"])
+ap.add_argument("--case", required=True, choices=["sortie", "keys", "bad-input"])
 ap.add_argument("xvfb")
 ap.add_argument("game")
 ap.add_argument("pacifica")
@@ -128,6 +131,45 @@ if args.case == "sortie":
             last = rs["frames"][-1]["counters"]
             c.check(last["wakes"]["active"] >= 1 and last["explosions"]["active"] >= 1,
                     "wakes and the explosion are alive in the replay", str(last))
+
+elif args.case == "keys":
+    # A shell script under one Xvfb: start the game (real-time stepping), wait for its window, focus it, then
+    # type. Generous sleeps: llvmpipe frames take ~0.3 s here.
+    script = os.path.join(tmp, "keys.sh")
+    with open(script, "w") as f:
+        f.write(f"""#!/bin/sh
+"{args.game}" --quality low --size 480x270 --summary k.json &
+pid=$!
+wid=$(xdotool search --sync --name '^Pacifica$' | head -1)
+sleep 4
+xdotool windowfocus --sync "$wid"
+xdotool mousemove --window "$wid" 240 200
+xdotool keydown r; sleep 4; xdotool keyup r
+xdotool key c; sleep 1.5
+xdotool key t; sleep 1.5
+xdotool key p; sleep 1.5
+xdotool key Escape
+wait $pid
+""")
+    os.chmod(script, 0o755)
+    print("  $ xvfb-run " + script)
+    r = subprocess.run([args.xvfb, "-a", "-s", "-screen 0 1280x720x24", script], cwd=tmp, env=env(),
+                       capture_output=True, text=True, timeout=300)
+    print(r.stdout[-600:])
+    c.check(r.returncode == 0, "the game ran under typed keys and quit on Escape (exit 0)", r.stderr[-600:])
+    path = os.path.join(tmp, "k.json")
+    if c.check(os.path.exists(path), "its summary was written on quitting"):
+        s = json.load(open(path))
+        c.check(s["throttle"] > 0.3, "R throttled up (the engine spools at 60 % per game second)", str(s["throttle"]))
+        # Started 115 m aft of the carrier's centre, riding it; throttle up rolls the jet forward on the deck.
+        ev = s["player"]
+        c.check(ev["on_deck"] or ev["z"] > 20.0, "still on the deck or flying (not ditched)", str(ev))
+        c.check(s["camera"] == "orbit", "C switched the chase camera to the orbit camera", s["camera"])
+        c.check(s["slow_motion"] and s["paused"], "T slowed the game down and P paused it",
+                f"slow {s['slow_motion']}, paused {s['paused']}")
+        c.check(s["gl_errors"] == 0 and s["gamepad"] is None, "no GL errors, no gamepad needed", str(s))
+        c.check(s["speed_over_deck_mps"] > 5.0, "the jet rolled forward over the deck (> 5 m/s)",
+                str(s["speed_over_deck_mps"]))
 
 elif args.case == "bad-input":
     for bad, needle in [(["--frames", "-3"], "--frames"), (["--quality", "ultra"], "--quality"),
