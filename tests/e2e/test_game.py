@@ -149,6 +149,7 @@ xdotool key c; sleep 1.5
 xdotool key t; sleep 1.5
 xdotool key p; sleep 1.5
 xdotool key Escape
+( sleep 60; kill $pid 2>/dev/null ) &
 wait $pid
 """)
     os.chmod(script, 0o755)
