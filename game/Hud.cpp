@@ -46,7 +46,7 @@ void announce(GameState& gs, const World& world, const GameEvent& e, std::vector
         text = "SPLASH - you ditched. Backspace: new sortie";
         break;
     case GameEvent::Kind::MissionComplete:
-        text = "Mission complete: all targets sunk";
+        text = "Mission complete: all targets sunk. Score " + std::to_string(world.score());
         break;
     default:
         return;

@@ -329,8 +329,9 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
     while (!ctx->shouldClose()) {
         const auto frameStart = std::chrono::steady_clock::now();
         ctx->pollEvents();
-        const game::InputState in =
-            opt.autopilot || opt.headless ? game::InputState{} : input.poll(hud.wantsKeyboard(), hud.wantsMouse());
+        const game::InputState in = opt.autopilot || opt.headless
+                                        ? game::InputState{}
+                                        : input.poll(hud.wantsKeyboard(), hud.wantsMouse());
         if (in.quit)
             break;
         if (in.pause)
@@ -473,15 +474,16 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
     }
 
     const game::World& world = *sortie->world;
-    std::printf("pacifica-game: %lld frames, t = %.3f s, %s, targets left %d, GL errors %d, %s\n", frame,
-                world.time(), game::toString(world.state()), world.targetsLeft(), glErrors,
-                ctx->info().renderer.c_str());
+    std::printf("pacifica-game: %lld frames, t = %.3f s, %s, targets left %d, score %d, GL errors %d, %s\n",
+                frame, world.time(), game::toString(world.state()), world.targetsLeft(), world.score(),
+                glErrors, ctx->info().renderer.c_str());
     if (!opt.summary.empty()) {
         nlohmann::json j;
         j["frames"] = frame;
         j["time_s"] = world.time();
         j["state"] = game::toString(world.state());
         j["targets_left"] = world.targetsLeft();
+        j["score"] = world.score();
         j["gl_errors"] = glErrors;
         j["gl_renderer"] = ctx->info().renderer;
         j["gamepad"] =
@@ -495,7 +497,8 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
         j["paused"] = gs.paused;
         j["slow_motion"] = gs.slowMotion;
         j["throttle"] = world.player().throttle;
-        j["speed_over_deck_mps"] = glm::length(glm::dvec2(world.player().velocity) - world.ships()[0].velocity);
+        j["speed_over_deck_mps"] =
+            glm::length(glm::dvec2(world.player().velocity) - world.ships()[0].velocity);
         j["counters"] = {{"passes", gs.stats.passes},
                          {"draws", gs.stats.draws},
                          {"explosions", gs.stats.explosions.active},
@@ -520,6 +523,21 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
             ev.push_back(x);
         }
         j["events"] = ev;
+        nlohmann::json ships = nlohmann::json::array();
+        for (const game::ShipState& sh : world.ships()) {
+            nlohmann::json x = {{"name", sh.spec.name},
+                                {"id", sh.id},
+                                {"sunk", sh.sunkAt.has_value()},
+                                {"x", sh.pose.position.x},
+                                {"y", sh.pose.position.y}};
+            if (recorder) {
+                const glm::dvec3 g = recorder->geodetic(glm::dvec3(glm::dvec2(sh.pose.position), 0.0));
+                x["latitude_deg"] = g.x;
+                x["longitude_deg"] = g.y;
+            }
+            ships.push_back(x);
+        }
+        j["ships"] = ships;
         std::ofstream out(opt.summary);
         out << j.dump(2) << "\n";
         if (!out)

@@ -207,6 +207,22 @@ int World::targetsLeft() const {
     return n;
 }
 
+int World::score() const {
+    int points = 0;
+    for (const GameEvent& e : mHistory) {
+        if (e.kind == GameEvent::Kind::ShipHit)
+            points += SCORE_HIT;
+        else if (e.kind == GameEvent::Kind::ShipSunk)
+            points += SCORE_SUNK;
+        else if (e.kind == GameEvent::Kind::Ditched)
+            points += SCORE_DITCHED;
+        else if (e.kind == GameEvent::Kind::MissionComplete)
+            points += SCORE_PER_SECOND_UNDER_PAR *
+                      static_cast<int>(std::max(0.0, std::floor(MISSION_PAR_S - e.time)));
+    }
+    return points;
+}
+
 int World::shipHitBy(const glm::dvec3& p, double reach, double topMargin) const {
     for (size_t i = 0; i < mShips.size(); ++i) {
         const ShipState& s = mShips[i];

@@ -78,6 +78,7 @@ if args.case == "sortie":
         c.check(35.0 < impacts[0]["time_s"] < 46.0 and impacts[0]["strength"] == 1.0,
                 "the bomb lands ~44 s into the sortie with a 500 kg charge's strength", str(impacts[0]))
     c.check(any("sunk" in m for m in s.get("messages", [])), "the HUD announced the sinking", str(s.get("messages")))
+    c.check(s.get("score") == 1200, "score 1200: a hit (200) that sank the ship (1000)", str(s.get("score")))
     c.check(s.get("hud", {}).get("vertices", 0) > 500, "the HUD drew (ImGui vertices)", str(s.get("hud")))
     c.check(len(s.get("screenshots", [])) == 3, "three screenshots taken", str(s.get("screenshots")))
     c.check(s.get("counters", {}).get("wakes", 0) >= 1, "ship wakes drawn in the last frame", str(s.get("counters")))
@@ -131,6 +132,30 @@ if args.case == "sortie":
             last = rs["frames"][-1]["counters"]
             c.check(last["wakes"]["active"] >= 1 and last["explosions"]["active"] >= 1,
                     "wakes and the explosion are alive in the replay", str(last))
+        # Each ship's recorded track ends where the game's ship was at the end (the tracks replay's wakes
+        # follow); ACMI T= fields are relative to the reference point and left empty when unchanged.
+        ref_lat = ref_lon = 0.0
+        track_end = {}
+        with open(acmi, encoding="utf-8") as f:
+            for line in f:
+                line = line.rstrip("\n")
+                if line.startswith("0,ReferenceLatitude="):
+                    ref_lat = float(line.split("=")[1])
+                elif line.startswith("0,ReferenceLongitude="):
+                    ref_lon = float(line.split("=")[1])
+                elif ",T=" in line and not line.startswith(("#", "0,")):
+                    oid = int(line.split(",")[0], 16)
+                    fields = line.split(",T=")[1].split(",")[0].split("|")
+                    lon, lat = track_end.get(oid, (None, None))
+                    lon = float(fields[0]) + ref_lon if fields[0] else lon
+                    lat = float(fields[1]) + ref_lat if fields[1] else lat
+                    track_end[oid] = (lon, lat)
+        for sh in s.get("ships", []):
+            lon, lat = track_end.get(sh["id"], (None, None))
+            c.check(lat is not None and abs(lat - sh["latitude_deg"]) < 1e-7 and
+                    abs(lon - sh["longitude_deg"]) < 1e-7,
+                    f"{sh['name']}'s recorded track ends where the game's ship was",
+                    f"{lat}, {lon} vs {sh.get('latitude_deg')}, {sh.get('longitude_deg')}")
 
 elif args.case == "keys":
     # A shell script under one Xvfb: start the game (real-time stepping), wait for its window, focus it, then

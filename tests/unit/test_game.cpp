@@ -209,6 +209,7 @@ TEST(World, DivingIntoTheSeaDitchesWithASplash) {
                                  [](const GameEvent& e) { return e.kind == GameEvent::Kind::Ditched; });
     ASSERT_NE(it, events.end());
     EXPECT_EQ(it->strength, AIRCRAFT_STRENGTH);
+    EXPECT_EQ(w.score(), SCORE_DITCHED);
     EXPECT_NEAR(it->position.z, w.seaHeight(glm::dvec2(it->position)), 1e-9);
     // The splash is an explosion in the ocean's ECS, and the sortie is over: steps change nothing.
     s.events.dispatch();
@@ -234,7 +235,7 @@ TEST(World, ExplosionStrengthsAreTheReplays) {
 namespace {
 struct SortieResult {
     double liftOff = -1.0, firstSunk = -1.0;
-    int sunk = 0, bombs = 0;
+    int sunk = 0, bombs = 0, hits = 0, score = 0;
     SortieState state = SortieState::Flying;
     glm::dvec3 finalPosition{0.0};
     std::vector<GameEvent> history;
@@ -271,7 +272,9 @@ SortieResult flySortie(double seconds, SessionRecorder* rec = nullptr) {
             r.firstSunk = e.time;
         r.sunk += e.kind == GameEvent::Kind::ShipSunk;
         r.bombs += e.kind == GameEvent::Kind::Launch;
+        r.hits += e.kind == GameEvent::Kind::ShipHit;
     }
+    r.score = s.world->score();
     r.state = s.world->state();
     r.finalPosition = s.world->player().pose.position;
     return r;
@@ -286,6 +289,9 @@ TEST(Autopilot, TakesOffFromTheDeckAndSinksATargetWithABomb) {
     EXPECT_GE(r.sunk, 1) << "no target sunk in 150 s";
     EXPECT_GT(r.firstSunk, r.liftOff);
     EXPECT_GE(r.bombs, r.sunk);
+    // Score: 200 per hit, 1000 per ship sunk (a bomb hit sinks: 1200 each), no ditching, mission not over.
+    EXPECT_EQ(r.score, SCORE_HIT * r.hits + SCORE_SUNK * r.sunk);
+    EXPECT_EQ(r.score, 1200 * r.sunk);
 }
 
 TEST(Autopilot, TheSortieIsDeterministic) {
@@ -350,4 +356,17 @@ TEST(SessionRecorder, AnUnfinishedSessionLeavesNoFile) {
     EXPECT_FALSE(std::filesystem::exists(file.string() + ".tmp"));
     EXPECT_THROW(SessionRecorder((dir / "no/such/dir/x.acmi").string()), std::runtime_error);
     std::filesystem::remove_all(dir);
+}
+
+TEST(Autopilot, SinksAllThreeTargetsAndCompletesTheMissionWithATimeBonus) {
+    const SortieResult r = flySortie(600.0);
+    ASSERT_EQ(r.state, SortieState::Complete) << r.sunk << " sunk in 600 s";
+    EXPECT_EQ(r.sunk, 3);
+    const auto done = std::find_if(r.history.begin(), r.history.end(), [](const GameEvent& e) {
+        return e.kind == GameEvent::Kind::MissionComplete;
+    });
+    ASSERT_NE(done, r.history.end());
+    EXPECT_EQ(r.score, SCORE_HIT * r.hits + SCORE_SUNK * 3 +
+                           SCORE_PER_SECOND_UNDER_PAR *
+                               static_cast<int>(std::max(0.0, std::floor(MISSION_PAR_S - done->time))));
 }

@@ -33,6 +33,14 @@ inline constexpr double AIRCRAFT_STRENGTH = 0.8; ///< Air+FixedWing
 inline constexpr double BOMB_LETHAL_M = 15.0;    ///< a bomb this close to a hull sinks the ship
 inline constexpr int ROCKET_HITS_TO_SINK = 3;
 
+/// The mission's score: points per hit and per ship sunk, a time bonus for finishing the mission (per second
+/// under MISSION_PAR_S), a penalty for ditching.
+inline constexpr int SCORE_HIT = 200;
+inline constexpr int SCORE_SUNK = 1000;
+inline constexpr int SCORE_PER_SECOND_UNDER_PAR = 10;
+inline constexpr double MISSION_PAR_S = 300.0;
+inline constexpr int SCORE_DITCHED = -500;
+
 struct Weapon {
     uint64_t id = 0;
     WeaponKind kind = WeaponKind::Bomb;
@@ -127,6 +135,8 @@ public:
     int bombsLeft() const { return mBombs; }
     int rocketsLeft() const { return mRockets; }
     int targetsLeft() const;
+    /// The score so far (SCORE_* above), from the events since the start.
+    int score() const;
     /// The carrier's deck now (for the flight model).
     Deck deck() const;
     /// Sea height under a point at the current time (ocean + effects), metres.
