@@ -210,6 +210,15 @@ TEST_F(GameGl, OceanAndObjectsLeaveTheHostsStateAndPixelsAlone) {
     for (size_t i = 0; i < before.size(); i += 4)
         tinted += before[i] > 120; // 0.9 x 0.6 + 0.1 x 0.4 = 0.58 -> 148 over the clear colour (26)
     EXPECT_GT(tinted, static_cast<size_t>(W * H / 5));
+    // Leave the shared context as a fresh one for the next test (this test's objects are deleted next).
+    glUseProgram(0);
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
 }
 
 TEST_F(GameGl, AShipsHullBelowTheWaterlineIsHiddenBySea) {
@@ -270,4 +279,30 @@ TEST_F(GameGl, AShipsHullBelowTheWaterlineIsHiddenBySea) {
     }
     EXPECT_EQ(above, samples);
     EXPECT_EQ(below, samples);
+}
+
+TEST_F(GameGl, AProgramTheHostDeletedWhileCurrentIsNotRestored) {
+    auto make = [] {
+        return gl::buildProgram({{gl::ShaderStage::Vertex, {{"host.vert", HOST_VERT}}},
+                                 {gl::ShaderStage::Fragment, {{"host.frag", HOST_FRAG}}}},
+                                "host");
+    };
+    gl::Program other = make();
+    GLuint deleted = 0;
+    {
+        gl::Program doomed = make();
+        deleted = doomed.id();
+        glUseProgram(deleted);
+    } // deleted while current: GL frees it once another program is used
+    while (glGetError() != GL_NO_ERROR) {
+    }
+    {
+        gl::StateGuard guard;     // what the ocean does around its passes
+        glUseProgram(other.id()); // ... its own program: the doomed one is freed now
+    }
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    GLint current = -1;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &current);
+    EXPECT_EQ(current, 0);
+    EXPECT_FALSE(glIsProgram(deleted));
 }

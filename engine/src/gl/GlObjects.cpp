@@ -155,7 +155,10 @@ StateGuard::~StateGuard() {
     glViewport(mViewport[0], mViewport[1], mViewport[2], mViewport[3]);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(mDrawFbo));
     glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(mReadFbo));
-    glUseProgram(static_cast<GLuint>(mProgram));
+    // A program the host deleted while it was current is freed once another one is used: then there is
+    // nothing to restore (glUseProgram would raise GL_INVALID_VALUE), and 0 is what the host would have.
+    const GLuint program = static_cast<GLuint>(mProgram);
+    glUseProgram(program == 0 || glIsProgram(program) ? program : 0);
     glBindVertexArray(static_cast<GLuint>(mVao));
     glActiveTexture(static_cast<GLenum>(mActiveTexture));
     glDepthFunc(static_cast<GLenum>(mDepthFunc));
