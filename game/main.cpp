@@ -33,6 +33,7 @@
 #include <ocean/Ocean.h>
 #include <ocean/OceanConstants.h>
 #include <ocean/Presets.h>
+#include <ocean/SeaState.h>
 #include <recording/CameraRig.h>
 
 #include <epoxy/gl.h>
@@ -71,21 +72,12 @@ double median(std::vector<double> v) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// The ocean for a quality preset, surface model and sea state (GameOptions.h: windSpeed).
+/// The ocean for a quality preset, surface model and sea state: the wind speed sets every model's wave
+/// height and the whitecap coverage through ocean::applySeaState (ocean/SeaState.h).
 ocean::OceanComponent buildOcean(const game::SeaSettings& s) {
     ocean::OceanDesc d = ocean::oceanPreset(ocean::parseQuality(s.quality));
     d.model = static_cast<ocean::SurfaceKind>(game::parseSurfaceModelIndex(s.model));
-    // Sea state: the FFT spectrum takes the wind speed; the octave and Gerstner seas (tuned at 12 m/s) scale
-    // their heights with U^2, as the fully developed significant wave height Hs = 0.21 U^2 / g does
-    // (Pierson & Moskowitz 1964).
-    const double scale = (s.windSpeed * s.windSpeed) / (12.0 * 12.0);
-    d.fft.windSpeed = s.windSpeed;
-    for (ocean::OctaveDesc& o : d.octaves.octaves)
-        o.amplitude *= scale;
-    d.gerstner.waves = ocean::GerstnerWaves::defaultWaves(8, d.octaves.windDirectionDeg, d.gerstner.seed);
-    for (ocean::GerstnerWave& w : d.gerstner.waves)
-        w.amplitude *= scale;
-    return ocean::makeOcean(d);
+    return ocean::makeOcean(ocean::applySeaState(d, {s.windSpeed, d.octaves.windDirectionDeg}));
 }
 
 /// Everything a sortie owns; rebuilt for a new sortie.

@@ -1,0 +1,111 @@
+// SeaState: the wind speed -> wave height, whitecaps and slopes (SeaState.h).
+#include "ocean/SeaState.h"
+
+#include "ocean/GerstnerWaves.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pacifica::ocean {
+
+namespace {
+constexpr double G = 9.81;
+double phi(double x) {
+    return std::exp(-0.5 * x * x) / std::sqrt(2.0 * std::numbers::pi);
+}
+double Phi(double x) {
+    return 0.5 * std::erfc(-x / std::sqrt(2.0));
+}
+} // namespace
+
+double pmSignificantWaveHeight(double u) {
+    return 0.21 * u * u / G;
+}
+
+double monahanWhitecapCoverage(double u) {
+    return std::min(1.0, 3.84e-6 * std::pow(u, 3.41));
+}
+
+double coxMunkSlopeVariance(double u) {
+    return 0.003 + 5.12e-3 * u;
+}
+
+double beaufortWindSpeed(int force) {
+    // WMO Beaufort scale, m/s at 10 m: lower bounds of forces 0..12 (and 32.7 as force 12's upper end).
+    static constexpr double LOWER[] = {0.0,  0.5,  1.6,  3.4,  5.5,  8.0, 10.8,
+                                       13.9, 17.2, 20.8, 24.5, 28.5, 32.7};
+    if (force < 0 || force > 12)
+        throw std::invalid_argument("beaufortWindSpeed(): force must be in [0, 12], got " +
+                                    std::to_string(force));
+    if (force == 12)
+        return 32.7;
+    return 0.5 * (LOWER[force] + LOWER[force + 1]);
+}
+
+double gaussianFoamCoverage(double sigma, double h0, double h1) {
+    if (sigma <= 0.0)
+        return h0 <= 0.0 ? 1.0 : 0.0;
+    const double a = h0 / sigma, b = h1 / sigma;
+    if (h1 <= h0)
+        return 1.0 - Phi(a);
+    // E[clamp((h - h0) / (h1 - h0))] = (sigma (phi(a) - phi(b)) - h0 (Phi(b) - Phi(a))) / (h1 - h0) + 1 -
+    // Phi(b)
+    return (sigma * (phi(a) - phi(b)) - h0 * (Phi(b) - Phi(a))) / (h1 - h0) + 1.0 - Phi(b);
+}
+
+OceanDesc applySeaState(OceanDesc d, const SeaState& sea) {
+    if (!(std::isfinite(sea.windSpeed) && sea.windSpeed >= SEA_STATE_MIN_WIND &&
+          sea.windSpeed <= SEA_STATE_MAX_WIND))
+        throw std::invalid_argument("SeaState.windSpeed must be in [1, 30] m/s, got " +
+                                    std::to_string(sea.windSpeed));
+    if (!std::isfinite(sea.windDirectionDeg))
+        throw std::invalid_argument("SeaState.windDirectionDeg must be finite");
+    const double u = sea.windSpeed;
+    const double scale = pmSignificantWaveHeight(u) / pmSignificantWaveHeight(SEA_STATE_REFERENCE_WIND);
+    d.fft.windSpeed = u;
+    d.fft.windDirectionDeg = sea.windDirectionDeg;
+    d.octaves.windDirectionDeg = sea.windDirectionDeg;
+    for (OctaveDesc& o : d.octaves.octaves)
+        o.amplitude *= scale;
+    if (d.gerstner.waves.empty())
+        d.gerstner.waves = GerstnerWaves::defaultWaves(8, sea.windDirectionDeg, d.gerstner.seed);
+    for (GerstnerWave& w : d.gerstner.waves)
+        w.amplitude *= scale;
+    // Foam: h1 = h0 + sigma (the model's RMS height), h0 by bisection so the mean coverage over the
+    // model's own heights -- sampled on a lattice at three times; fewer points for the FFT, whose CPU
+    // evaluation sums every mode -- equals W. (Its heights are not Gaussian: a sum of few waves has lighter
+    // tails, which decide the coverage of a light sea.)
+    const OceanComponent built = makeOcean(d);
+    const double sigma = built.surface->significantWaveHeight() / 4.0;
+    // Points of the R2 low-discrepancy sequence (Roberts 2018: fractional parts of n / 1.3247..,
+    // n / 1.3247..^2) over 5 km x 5 km: a lattice would alias with the octaves' tile periods.
+    const int count = d.model == SurfaceKind::Fft ? 768 : 6000;
+    constexpr double PLASTIC = 1.32471795724474602596;
+    std::vector<double> heights;
+    for (int n = 0; n < count; ++n) {
+        const double x = std::fmod(0.5 + n / PLASTIC, 1.0), y = std::fmod(0.5 + n / (PLASTIC * PLASTIC), 1.0);
+        const double t = 7.9 * (n % 3);
+        heights.push_back(built.surface->displacementAt({5000.0 * x, 5000.0 * y}, t).z);
+    }
+    auto coverage = [&](double h0) {
+        double sum = 0.0;
+        for (double h : heights)
+            sum += std::clamp((h - h0) / sigma, 0.0, 1.0);
+        return sum / static_cast<double>(heights.size());
+    };
+    const double target = monahanWhitecapCoverage(u);
+    double lo = -4.0 * sigma, hi = 8.0 * sigma;
+    for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (coverage(mid) > target ? lo : hi) = mid;
+    }
+    d.lighting.foamHeightStart = static_cast<float>(0.5 * (lo + hi));
+    d.lighting.foamHeightFull = static_cast<float>(0.5 * (lo + hi) + sigma);
+    return d;
+}
+
+} // namespace pacifica::ocean

@@ -1,0 +1,94 @@
+// SeaState (ocean/SeaState.h): the published anchors, the Gaussian foam coverage against numerical
+// integration, and applySeaState() giving every surface model the wind's wave height and the octave sea the
+// whitecap coverage of Monahan & O'Muircheartaigh (1980), checked by sampling the CPU surface.
+#include "ocean/Lighting.h"
+#include "ocean/Ocean.h"
+#include "ocean/SeaState.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+using namespace pacifica::ocean;
+
+TEST(SeaState, PublishedAnchors) {
+    EXPECT_NEAR(pmSignificantWaveHeight(10.0), 0.21 * 100.0 / 9.81, 1e-12); // 2.14 m
+    EXPECT_NEAR(monahanWhitecapCoverage(10.0), 3.84e-6 * std::pow(10.0, 3.41), 1e-15);
+    EXPECT_NEAR(monahanWhitecapCoverage(10.0), 0.00987, 1e-5); // ~1 % at 10 m/s
+    EXPECT_NEAR(coxMunkSlopeVariance(10.0), 0.0542, 1e-12);
+    EXPECT_DOUBLE_EQ(beaufortWindSpeed(0), 0.25);
+    EXPECT_DOUBLE_EQ(beaufortWindSpeed(6), 0.5 * (10.8 + 13.9));
+    EXPECT_DOUBLE_EQ(beaufortWindSpeed(12), 32.7);
+    EXPECT_THROW(beaufortWindSpeed(13), std::invalid_argument);
+    EXPECT_THROW(beaufortWindSpeed(-1), std::invalid_argument);
+}
+
+TEST(SeaState, GaussianFoamCoverageMatchesNumericalIntegration) {
+    for (double sigma : {0.3, 1.0, 2.5})
+        for (double h0 : {-1.0, 0.0, 0.7, 2.0}) {
+            const double h1 = h0 + 0.8 * sigma;
+            double sum = 0.0;
+            const int n = 200000;
+            const double lo = -10.0 * sigma, step = 20.0 * sigma / n;
+            for (int i = 0; i < n; ++i) {
+                const double h = lo + (i + 0.5) * step;
+                const double a = std::clamp((h - h0) / (h1 - h0), 0.0, 1.0);
+                sum += a * std::exp(-0.5 * h * h / (sigma * sigma)) / (sigma * std::sqrt(2.0 * M_PI)) * step;
+            }
+            EXPECT_NEAR(gaussianFoamCoverage(sigma, h0, h1), sum, 1e-6) << sigma << " " << h0;
+        }
+}
+
+TEST(SeaState, EveryModelGetsTheWindsWaveHeight) {
+    for (double u : {6.0, 12.0, 20.0}) {
+        const OceanDesc d = applySeaState({}, {u, 45.0});
+        EXPECT_EQ(d.fft.windSpeed, u);
+        EXPECT_EQ(d.fft.windDirectionDeg, 45.0);
+        EXPECT_EQ(d.octaves.windDirectionDeg, 45.0);
+        // Heights scale as Hs ~ U^2 from the reference wind (the default seas).
+        const double scale = (u * u) / (SEA_STATE_REFERENCE_WIND * SEA_STATE_REFERENCE_WIND);
+        const OceanDesc base;
+        for (size_t i = 0; i < d.octaves.octaves.size(); ++i)
+            EXPECT_NEAR(d.octaves.octaves[i].amplitude, base.octaves.octaves[i].amplitude * scale, 1e-12);
+        OceanDesc octaves = d, gerstner = d, reference = applySeaState({}, {SEA_STATE_REFERENCE_WIND, 45.0});
+        gerstner.model = SurfaceKind::Gerstner;
+        reference.model = SurfaceKind::Gerstner;
+        EXPECT_NEAR(makeOcean(gerstner).surface->significantWaveHeight() /
+                        makeOcean(reference).surface->significantWaveHeight(),
+                    scale, 1e-9);
+        reference.model = SurfaceKind::Octaves;
+        EXPECT_NEAR(makeOcean(octaves).surface->significantWaveHeight() /
+                        makeOcean(reference).surface->significantWaveHeight(),
+                    scale, 1e-9);
+        validateLighting(d.lighting); // the foam thresholds are valid
+    }
+    EXPECT_THROW(applySeaState({}, {0.0, 0.0}), std::invalid_argument);
+    EXPECT_THROW(applySeaState({}, {NAN, 0.0}), std::invalid_argument);
+    EXPECT_THROW(applySeaState({}, {12.0, INFINITY}), std::invalid_argument);
+}
+
+TEST(SeaState, OctaveSeaFoamCoverageFollowsMonahan) {
+    // The thresholds are solved on a low-discrepancy set of the model's heights; 12000 random points and
+    // times over 8 km x 8 km must give the Monahan coverage within 35 %, and more wind, more foam.
+    double last = 0.0;
+    for (double u : {8.0, 12.0, 16.0, 20.0}) {
+        const OceanDesc d = applySeaState({}, {u, 60.0});
+        const OceanComponent c = makeOcean(d);
+        double sum = 0.0;
+        int n = 0;
+        std::mt19937_64 rng(17);
+        std::uniform_real_distribution<double> pos(-4000.0, 4000.0), time(0.0, 100.0);
+        for (int k = 0; k < 12000; ++k) {
+            const double h = c.surface->displacementAt({pos(rng), pos(rng)}, time(rng)).z;
+            sum += foamAlpha(h, d.lighting);
+            ++n;
+        }
+        const double coverage = sum / n, w = monahanWhitecapCoverage(u);
+        std::printf("U = %4.1f m/s: foam coverage %.5f, Monahan W %.5f (ratio %.3f)\n", u, coverage, w, coverage / w);
+        EXPECT_NEAR(coverage / w, 1.0, 0.35) << "U = " << u << ": coverage " << coverage << " vs W " << w;
+        EXPECT_GT(coverage, last);
+        last = coverage;
+    }
+}
