@@ -24,6 +24,7 @@ in vec3 vEffect; // (dE/dx, dE/dy, foam)
 #endif
 
 uniform float uNormalTilt;
+uniform float uMicroSlopeVariance; // LightingDesc::microSlopeVariance
 uniform float uDisplaceRadius; // ocean.vert's: beyond it the grid is the undisplaced skirt
 
 uniform sampler2D uFoamMap;   // the foam pattern (makeFoamPattern), repeating, mipmapped
@@ -94,9 +95,10 @@ void main() {
     float ndv = clamp(dot(n, v), 0.0, 1.0);
     float fresnel = fresnelSchlick(ndv);
     float z = surfaceHeight();
-    // Beckmann mean-square slope m^2 = resolved micro-roughness + unresolved octave slope variance (LEAN):
-    // it sets both the sun's lobe and the blur of the reflected sky.
-    float m2 = 0.0012 + g.z;
+    // Beckmann mean-square slope m^2 = the slopes no model resolves (microSlopeVariance; with a sea state,
+    // Cox & Munk's total minus the model's) + the model's slopes filtered away here (LEAN): it sets both
+    // the sun's lobe and the blur of the reflected sky.
+    float m2 = uMicroSlopeVariance + g.z;
     vec3 r = reflect(-v, n);
     r.z = abs(r.z); // rays reflected into the sea would hit another wave: use the sky above instead
     vec3 sunLight = sunLightAt(max(z, 0.0));

@@ -103,6 +103,21 @@ OceanDesc applySeaState(OceanDesc d, const SeaState& sea) {
         const double mid = 0.5 * (lo + hi);
         (coverage(mid) > target ? lo : hi) = mid;
     }
+    // Slopes: Cox & Munk's total minus the model's own (all its waves, sampled at the same points), at
+    // least a floor for the capillaries no model holds.
+    double sx = 0.0, sy = 0.0, sxx = 0.0;
+    const int slopeCount = d.model == SurfaceKind::Fft ? 256 : 2000;
+    for (int n = 0; n < slopeCount; ++n) {
+        const double x = std::fmod(0.5 + n / PLASTIC, 1.0), y = std::fmod(0.5 + n / (PLASTIC * PLASTIC), 1.0);
+        const glm::dvec3 nrm = built.surface->normalAt({5000.0 * x, 5000.0 * y}, 7.9 * (n % 3));
+        const double gx = -nrm.x / nrm.z, gy = -nrm.y / nrm.z;
+        sx += gx;
+        sy += gy;
+        sxx += gx * gx + gy * gy;
+    }
+    const double modelSlopes = sxx / slopeCount - (sx * sx + sy * sy) / (double(slopeCount) * slopeCount);
+    d.lighting.microSlopeVariance =
+        static_cast<float>(std::max(MIN_MICRO_SLOPE_VARIANCE, coxMunkSlopeVariance(u) - modelSlopes));
     d.lighting.foamHeightStart = static_cast<float>(0.5 * (lo + hi));
     d.lighting.foamHeightFull = static_cast<float>(0.5 * (lo + hi) + sigma);
     return d;

@@ -86,9 +86,59 @@ TEST(SeaState, OctaveSeaFoamCoverageFollowsMonahan) {
             ++n;
         }
         const double coverage = sum / n, w = monahanWhitecapCoverage(u);
-        std::printf("U = %4.1f m/s: foam coverage %.5f, Monahan W %.5f (ratio %.3f)\n", u, coverage, w, coverage / w);
+        std::printf("U = %4.1f m/s: foam coverage %.5f, Monahan W %.5f (ratio %.3f)\n", u, coverage, w,
+                    coverage / w);
         EXPECT_NEAR(coverage / w, 1.0, 0.35) << "U = " << u << ": coverage " << coverage << " vs W " << w;
         EXPECT_GT(coverage, last);
         last = coverage;
+    }
+}
+
+TEST(SeaState, ModelSlopesPlusMicroSlopesAreCoxAndMunks) {
+    // The model's slope variance, sampled at other points and times, plus the sub-model variance the sea
+    // state sets, equals Cox & Munk's total within 10 % (where the floor does not bind).
+    for (SurfaceKind kind : {SurfaceKind::Octaves, SurfaceKind::Gerstner}) {
+        double lastMicro = -1.0;
+        for (double u : {6.0, 12.0, 20.0}) {
+            OceanDesc base;
+            base.model = kind;
+            const OceanDesc d = applySeaState(base, {u, 60.0});
+            const OceanComponent c = makeOcean(d);
+            std::mt19937_64 rng(5);
+            std::uniform_real_distribution<double> pos(-4000.0, 4000.0), time(0.0, 100.0);
+            double sx = 0.0, sy = 0.0, ss = 0.0;
+            const int n = 6000;
+            for (int k = 0; k < n; ++k) {
+                const glm::dvec3 nrm = c.surface->normalAt({pos(rng), pos(rng)}, time(rng));
+                const double gx = -nrm.x / nrm.z, gy = -nrm.y / nrm.z;
+                sx += gx;
+                sy += gy;
+                ss += gx * gx + gy * gy;
+            }
+            const double model = ss / n - (sx * sx + sy * sy) / (double(n) * n);
+            const double micro = d.lighting.microSlopeVariance, total = coxMunkSlopeVariance(u);
+            std::printf("%s U = %4.1f: model slopes %.4f + micro %.4f = %.4f, Cox-Munk %.4f\n",
+                        toString(kind), u, model, micro, model + micro, total);
+            if (micro > MIN_MICRO_SLOPE_VARIANCE * 1.01)
+                EXPECT_NEAR((model + micro) / total, 1.0, 0.10) << toString(kind) << " U = " << u;
+            else
+                EXPECT_GE(model + micro, total * 0.9) << toString(kind) << " U = " << u;
+            EXPECT_GE(micro, MIN_MICRO_SLOPE_VARIANCE);
+            lastMicro = micro;
+        }
+        EXPECT_GE(lastMicro, MIN_MICRO_SLOPE_VARIANCE);
+    }
+}
+
+TEST(SeaState, BadMicroSlopeVarianceIsRejectedNamingTheField) {
+    LightingDesc l;
+    for (float bad : {-0.01f, 1.5f, NAN}) {
+        l.microSlopeVariance = bad;
+        try {
+            validateLighting(l);
+            ADD_FAILURE() << "accepted " << bad;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find("microSlopeVariance"), std::string::npos) << e.what();
+        }
     }
 }

@@ -99,6 +99,10 @@ struct LightingDesc {
     /// the sky above it (sky.glsl); a photographed sky already holds some haze, to which this adds.
     float fogDensity = 1.0f / 10000.0f;
     float normalTilt = 0.15f; ///< §18.2.6: tilt of the lighting normal toward the viewer
+    /// Beckmann mean-square slope of the waves no surface model resolves (short gravity and capillary
+    /// waves), added to the model's unresolved slope variance for the sun's lobe and the sky's blur
+    /// (ocean.frag). applySeaState() sets it so the total is Cox & Munk's (SeaState.h).
+    float microSlopeVariance = 0.0012f;
 
     /// HDR lat-long sky for the background and the sea's reflections; null = the procedural sky. Shared
     /// and immutable: the renderer uploads each map once (mipmapped) and keeps it while it is in use.

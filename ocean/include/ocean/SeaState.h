@@ -4,8 +4,9 @@
 //     U at 19.5 m taken as U10 here); the FFT model gets U directly (its JONSWAP spectrum, FftOcean.h);
 //   - whitecap coverage W = 3.84e-6 U^3.41 (Monahan & O'Muircheartaigh 1980, eq. 5): the foam thresholds are
 //     set so the mean height-foam coverage over the model's own heights is W;
-//   - total mean-square slope s^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, clean surface), for the lighting's
-//     slope budget (coxMunkSlopeVariance; the shader's sub-grid roughness does not use it yet).
+//   - total mean-square slope s^2 = 0.003 + 5.12e-3 U (Cox & Munk 1954, clean surface): the lighting's
+//     microSlopeVariance is what the model's own slopes leave of it (at least MIN_MICRO_SLOPE_VARIANCE), so
+//     the sun glitter's width follows the wind for every model.
 //
 // STEP BY STEP
 //   OceanDesc d = applySeaState(oceanPreset(Quality::High), {.windSpeed = beaufortWindSpeed(6)});
@@ -24,6 +25,8 @@ struct SeaState {
 inline constexpr double SEA_STATE_MIN_WIND = 1.0, SEA_STATE_MAX_WIND = 30.0;
 /// The wind speed the default octave and Gerstner seas were shaped for (their Hs is scaled from here).
 inline constexpr double SEA_STATE_REFERENCE_WIND = 12.0;
+/// Floor of the sub-model slope variance (capillary roughness the models never hold).
+inline constexpr double MIN_MICRO_SLOPE_VARIANCE = 0.0005;
 
 /// Pierson & Moskowitz (1964): fully developed Hs = 0.21 U^2 / g, metres.
 double pmSignificantWaveHeight(double windSpeed);
@@ -43,7 +46,8 @@ double gaussianFoamCoverage(double sigma, double h0, double h1);
 /// pmSignificantWaveHeight(U) / pmSignificantWaveHeight(SEA_STATE_REFERENCE_WIND) and their wind direction;
 /// foam thresholds h0, h1 = h0 + Hs / 4 (the model's Hs) with h0 solved so the mean foamAlpha over the
 /// model's heights (sampled on the CPU: builds the model once, ~0.1-0.5 s) equals monahanWhitecapCoverage(U).
-/// Throws std::invalid_argument naming the field for a bad SeaState.
+/// lighting.microSlopeVariance = max(MIN_MICRO_SLOPE_VARIANCE, coxMunkSlopeVariance(U) - the model's
+/// sampled slope variance). Throws std::invalid_argument naming the field for a bad SeaState.
 OceanDesc applySeaState(OceanDesc desc, const SeaState& sea);
 
 } // namespace pacifica::ocean
