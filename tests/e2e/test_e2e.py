@@ -10,8 +10,9 @@ Cases (chosen with --case, one ctest test each):
   studio-ocio  one frame through the ACES studio config (--ocio-config, display "sRGB - Display"): succeeds,
                and summary.json and the EXR header record that config, display and view.
   ocean-options  one frame with the defaults, then with lighting options (dense red fog: the frame turns red;
-               a low western sun) and painted --height-map PNGs (a still map and a 4-frame strip): each
-               changes the EXR pixels, and the same maps render the same pixels twice.
+               a low western sun), --sea-state/--beaufort (a 20 m/s sea is brighter; 0 is refused) and painted
+               --height-map PNGs (a still map and a 4-frame strip): each changes the EXR pixels, and the same
+               maps render the same pixels twice.
   effects      the demo's 3.0 s explosion and two ships: per-frame counters in summary.json show the effect
                kinds active and drawn; with --no-events every effect counter is 0 and the frame costs exactly
                the plain ocean's passes, draws and uploads.
@@ -512,6 +513,22 @@ def case_ocean_options(c, exe, source_dir, tmp):
                                        "--choppiness", "0.5"])
     c.check(frame_ph["exr_pixel_hash"] != frame_fft["exr_pixel_hash"],
             "FFT spectrum options change the EXR pixels", frame_ph["exr_pixel_hash"])
+
+    print("[sea state] --sea-state 20, --beaufort 3, and a bad value")
+    out_ss, frame_ss = run("sea_state", ["--sea-state", "20"])
+    _, frame_bf = run("beaufort", ["--beaufort", "3"])
+    c.check(frame_ss["exr_pixel_hash"] != frame_d["exr_pixel_hash"] and
+            frame_bf["exr_pixel_hash"] not in (frame_d["exr_pixel_hash"], frame_ss["exr_pixel_hash"]),
+            "--sea-state and --beaufort change the EXR pixels", f"{frame_ss['exr_pixel_hash']}")
+    mean_ss = exr_mean_rgb(out_ss, frame_ss["exr"])
+    print(f"    mean RGB {mean_ss}")
+    # 20 m/s: ~10 % whitecaps (Monahan) and a wider glitter: a brighter sea than the default.
+    c.check(sum(mean_ss) > sum(mean_d), "a 20 m/s sea is brighter on average (whitecaps, glitter)",
+            f"{mean_ss} vs {mean_d}")
+    bad = subprocess.run([exe, "replay", flight, "--out", os.path.join(tmp, "bad_sea"), *args, "--sea-state", "0",
+                          "--no-progress"], env=child_env(), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    c.check(bad.returncode != 0 and "--sea-state" in bad.stderr and not os.path.exists(os.path.join(tmp, "bad_sea")),
+            "--sea-state 0: refused naming the option, nothing written", bad.stderr.strip()[-300:])
 
     print("[height maps] --height-map still.png --height-map strip.png (4 frames)")
     still = write_gray_png(os.path.join(tmp, "still.png"), 64, 64, lambda x, r: 0.5 + 0.5 * math.cos(

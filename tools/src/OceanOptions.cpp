@@ -4,6 +4,7 @@
 #include "HeightMapFile.h"
 #include "Replay.h"
 #include "ocean/Presets.h"
+#include "ocean/SeaState.h"
 
 #include <CLI/CLI.hpp>
 
@@ -187,6 +188,10 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
         "octaves: how many leading octaves displace the vertices (the rest only light; default 3)");
     app.add_option("--fft-size", o.fftSize, "FFT grid N (power of two, 16..1024)");
     app.add_option("--fft-spectrum", o.fftSpectrum, "FFT spectrum: phillips or jonswap (default jonswap)");
+    app.add_option("--sea-state", o.seaState,
+                   "wind speed U10 in m/s (1..30) setting every model's wave height, whitecap coverage "
+                   "(Monahan) and sub-grid slopes (Cox-Munk): ocean/SeaState.h; other options override it");
+    app.add_option("--beaufort", o.beaufort, "the same as --sea-state from a Beaufort force 1..11");
     app.add_option("--wind-speed", o.windSpeed, "FFT: wind speed U10, m/s (default 12)");
     app.add_option("--wind-direction", o.windDirectionDeg,
                    "FFT and octaves: compass direction the wind blows toward, degrees (default 60)");
@@ -309,6 +314,16 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     }
     if (o.fftSize != 0)
         d.fft.size = o.fftSize;
+    if (o.seaState && o.beaufort)
+        throw UsageError("--sea-state and --beaufort both set the wind: give one");
+    if (o.beaufort && (*o.beaufort < 1 || *o.beaufort > 11))
+        throw UsageError("--beaufort must be a force in [1, 11], got " + std::to_string(*o.beaufort));
+    if (o.seaState || o.beaufort) {
+        const double u = o.seaState ? *o.seaState : ocean::beaufortWindSpeed(*o.beaufort);
+        if (!(std::isfinite(u) && u >= ocean::SEA_STATE_MIN_WIND && u <= ocean::SEA_STATE_MAX_WIND))
+            throw UsageError("--sea-state must be a wind speed in [1, 30] m/s, got " + std::to_string(u));
+        d = ocean::applySeaState(d, {u, o.windDirectionDeg.value_or(d.octaves.windDirectionDeg)});
+    }
     applyFftSpectrum(o, d);
     if (o.rings != 0)
         d.grid.rings = o.rings;

@@ -32,6 +32,8 @@ struct OceanOptions {
     int displacedOctaves = -1; ///< octaves: how many leading octaves displace vertices; < 0 = the preset's
     // FFT spectrum (ocean::FftDesc); unset = the FftDesc default.
     std::string fftSpectrum;                ///< phillips | jonswap; empty = default (JONSWAP)
+    std::optional<double> seaState;         ///< --sea-state U10, m/s: every model's sea (ocean/SeaState.h)
+    std::optional<int> beaufort;            ///< --beaufort N: the same from a Beaufort force
     std::optional<double> windSpeed;        ///< U10, m/s, (0, 60]
     std::optional<double> windDirectionDeg; ///< compass direction the wind blows toward (FFT and octaves)
     std::optional<double> fetch;            ///< metres, > 0 (JONSWAP)
@@ -54,7 +56,8 @@ struct OceanOptions {
 };
 
 /// Adds --model, --grid, --grid-rings, --grid-segments, --vertex-filter, --combined, --no-cull,
-/// --no-view-sector, --gerstner-steepness, --octaves, --displaced-octaves, --fft-size, --fft-spectrum,
+/// --no-view-sector, --gerstner-steepness, --octaves, --displaced-octaves, --sea-state, --beaufort,
+/// --fft-size, --fft-spectrum,
 /// --wind-speed, --wind-direction,
 /// --fetch,
 /// --choppiness, --fft-tile, --height-map and the lighting options --sun-elevation,
