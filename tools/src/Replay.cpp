@@ -3,7 +3,6 @@
 #include "Replay.h"
 
 #include "FlightPath.h"
-#include <engine/gl/ObjectRenderer.h>
 #include "ReplayInput.h"
 #include "VideoWriter.h"
 #include "WorkerQueue.h"
@@ -16,6 +15,7 @@
 #include "engine/gl/FrameTargets.h"
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GpuTimer.h"
+#include "engine/gl/ObjectRenderer.h"
 #include "engine/gl/PassTimer.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
