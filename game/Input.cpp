@@ -40,7 +40,7 @@ InputState Input::poll(bool uiKeyboard, bool uiMouse) {
     InputState in;
     auto* window = static_cast<GLFWwindow*>(mCtx.nativeWindow());
     const double now = glfwGetTime();
-    const double dt = mLastTime < 0.0 ? 0.0 : std::min(now - mLastTime, 0.1);
+    const double dt = mLastTime < 0.0 ? 0.0 : std::min(now - mLastTime, 0.25); // as the simulation's cap
     mLastTime = now;
     auto edge = [&](int slot, bool down) {
         const bool pressed = down && !mWas[slot];

@@ -336,11 +336,20 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
             gs.hud = !gs.hud;
         if (in.restart || gs.restartRequested) {
             gs.restartRequested = false;
+            std::string note = "New sortie";
+            if (recorder) { // a recording holds one sortie: it is finished here, the new one is not recorded
+                recorder->record(*sortie->world, sortie->world->takeEvents());
+                recorder->finish();
+                recorder.reset();
+                note += " (" + opt.record + " saved; this sortie is not recorded)";
+            }
+            messages.push_back(note);
             sortie = std::make_unique<Sortie>(gs.sea);
             sortie->clock.setMaxStepsPerAdvance(maxSteps);
             sortie->prehistory(nullptr);
-            renderer = std::make_unique<ocean::OceanRenderer>(); // the old registry's GPU state goes
-            gs.banner = "New sortie";
+            // The renderer stays (its programs are built): the new registry's ocean entity gets the same
+            // handle, and the renderer rebuilds that ocean's surface state for the new surface.
+            gs.banner = note;
             gs.bannerUntil = 3.0;
         }
         if (gs.seaChanged) { // a live switch: the same sortie on the new sea

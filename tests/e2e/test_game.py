@@ -4,7 +4,8 @@
              a hit that sinks a target; screenshots checked from the outside (the HUD is drawn, the splash is
              visible), no GL errors, no gamepad present handled; the session recorded as ACMI and replayed by
              `pacifica replay`: the same explosions at the same times and places, the ships with their wakes.
-  keys       the real input path: keys typed into the window with xdotool (XTEST) under Xvfb -- throttle up
+  keys       the real input path: keys typed into the window with xdotool (XTEST) under Xvfb -- Backspace
+             starts a new sortie (the recording of the first is saved), then throttle up
              on the deck (the jet rolls ahead of the carrier), C cycles the camera, T slow motion, P pause,
              Escape quits cleanly and the summary says so.
   bad-input  bad command-line values exit 2 naming the option; no display exits 1 with a clear message.
@@ -163,19 +164,24 @@ elif args.case == "keys":
     script = os.path.join(tmp, "keys.sh")
     with open(script, "w") as f:
         f.write(f"""#!/bin/sh
-"{args.game}" --quality low --size 480x270 --summary k.json &
+"{args.game}" --quality low --size 480x270 --summary k.json --record k.txt.acmi &
 pid=$!
 wid=$(xdotool search --sync --name '^Pacifica$' | head -1)
 sleep 4
 xdotool windowfocus --sync "$wid"
 xdotool mousemove --window "$wid" 240 200
-xdotool keydown r; sleep 4; xdotool keyup r
+xdotool key BackSpace; sleep 2
+xdotool keydown r; sleep 6; xdotool keyup r
 xdotool key c; sleep 1.5
 xdotool key t; sleep 1.5
 xdotool key p; sleep 1.5
 xdotool key Escape
-( sleep 60; kill $pid 2>/dev/null ) &
+( sleep 60; kill $pid ) >/dev/null 2>&1 &
+watchdog=$!
 wait $pid
+status=$?
+kill $watchdog 2>/dev/null
+exit $status
 """)
     os.chmod(script, 0o755)
     print("  $ xvfb-run " + script)
@@ -194,7 +200,10 @@ wait $pid
         c.check(s["slow_motion"] and s["paused"], "T slowed the game down and P paused it",
                 f"slow {s['slow_motion']}, paused {s['paused']}")
         c.check(s["gl_errors"] == 0 and s["gamepad"] is None, "no GL errors, no gamepad needed", str(s))
-        c.check(s["speed_over_deck_mps"] > 5.0, "the jet rolled forward over the deck (> 5 m/s)",
+        c.check(any(m.startswith("New sortie") and "saved" in m for m in s["messages"]) and
+                os.path.exists(os.path.join(tmp, "k.txt.acmi")),
+                "Backspace started a new sortie and saved the recording of the first", str(s["messages"]))
+        c.check(s["speed_over_deck_mps"] > 2.0, "the jet rolled forward over the deck (> 2 m/s; idle: < 0.1)",
                 str(s["speed_over_deck_mps"]))
 
 elif args.case == "bad-input":
