@@ -20,7 +20,7 @@ for t in acmi igc csv; do
         "$SRC/tests/fuzz" -newer "$WORK/fuzz_$t" -type f 2>/dev/null | head -1)" ]; then
         echo "building fuzz_$t"
         # shellcheck disable=SC2086
-        "$CXX" $FLAGS "$SRC/tests/fuzz/fuzz_$t.cpp" $LIB -lzip -lz -o "$WORK/fuzz_$t"
+        "$CXX" $FLAGS "$SRC/tests/fuzz/fuzz_$t.cpp" $LIB -lzip -lisal -o "$WORK/fuzz_$t"
     fi
 done
 # Seed corpora.

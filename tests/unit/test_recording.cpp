@@ -322,7 +322,7 @@ TEST(Acmi, ZipAndDetection) {
                   (dir / "junk.bin").string() +
                       ": unrecognised flight file format; supported: " + supportedFormats());
     }
-    // A member bigger than the 1 MiB buffers, deflated (inflated here with zlib) and stored (read by
+    // A member bigger than the 1 MiB buffers, deflated (inflated here with ISA-L) and stored (read by
     // libzip): both give the text file's recording; a damaged deflate stream is an error, not a short read.
     std::string big = std::string(HEADER);
     for (int f = 0; f < 3000; ++f) {
@@ -363,6 +363,27 @@ TEST(Acmi, ZipAndDetection) {
             ADD_FAILURE() << "damaged zip accepted";
         } catch (const RecordingError& e) {
             EXPECT_NE(std::string(e.what()).find("corrupt zip member"), std::string::npos) << e.what();
+        }
+    }
+    {
+        // The first deflate block's header made invalid (BFINAL 1, BTYPE 11, RFC 1951 3.2.3): named as such.
+        std::ifstream in(dir / "deflated.zip.acmi", std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        ASSERT_EQ(bytes.substr(0, 4), std::string("PK\x03\x04"));
+        auto u16 = [&](size_t at) {
+            return static_cast<size_t>(static_cast<unsigned char>(bytes[at])) |
+                   static_cast<size_t>(static_cast<unsigned char>(bytes[at + 1])) << 8;
+        };
+        const size_t data = 30 + u16(26) + u16(28); // local file header, name, extra (APPNOTE 4.3.7)
+        bytes[data] = 0x07;
+        writeFile(dir / "badblock.zip.acmi", bytes);
+        try {
+            readRecording(dir / "badblock.zip.acmi");
+            ADD_FAILURE() << "invalid deflate block accepted";
+        } catch (const RecordingError& e) {
+            EXPECT_NE(std::string(e.what()).find("corrupt zip member: inflate: invalid deflate block"),
+                      std::string::npos)
+                << e.what();
         }
     }
     writeFile(dir / "bad.zip", "PK\x03\x04 not really a zip");
