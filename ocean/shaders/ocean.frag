@@ -125,7 +125,8 @@ void main() {
         FOAM_ALBEDO / PI * (sunLight * (SUN_DIFFUSE_SCALE * max(dot(n, uSunDir), 0.0)) + skyIrradiance());
     vec3 color = mix(water, foamColor, foam);
 
-    // Fog between the eye and the surface (seed 003: f = e^(-tau n)), tau integrated over the height falloff.
-    float tau = fogOpticalDepth(uCameraHeight, z, dist) * fogNoiseFactor(vRel);
+    // Fog between the eye and the surface (seed 003: f = e^(-tau n)), tau integrated over the height falloff
+    // and the noise over the path (fogNoiseAlongPath).
+    float tau = fogOpticalDepth(uCameraHeight, z, dist) * fogNoiseAlongPath(vRel, uCameraHeight, z);
     fragColor = vec4(mix(fogColor(-v), color, exp(-tau)), 1.0);
 }

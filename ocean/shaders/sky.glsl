@@ -178,6 +178,28 @@ float fogNoiseFactor(vec3 rel) {
     return 1.0 + uFogNoise * (2.0 * texture(uFogNoiseMap, p).r - 1.0);
 }
 
+// The noise factor of the whole path from a sea point (camera-relative rel, altitude zSurface) to the eye at
+// zCamera: tau = integral rho(z) n ds over the path, rho = rho0 e^(-z/H), by the midpoint rule in optical
+// depth -- n at the three points that split the path's optical depth into equal thirds (quantiles 1/6, 1/2,
+// 5/6), tau = tau_plain * mean(n). Seed 003 evaluates n at the surface alone, which "gave fog which appeared
+// glued to the geometry surface" (its words): from altitude the noise then reads as blotches printed on the
+// sea, repeating at the noise tile. Along the path the noise moves through the air and a long path through
+// the layer averages it, as a real one does. The quantile's height above the surface is
+// -H ln(1 - q (1 - e^(-dz/H))), dz = zCamera - zSurface (uniform fog, H = 0, or a level path: q of the way).
+float fogNoiseAlongPath(vec3 rel, float zCamera, float zSurface) {
+    float H = uFogHeightFalloff;
+    float dz = zCamera - zSurface;
+    bool layered = H > 0.0 && abs(dz) > 1e-3 * H;
+    float decay = layered ? 1.0 - exp(-dz / H) : 0.0;
+    float n = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        float q = (float(k) + 0.5) / 3.0;
+        float s = layered ? -H * log(1.0 - q * decay) / dz : q; // fraction of the way to the eye
+        n += fogNoiseFactor(rel * (1.0 - s));
+    }
+    return n / 3.0;
+}
+
 // Fog seen along dir out to the sky from altitude z0: the transmittance of the fog between.
 float skyTransmittance(float z0, vec3 dir) {
     return exp(-fogOpticalDepthToSky(z0, dir));
