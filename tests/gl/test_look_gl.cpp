@@ -222,7 +222,7 @@ double repetition(const std::vector<double>& img, double altitude, double pitchD
 // sea's luminance must not repeat at the largest octave's tile (1109 m) nor at the fog noise's (12 km).
 // Measured (llvmpipe): with the fog noise taken at the sea point alone (seed 003, before fogNoiseAlongPath)
 // the 12 km repetition was 0.074 / 0.064 / 0.056 at 3 / 10 / 15 km -- the blotches the issue saw; along the
-// path -0.032 / -0.015 / 0.008. The octave tile: 0.009 / 0.002 / 0.001 either way.
+// path -0.032 / -0.001 / 0.003. The octave tile: 0.008 / 0.002 / 0.001 either way.
 TEST_F(LookGl, NoTileRepetitionFromAltitude) {
     const double octaveTile = ocean::OceanDesc{}.octaves.octaves[0].tileSize;
     for (const auto& [altitude, pitch] : {std::pair{3000.0, -20.0}, {10000.0, -30.0}, {15000.0, -35.0}}) {
