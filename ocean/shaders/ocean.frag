@@ -34,6 +34,33 @@ uniform float uFoamHeightStart; // H0
 uniform float uFoamHeightFull;  // Hmax
 uniform float uFoamJacobianThreshold;
 uniform float uFoamIntensity;
+uniform float uSubsurface;  // LightingDesc::subsurface
+uniform float uCrestHeight; // Hs / 2 of the surface model, metres
+
+// Sunlight scattered out of thin lit crests toward the eye (issue 10: "light scattered under the surface
+// brightens thin lit crests"). Sunlight entering a wave's sunward face crosses the crest, width
+// w = CREST_SCATTER_PATH, losing e^(-sigma w) (the red most: the glow is blue-green), and single scattering
+// in the lit water under the eye's side, over a length l = w c (c = z / crest height, clamped: the higher
+// and thinner the crest, the more of it the light reaches; none at or below mean sea level, where the
+// water body's own term holds), sends (b / sigma)(1 - e^(-sigma l)) of it on, per unit solid angle by the
+// Henyey-Greenstein phase function p(theta) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^(3/2)) (Henyey &
+// Greenstein 1941) of the angle between the light's travel (-sun) and the eye. The light enters through the crest's side: scaled by the sun's horizontal share, and by the
+// diffuse sun irradiance (SUN_DIFFUSE_SCALE) as foam is. The caller weights it by (1 - Fresnel). It fades
+// out with distance as foam does (FOAM_FADE_START..END): farther, the grid's sparse vertices alias the crest
+// heights, and beyond the displaced radius the skirt has none -- faded, there is no seam at either.
+vec3 crestScatter(vec3 v, float z, vec3 sunLight, float dist) {
+    if (uSubsurface <= 0.0 || uCrestHeight <= 0.0)
+        return vec3(0.0);
+    float c = clamp(z / uCrestHeight, 0.0, 1.0);
+    vec3 sigma = vec3(WATER_EXT_R, WATER_EXT_G, WATER_EXT_B);
+    vec3 single = WATER_SCATTERING / sigma * (1.0 - exp(-sigma * (CREST_SCATTER_PATH * c))) *
+                  exp(-sigma * CREST_SCATTER_PATH);
+    float g = CREST_SCATTER_G;
+    float cosTheta = dot(-uSunDir, v);
+    float phase = (1.0 - g * g) / (4.0 * PI * pow(1.0 + g * g - 2.0 * g * cosTheta, 1.5));
+    float fade = 1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist);
+    return uSubsurface * fade * SUN_DIFFUSE_SCALE * sunLight * length(uSunDir.xy) * phase * single;
+}
 
 // GPU Gems 2 §18.3: alpha = (H - H0) / (Hmax - H0), clamped (the C++ twin: foamAlpha in Lighting.h).
 float foamAlpha(float h) {
@@ -102,13 +129,14 @@ void main() {
     vec3 r = reflect(-v, n);
     r.z = abs(r.z); // rays reflected into the sea would hit another wave: use the sky above instead
     vec3 sunLight = sunLightAt(max(z, 0.0));
-    vec3 water = fresnel * reflectedSky(r, m2, max(z, 0.0)) + (1.0 - fresnel) * waterBody(v, n) +
+    vec2 fi = foamInputs(); // (height at this fragment, Jacobian)
+    vec3 water = fresnel * reflectedSky(r, m2, max(z, 0.0)) +
+                 (1.0 - fresnel) * (waterBody(v, n) + crestScatter(v, fi.x, sunLight, dist)) +
                  sunSpecular(n, v, m2, fresnel, sunLight);
 
     // Foam (§18.3): coverage from height and folding, textured by the pattern; a diffuse white (albedo
     // FOAM_ALBEDO) lit by the sun (SUN_DIFFUSE_SCALE) and the sky, covering the water's reflection and
     // highlight.
-    vec2 fi = foamInputs();
     float coverage = max(foamAlpha(fi.x), foamAlphaJacobian(fi.y)) * uFoamIntensity *
                      (1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist));
     // The coverage thresholds the pattern: a little coverage shows only its densest films and bubbles,

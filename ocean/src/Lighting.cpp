@@ -276,6 +276,8 @@ void validateLighting(const LightingDesc& l) {
                  std::to_string(l.waterColor[i]));
     if (!finite(l.normalTilt) || l.normalTilt < 0.0f || l.normalTilt > 1.0f)
         fail("normalTilt must be in [0, 1], got " + std::to_string(l.normalTilt));
+    if (!finite(l.subsurface) || l.subsurface < 0.0f || l.subsurface > 10.0f)
+        fail("subsurface must be in [0, 10], got " + std::to_string(l.subsurface));
     if (!finite(l.microSlopeVariance) || l.microSlopeVariance < 0.0f || l.microSlopeVariance > 1.0f)
         fail("microSlopeVariance must be in [0, 1], got " + std::to_string(l.microSlopeVariance));
     if (l.environment) {

@@ -211,6 +211,9 @@ void setSurfaceUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer:
                        static_cast<float>(frame.camera.origin.z));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uDisplaceRadius"),
                        static_cast<float>(ocean.desc.grid.rMax * 1.0001));
+    // ocean.frag's crest height for the light scattered out of crests: Hs / 2 of the model.
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uCrestHeight"),
+                       static_cast<float>(0.5 * ocean.surface->significantWaveHeight()));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
                        ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
 }

@@ -127,6 +127,8 @@ def make_cases(inputs, demo):
          ["--sun-elevation must be in [-90, 90] degrees, got 95"], []),
         ("--fog-density -1", [demo], QUICK + ["--fog-density", "-1"], {}, 2,
          ["--fog-density must be finite and >= 0", "got -1"], []),
+        ("--subsurface 11", [demo], QUICK + ["--subsurface", "11"], {}, 2, ["--subsurface must be in [0, 10]", "got 11"],
+         []),
         ("--fog-color 1,2", [demo], QUICK + ["--fog-color", "1,2"], {}, 2, ["--fog-color", "R,G,B", "'1,2'"], []),
         ("--foam-height-full below --foam-height-start", [demo], QUICK + ["--foam-height-full", "1"], {}, 2,
          ["--foam-height-full (1 m) must be > --foam-height-start (1.6 m)"], []),

@@ -240,3 +240,226 @@ TEST_F(LookGl, NoTileRepetitionFromAltitude) {
         }
     }
 }
+
+namespace {
+
+/// The luminance step where the sea crosses `radius` (the displaced grid's outer ring, then the undisplaced
+/// skirt), seen from `altitude` with `pitchDeg`, `rollDeg`, heading `headingDeg`, sun at `sunElevationDeg`
+/// in the east. For each screen column the rows whose ray meets the (curved) sea within 4 km inside and
+/// outside the radius get a straight line each, luminance against distance; the two lines' values at the
+/// radius differ by the step, divided by their mean. A seam is the same step in every column; the sea's own
+/// texture (glitter streaks, fog noise) gives each column's fit a random error. Returns the mean signed step
+/// over the columns with >= 4 rows each side (so a local trend is not taken for a step), `spread` the
+/// median |step| (the columns' noise), and `columns` the columns measured.
+double edgeStep(double altitude, double pitchDeg, double rollDeg, double headingDeg, double sunElevationDeg,
+                double radius, double& spread, int& columns) {
+    constexpr int W = 384, H = 384;
+    ocean::OceanDesc d = ocean::applySeaState({}, {12.0, 60.0});
+    const double el = sunElevationDeg * M_PI / 180.0;
+    d.lighting.sunDirection = glm::dvec3(std::cos(el), 0.0, std::sin(el));
+    // The fog noise's horizontal bands are common to all columns and would pass for a step where one meets
+    // the edge; the seam is a property of the grid, so it is measured without them.
+    d.lighting.fogNoise = 0.0f;
+    ecs::Registry registry;
+    registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(d));
+    ocean::OceanRenderer renderer;
+    gl::FrameTargets targets(W, H);
+    Pose cam;
+    cam.position = {2.2e5, -3.3e5, altitude};
+    cam.headingDeg = headingDeg;
+    cam.pitchDeg = pitchDeg;
+    cam.rollDeg = rollDeg;
+    ocean::OceanFrame f;
+    f.camera = makeCameraFrame(cam, static_cast<float>(30.0 * M_PI / 180.0), 1.0f, 1.0f);
+    f.time = 55.0;
+    f.targetFramebuffer = targets.sceneFramebuffer().id();
+    f.width = W;
+    f.height = H;
+    renderer.render(registry, f);
+    std::vector<float> px;
+    targets.readScene(px);
+    const glm::mat4 inv = glm::inverse(f.camera.viewProj);
+    const double k = 1.0 / (2.0 * ocean::EARTH_RADIUS);
+    std::vector<double> steps;
+    for (int col = 0; col < W; ++col) {
+        std::vector<std::pair<double, double>> in, out; // (distance, luminance)
+        for (int row = 0; row < H; ++row) {
+            const glm::vec4 ndc((col + 0.5f) / W * 2.0f - 1.0f, 1.0f - (row + 0.5f) / H * 2.0f, 1.0f, 1.0f);
+            const glm::vec4 p = inv * ndc;
+            const glm::dvec3 dir = glm::normalize(glm::dvec3(p) / double(p.w));
+            // altitude + t dir.z = -k (t |dir.xy|)^2: the nearer root.
+            const double a = k * (dir.x * dir.x + dir.y * dir.y), b = dir.z, c = altitude;
+            const double disc = b * b - 4.0 * a * c;
+            if (b >= 0.0 || disc < 0.0)
+                continue;
+            const double t = (-b - std::sqrt(disc)) / (2.0 * a);
+            const double dist = t * std::sqrt(dir.x * dir.x + dir.y * dir.y);
+            const size_t i = static_cast<size_t>(row * W + col) * 4;
+            const double lum = 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2];
+            if (dist > radius - 4000.0 && dist < radius - 200.0)
+                in.push_back({dist, lum});
+            else if (dist > radius + 200.0 && dist < radius + 4000.0)
+                out.push_back({dist, lum});
+        }
+        if (in.size() < 4 || out.size() < 4)
+            continue;
+        auto lineAt = [&](const std::vector<std::pair<double, double>>& s) {
+            double sx = 0, sy = 0, sxx = 0, sxy = 0;
+            for (const auto& [x, y] : s) {
+                sx += x - radius;
+                sy += y;
+                sxx += (x - radius) * (x - radius);
+                sxy += (x - radius) * y;
+            }
+            const double n = static_cast<double>(s.size());
+            const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+            return (sy - slope * sx) / n; // the value at the radius
+        };
+        const double li = lineAt(in), lo = lineAt(out);
+        steps.push_back((lo - li) / (0.5 * (li + lo)));
+    }
+    columns = static_cast<int>(steps.size());
+    if (steps.empty())
+        return 0.0;
+    double mean = 0.0;
+    std::vector<double> magnitudes;
+    for (double s : steps) {
+        mean += s;
+        magnitudes.push_back(std::abs(s));
+    }
+    std::sort(magnitudes.begin(), magnitudes.end());
+    spread = magnitudes[magnitudes.size() / 2];
+    return mean / static_cast<double>(steps.size());
+}
+
+} // namespace
+
+// Issue 10 item 1: no seam where the displaced grid ends (rMax, 40 km) and the undisplaced skirt begins --
+// seen from 4 km banked toward the sun (the issue's view), and from 10 and 15 km with the edge in the glitter
+// and away from it: the luminance step at the edge, the same in every column if there were a seam, stays
+// below 1% of the local mean (mean over the columns; each column's own fit noise is printed).
+TEST_F(LookGl, NoSeamAtTheGridsOuterRadius) {
+    const double rMax = ocean::OceanDesc{}.grid.rMax;
+    struct View {
+        double altitude, pitch, roll, heading, sunElevation;
+    };
+    for (const View& v : {View{4000.0, -6.0, 25.0, 90.0, 8.0}, View{10000.0, -14.0, 0.0, 90.0, 20.0},
+                          View{15000.0, -20.0, 0.0, 270.0, 30.0}}) {
+        int columns = 0;
+        double spread = 0.0;
+        const double step =
+            edgeStep(v.altitude, v.pitch, v.roll, v.heading, v.sunElevation, rMax, spread, columns);
+        std::printf(
+            "from %5.0f m (pitch %.0f, roll %.0f, heading %.0f, sun %.0f deg high): step at the %.0f km "
+            "edge %+.4f of the local mean over %d columns (median |step| of one column %.4f)\n",
+            v.altitude, v.pitch, v.roll, v.heading, v.sunElevation, rMax / 1000.0, step, columns, spread);
+        RecordProperty("edge_step_" + std::to_string(static_cast<int>(v.altitude)), std::to_string(step));
+        EXPECT_GE(columns, 100) << "the edge must cross most of the view";
+        EXPECT_LT(std::abs(step), 0.01) << "from " << v.altitude << " m";
+    }
+}
+
+namespace {
+
+struct CrestGlow {
+    double meanDelta = 0.0;    ///< mean over sea pixels of with - without (luminance)
+    double meanGain = 0.0;     ///< mean over sea pixels of (with - without) / without
+    double heightCorr = 0.0;   ///< Pearson correlation of (with - without) with max(height, 0)
+    double greenOverRed = 0.0; ///< summed green gain / summed red gain
+};
+
+/// Renders the 12 m/s sea from 100 m, pitched 45 degrees down, heading `headingDeg`, a sun 10 degrees high
+/// in the east, with and without LightingDesc::subsurface, and relates the difference to the CPU height
+/// under each pixel (the pixel's ray met with the displaced surface by fixed-point iteration).
+CrestGlow crestGlow(double headingDeg) {
+    constexpr int W = 256, H = 256;
+    const double altitude = 100.0, time = 31.0;
+    const double el = 10.0 * M_PI / 180.0;
+    Pose cam;
+    cam.position = {5.1e4, 7.7e4, altitude};
+    cam.headingDeg = headingDeg;
+    cam.pitchDeg = -45.0;
+    const CameraFrame camera = makeCameraFrame(cam, static_cast<float>(50.0 * M_PI / 180.0), 1.0f, 1.0f);
+    auto describe = [&](float subsurface) {
+        ocean::OceanDesc d = ocean::applySeaState({}, {12.0, 60.0});
+        d.lighting.sunDirection = glm::dvec3(std::cos(el), 0.0, std::sin(el));
+        d.lighting.foamIntensity = 0.0f; // the crests' own light, not their foam
+        d.lighting.subsurface = subsurface;
+        return d;
+    };
+    auto render = [&](float subsurface) {
+        ecs::Registry registry;
+        registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(describe(subsurface)));
+        ocean::OceanRenderer renderer;
+        gl::FrameTargets targets(W, H);
+        ocean::OceanFrame f;
+        f.camera = camera;
+        f.time = time;
+        f.targetFramebuffer = targets.sceneFramebuffer().id();
+        f.width = W;
+        f.height = H;
+        renderer.render(registry, f);
+        std::vector<float> px;
+        targets.readScene(px);
+        return px;
+    };
+    const std::shared_ptr<const ocean::SurfaceModel> surface = ocean::makeOcean(describe(1.0f)).surface;
+    const std::vector<float> with = render(1.0f);
+    const std::vector<float> without = render(0.0f);
+    const glm::mat4 inv = glm::inverse(camera.viewProj);
+    const glm::dvec3 origin = camera.origin;
+    CrestGlow g;
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, n = 0, gain = 0, red = 0, green = 0;
+    for (int row = 0; row < H; ++row)
+        for (int col = 0; col < W; ++col) {
+            const glm::vec4 ndc((col + 0.5f) / W * 2.0f - 1.0f, 1.0f - (row + 0.5f) / H * 2.0f, 1.0f, 1.0f);
+            const glm::vec4 p = inv * ndc;
+            const glm::dvec3 dir = glm::normalize(glm::dvec3(p) / double(p.w));
+            double h = 0.0;
+            glm::dvec2 xy(0.0);
+            for (int it = 0; it < 6; ++it) { // the ray meets z = h(x, y)
+                const double t = (h - altitude) / dir.z;
+                xy = glm::dvec2(origin) + t * glm::dvec2(dir);
+                h = surface->heightAt(xy, time);
+            }
+            const size_t i = static_cast<size_t>(row * W + col) * 4;
+            const double lw = 0.2126 * with[i] + 0.7152 * with[i + 1] + 0.0722 * with[i + 2];
+            const double lo = 0.2126 * without[i] + 0.7152 * without[i + 1] + 0.0722 * without[i + 2];
+            const double x = std::max(h, 0.0), y = lw - lo;
+            sx += x;
+            sy += y;
+            sxx += x * x;
+            syy += y * y;
+            sxy += x * y;
+            n += 1;
+            gain += y / lo;
+            red += with[i] - without[i];
+            green += with[i + 1] - without[i + 1];
+        }
+    g.meanGain = gain / n;
+    g.meanDelta = sy / n;
+    g.heightCorr = (n * sxy - sx * sy) / std::sqrt((n * sxx - sx * sx) * (n * syy - sy * sy));
+    g.greenOverRed = green / std::max(red, 1e-12);
+    return g;
+}
+
+} // namespace
+
+// Issue 10 item 5: light scattered under the surface brightens thin lit crests. Looking toward a low sun the
+// added light follows the crests (its correlation with the height above mean sea level), is blue-green (red
+// is absorbed on the way), and brightens the sea by a visible amount; looking away from the sun (back
+// scattering) it nearly vanishes.
+TEST_F(LookGl, ThinLitCrestsGlow) {
+    const CrestGlow toward = crestGlow(90.0), away = crestGlow(270.0);
+    std::printf(
+        "toward the sun: mean gain %.4f (%.5f), correlation with the crest height %.3f, green/red %.2f; "
+        "away: mean gain %.4f (%.5f)\n",
+        toward.meanGain, toward.meanDelta, toward.heightCorr, toward.greenOverRed, away.meanGain,
+        away.meanDelta);
+    RecordProperty("crest_gain_toward", std::to_string(toward.meanGain));
+    RecordProperty("crest_height_correlation", std::to_string(toward.heightCorr));
+    EXPECT_GT(toward.meanGain, 0.03);
+    EXPECT_GT(toward.heightCorr, 0.6);
+    EXPECT_GT(toward.greenOverRed, 2.0);
+    EXPECT_LT(away.meanDelta, 0.3 * toward.meanDelta);
+}

@@ -223,6 +223,12 @@ TEST(LightingValidation, NamesTheField) {
     l.fogNoise = 2.0f;
     EXPECT_NE(message(l).find("OceanDesc.lighting.fogNoise"), std::string::npos) << message(l);
     l = {};
+    l.subsurface = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_NE(message(l).find("OceanDesc.lighting.subsurface"), std::string::npos) << message(l);
+    l = {};
+    l.subsurface = 11.0f;
+    EXPECT_NE(message(l).find("OceanDesc.lighting.subsurface"), std::string::npos) << message(l);
+    l = {};
     l.fogHeightFalloff = -1.0f;
     EXPECT_NE(message(l).find("OceanDesc.lighting.fogHeightFalloff"), std::string::npos) << message(l);
     l = {};

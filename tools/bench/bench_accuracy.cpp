@@ -171,6 +171,9 @@ std::vector<Setting> sweep(bool quick) {
             for (int n : {64, 128}) // 256 = baseline
                 add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
         add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
+        // Look features (issue 10): what switching each off changes in the image, and saves.
+        add(m, "subsurface", "off", [](ocean::OceanDesc& d) { d.lighting.subsurface = 0.0f; });
+        add(m, "fog_noise", "off", [](ocean::OceanDesc& d) { d.lighting.fogNoise = 0.0f; });
         for (double px : {0.5, 1.0, 2.0}) // screen-space ring thinning (0 = baseline: every ring)
             add(m, "min_ring_pixels", bench::num(px),
                 [px](ocean::OceanDesc& d) { d.grid.minRingPixels = px; });

@@ -108,6 +108,8 @@ void applyLighting(const OceanOptions& o, ocean::LightingDesc& l) {
         l.foamIntensity = checked(o.foamIntensity, "--foam-intensity", 0.0, INF);
     if (o.normalTilt)
         l.normalTilt = checked(o.normalTilt, "--normal-tilt", 0.0, 1.0);
+    if (o.subsurface)
+        l.subsurface = checked(o.subsurface, "--subsurface", 0.0, 10.0);
     try {
         ocean::validateLighting(l); // the checks above name the options; this is the library's own
     } catch (const std::invalid_argument& e) {
@@ -219,6 +221,8 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--foam-jacobian", o.foamJacobian, "folding foam below this Jacobian (default 0.3)");
     app.add_option("--foam-intensity", o.foamIntensity, "foam coverage scale; 0 = no foam (default 1)");
     app.add_option("--normal-tilt", o.normalTilt, "tilt of the lighting normal toward the viewer, 0..1");
+    app.add_option("--subsurface", o.subsurface,
+                   "scale of the sunlight scattered out of thin lit crests, 0..10; 0 = off (default 1)");
 }
 
 namespace {

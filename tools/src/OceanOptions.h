@@ -53,6 +53,7 @@ struct OceanOptions {
     std::string waterColor;                 ///< "R,G,B" scene-linear; empty = DEEP_WATER_COLOR
     std::optional<double> foamHeightStart, foamHeightFull, foamJacobian, foamIntensity;
     std::optional<double> normalTilt; ///< [0, 1]
+    std::optional<double> subsurface; ///< [0, 10]
 };
 
 /// Adds --model, --grid, --grid-rings, --grid-segments, --vertex-filter, --combined, --no-cull,
@@ -62,8 +63,8 @@ struct OceanOptions {
 /// --fetch,
 /// --choppiness, --fft-tile, --height-map and the lighting options --sun-elevation,
 /// --sun-azimuth, --sun-intensity, --sky-intensity, --fog-density, --fog-height-falloff, --fog-noise,
-/// --fog-color, --foam-height-start, --foam-height-full, --foam-jacobian, --foam-intensity, --normal-tilt
-/// to a (sub)command.
+/// --fog-color, --foam-height-start, --foam-height-full, --foam-jacobian, --foam-intensity, --normal-tilt,
+/// --subsurface to a (sub)command.
 void addOceanOptions(CLI::App& app, OceanOptions& options);
 
 /// The OceanDesc the options describe; reads the --height-map files. Throws UsageError (Replay.h) naming

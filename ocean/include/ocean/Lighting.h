@@ -134,6 +134,9 @@ struct LightingDesc {
     /// Upwelling radiance of the water body seen straight down under the default sky (seed 004's "dull
     /// colour"; oblique views and other skies scale it, sky.glsl waterBody), scene-linear, each >= 0.
     glm::vec3 waterColor{DEEP_WATER_COLOR[0], DEEP_WATER_COLOR[1], DEEP_WATER_COLOR[2]};
+    /// Scale of the sunlight scattered out of thin lit crests toward the eye (ocean.frag crestScatter:
+    /// single scattering over the crest's sunlit path, Henyey-Greenstein forward lobe), in [0, 10]; 0 = off.
+    float subsurface = 1.0f;
 };
 
 /// Throws std::invalid_argument naming the first bad field ("OceanDesc.lighting.fogDensity must be ...").

@@ -26,7 +26,15 @@ inline constexpr float WATER_SCATTER_DEPTH = 8.0f;
 /// calibrated for the specular glitter: 0.2 puts the default sun at ~6x the procedural sky's irradiance, the
 /// clear-day ratio of direct to diffuse light, so sunlit foam is bright without losing its texture.
 inline constexpr float SUN_DIFFUSE_SCALE = 0.2f;
-inline constexpr float FOAM_ALBEDO = 0.8f;        ///< diffuse reflectance of whitecap foam
+inline constexpr float FOAM_ALBEDO = 0.8f; ///< diffuse reflectance of whitecap foam
+/// Light scattered out of thin lit crests (ocean.frag crestScatter): the scattering coefficient b of clear
+/// ocean water, 1/m (Mobley 1994, "Light and Water", ch. 3: b ~ 0.03 m^-1 for case-1 water, mostly forward
+/// scattering by particles), the Henyey-Greenstein asymmetry g of that scattering (a soft forward lobe;
+/// Petzold's ocean phase function is more peaked, g ~ 0.9, but the crest's surfaces spread it), and the
+/// length of the sunlit path through a crest standing one crest height (Hs / 2) above mean sea level, m.
+inline constexpr float WATER_SCATTERING = 0.03f;
+inline constexpr float CREST_SCATTER_G = 0.6f;
+inline constexpr float CREST_SCATTER_PATH = 3.0f;
 inline constexpr int FOAM_PATTERN_SIZE = 256;     ///< texels per side of the foam texture (mipmapped)
 inline constexpr double FOAM_TILE_NEAR = 7.3;     ///< metres per repeat of the fine foam layer
 inline constexpr double FOAM_TILE_FAR = 23.9;     ///< metres per repeat of the coarse layer (incommensurate)

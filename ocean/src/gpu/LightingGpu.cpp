@@ -126,6 +126,7 @@ void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& 
     glProgramUniform1f(prog, loc("uSunIntensity"), l.sunIntensity);
     glProgramUniform1f(prog, loc("uNormalTilt"), l.normalTilt);
     glProgramUniform1f(prog, loc("uMicroSlopeVariance"), l.microSlopeVariance);
+    glProgramUniform1f(prog, loc("uSubsurface"), l.subsurface);
 
     // Environment map on firstUnit (the sampler always names its unit: see LightingGpu.h).
     const Environment* env = environmentFor(l.environment);
