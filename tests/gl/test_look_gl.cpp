@@ -31,6 +31,31 @@ namespace {
 constexpr int N = 256;
 constexpr double ALTITUDE = 2000.0, SUN_ELEVATION_DEG = 50.0;
 
+/// Renders the sea of `desc` (alone) from `camera` at `time` into a w x h scene-linear RGBA image, rows top
+/// down.
+std::vector<float> renderSea(const ocean::OceanDesc& desc, const CameraFrame& camera, double time, int w,
+                             int h) {
+    ecs::Registry registry;
+    registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(desc));
+    ocean::OceanRenderer renderer;
+    gl::FrameTargets targets(w, h);
+    ocean::OceanFrame f;
+    f.camera = camera;
+    f.time = time;
+    f.targetFramebuffer = targets.sceneFramebuffer().id();
+    f.width = w;
+    f.height = h;
+    renderer.render(registry, f);
+    std::vector<float> px;
+    targets.readScene(px);
+    return px;
+}
+
+/// Rec. 709 luminance of pixel i of an RGBA image.
+double luminance(const std::vector<float>& px, size_t i) {
+    return 0.2126 * px[i * 4] + 0.7152 * px[i * 4 + 1] + 0.0722 * px[i * 4 + 2];
+}
+
 /// The fitted Beckmann mean-square slope of the rendered glitter at wind speed u.
 double glitterSlopeVariance(double u) {
     const double el = SUN_ELEVATION_DEG * M_PI / 180.0;
@@ -42,24 +67,12 @@ double glitterSlopeVariance(double u) {
         d.lighting.normalTilt = 0.0f; // the fit assumes the surface's own normals
         d.lighting.fogDensity = 0.0f; // no sunlight lost on the way
         d.lighting.foamIntensity = 0.0f;
-        ecs::Registry registry;
-        registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(d));
-        ocean::OceanRenderer renderer;
-        gl::FrameTargets targets(N, N);
         Pose cam;
         cam.position = {3.0e5, -2.0e5, ALTITUDE};
         cam.headingDeg = 180.0; // toward the sun
         cam.pitchDeg = -SUN_ELEVATION_DEG;
-        ocean::OceanFrame f;
-        f.camera = makeCameraFrame(cam, static_cast<float>(100.0 * M_PI / 180.0), 1.0f, 1.0f);
-        f.time = 17.0;
-        f.targetFramebuffer = targets.sceneFramebuffer().id();
-        f.width = N;
-        f.height = N;
-        renderer.render(registry, f);
-        std::vector<float> px;
-        targets.readScene(px);
-        return std::make_pair(px, f.camera);
+        const CameraFrame camera = makeCameraFrame(cam, static_cast<float>(100.0 * M_PI / 180.0), 1.0f, 1.0f);
+        return std::make_pair(renderSea(d, camera, 17.0, N, N), camera);
     };
     const auto [lit, camera] = render(40.0f);
     const auto [unlit, camera2] = render(0.0f);
@@ -144,27 +157,18 @@ std::vector<double> obliqueLuminance(double altitude, double pitchDeg) {
     const double el = 30.0 * M_PI / 180.0;
     d.lighting.sunDirection = glm::dvec3(std::cos(el), 0.0, std::sin(el)); // in the east
     d.lighting.foamIntensity = 0.0f;
-    ecs::Registry registry;
-    registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(d));
-    ocean::OceanRenderer renderer;
-    gl::FrameTargets targets(TW, TH);
     Pose cam;
     cam.position = {-7.3e5, 4.1e5, altitude};
     cam.headingDeg = 270.0;
     cam.pitchDeg = pitchDeg;
-    ocean::OceanFrame f;
-    f.camera = makeCameraFrame(cam, static_cast<float>(TILING_FOV_DEG * M_PI / 180.0),
-                               static_cast<float>(TW) / TH, 1.0f);
-    f.time = 123.0;
-    f.targetFramebuffer = targets.sceneFramebuffer().id();
-    f.width = TW;
-    f.height = TH;
-    renderer.render(registry, f);
-    std::vector<float> px;
-    targets.readScene(px);
+    const std::vector<float> px =
+        renderSea(d,
+                  makeCameraFrame(cam, static_cast<float>(TILING_FOV_DEG * M_PI / 180.0),
+                                  static_cast<float>(TW) / TH, 1.0f),
+                  123.0, TW, TH);
     std::vector<double> y(static_cast<size_t>(TW) * TH);
     for (size_t i = 0; i < y.size(); ++i)
-        y[i] = 0.2126 * px[i * 4] + 0.7152 * px[i * 4 + 1] + 0.0722 * px[i * 4 + 2];
+        y[i] = luminance(px, i);
     return y;
 }
 
@@ -260,25 +264,14 @@ double edgeStep(double altitude, double pitchDeg, double rollDeg, double heading
     // The fog noise's horizontal bands are common to all columns and would pass for a step where one meets
     // the edge; the seam is a property of the grid, so it is measured without them.
     d.lighting.fogNoise = 0.0f;
-    ecs::Registry registry;
-    registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(d));
-    ocean::OceanRenderer renderer;
-    gl::FrameTargets targets(W, H);
     Pose cam;
     cam.position = {2.2e5, -3.3e5, altitude};
     cam.headingDeg = headingDeg;
     cam.pitchDeg = pitchDeg;
     cam.rollDeg = rollDeg;
-    ocean::OceanFrame f;
-    f.camera = makeCameraFrame(cam, static_cast<float>(30.0 * M_PI / 180.0), 1.0f, 1.0f);
-    f.time = 55.0;
-    f.targetFramebuffer = targets.sceneFramebuffer().id();
-    f.width = W;
-    f.height = H;
-    renderer.render(registry, f);
-    std::vector<float> px;
-    targets.readScene(px);
-    const glm::mat4 inv = glm::inverse(f.camera.viewProj);
+    const CameraFrame camera = makeCameraFrame(cam, static_cast<float>(30.0 * M_PI / 180.0), 1.0f, 1.0f);
+    const std::vector<float> px = renderSea(d, camera, 55.0, W, H);
+    const glm::mat4 inv = glm::inverse(camera.viewProj);
     const double k = 1.0 / (2.0 * ocean::EARTH_RADIUS);
     std::vector<double> steps;
     for (int col = 0; col < W; ++col) {
@@ -294,8 +287,7 @@ double edgeStep(double altitude, double pitchDeg, double rollDeg, double heading
                 continue;
             const double t = (-b - std::sqrt(disc)) / (2.0 * a);
             const double dist = t * std::sqrt(dir.x * dir.x + dir.y * dir.y);
-            const size_t i = static_cast<size_t>(row * W + col) * 4;
-            const double lum = 0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2];
+            const double lum = luminance(px, static_cast<size_t>(row * W + col));
             if (dist > radius - 4000.0 && dist < radius - 200.0)
                 in.push_back({dist, lum});
             else if (dist > radius + 200.0 && dist < radius + 4000.0)
@@ -387,22 +379,7 @@ CrestGlow crestGlow(double headingDeg) {
         d.lighting.subsurface = subsurface;
         return d;
     };
-    auto render = [&](float subsurface) {
-        ecs::Registry registry;
-        registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(describe(subsurface)));
-        ocean::OceanRenderer renderer;
-        gl::FrameTargets targets(W, H);
-        ocean::OceanFrame f;
-        f.camera = camera;
-        f.time = time;
-        f.targetFramebuffer = targets.sceneFramebuffer().id();
-        f.width = W;
-        f.height = H;
-        renderer.render(registry, f);
-        std::vector<float> px;
-        targets.readScene(px);
-        return px;
-    };
+    auto render = [&](float subsurface) { return renderSea(describe(subsurface), camera, time, W, H); };
     const std::shared_ptr<const ocean::SurfaceModel> surface = ocean::makeOcean(describe(1.0f)).surface;
     const std::vector<float> with = render(1.0f);
     const std::vector<float> without = render(0.0f);
@@ -423,8 +400,8 @@ CrestGlow crestGlow(double headingDeg) {
                 h = surface->heightAt(xy, time);
             }
             const size_t i = static_cast<size_t>(row * W + col) * 4;
-            const double lw = 0.2126 * with[i] + 0.7152 * with[i + 1] + 0.0722 * with[i + 2];
-            const double lo = 0.2126 * without[i] + 0.7152 * without[i + 1] + 0.0722 * without[i + 2];
+            const double lw = luminance(with, static_cast<size_t>(row * W + col));
+            const double lo = luminance(without, static_cast<size_t>(row * W + col));
             const double x = std::max(h, 0.0), y = lw - lo;
             sx += x;
             sy += y;
