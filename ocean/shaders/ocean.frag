@@ -39,27 +39,29 @@ uniform float uCrestHeight; // Hs / 2 of the surface model, metres
 
 // Sunlight scattered out of thin lit crests toward the eye (issue 10: "light scattered under the surface
 // brightens thin lit crests"). Sunlight entering a wave's sunward face crosses the crest, width
-// w = CREST_SCATTER_PATH, losing e^(-sigma w) (the red most: the glow is blue-green), and single scattering
-// in the lit water under the eye's side, over a length l = w c (c = z / crest height, clamped: the higher
-// and thinner the crest, the more of it the light reaches; none at or below mean sea level, where the
-// water body's own term holds), sends (b / sigma)(1 - e^(-sigma l)) of it on, per unit solid angle by the
-// Henyey-Greenstein phase function p(theta) = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos theta)^(3/2)) (Henyey &
-// Greenstein 1941) of the angle between the light's travel (-sun) and the eye. The light enters through the crest's side: scaled by the sun's horizontal share, and by the
-// diffuse sun irradiance (SUN_DIFFUSE_SCALE) as foam is. The caller weights it by (1 - Fresnel). It fades
-// out with distance as foam does (FOAM_FADE_START..END): farther, the grid's sparse vertices alias the crest
-// heights, and beyond the displaced radius the skirt has none -- faded, there is no seam at either.
+// w = CREST_SCATTER_PATH, losing e^(-sigma w) (the red most: the glow is blue-green), and is scattered on in
+// the lit water under the eye's side over a length l = w c (c = z / crest height, clamped: the higher and
+// thinner the crest, the more of it the light reaches; none at or below mean sea level, where the water
+// body's own term holds): single scattering b l in the thin-path limit of (b / sigma)(1 - e^(-sigma l))
+// (within 11% in green at c = 1; red, the channel it overstates, is mostly gone by then), per unit solid
+// angle by Schlick's approximation of the Henyey-Greenstein phase function, p = (1 - k^2) / (4 pi
+// (1 - k cos theta)^2), k = 1.55 g - 0.55 g^3 (Blasi, Le Saec & Schlick 1993), of the angle between the
+// light's travel (-sun) and the eye. The light enters through the crest's side: scaled by the sun's
+// horizontal share, and by the diffuse sun irradiance (SUN_DIFFUSE_SCALE) as foam is. The caller weights it
+// by (1 - Fresnel). It fades out with distance as foam does (FOAM_FADE_START..END): farther, the grid's
+// sparse vertices alias the crest heights, and beyond the displaced radius the skirt has none -- faded,
+// there is no seam at either. Per pixel it is a few multiplies and one division (the exponentials are
+// constants): the GPU's graphics pipe has few SMs here, so exp() per channel per pixel showed in the frame.
 vec3 crestScatter(vec3 v, float z, vec3 sunLight, float dist) {
-    if (uSubsurface <= 0.0 || uCrestHeight <= 0.0)
-        return vec3(0.0);
-    float c = clamp(z / uCrestHeight, 0.0, 1.0);
-    vec3 sigma = vec3(WATER_EXT_R, WATER_EXT_G, WATER_EXT_B);
-    vec3 single = WATER_SCATTERING / sigma * (1.0 - exp(-sigma * (CREST_SCATTER_PATH * c))) *
-                  exp(-sigma * CREST_SCATTER_PATH);
-    float g = CREST_SCATTER_G;
-    float cosTheta = dot(-uSunDir, v);
-    float phase = (1.0 - g * g) / (4.0 * PI * pow(1.0 + g * g - 2.0 * g * cosTheta, 1.5));
-    float fade = 1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist);
-    return uSubsurface * fade * SUN_DIFFUSE_SCALE * sunLight * length(uSunDir.xy) * phase * single;
+    float c = uCrestHeight > 0.0 ? clamp(z / uCrestHeight, 0.0, 1.0) : 0.0;
+    float weight = uSubsurface * c * (1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist));
+    const vec3 sigma = vec3(WATER_EXT_R, WATER_EXT_G, WATER_EXT_B);
+    const vec3 perCrest = WATER_SCATTERING * CREST_SCATTER_PATH * exp(-sigma * CREST_SCATTER_PATH);
+    const float g = CREST_SCATTER_G;
+    const float k = 1.55 * g - 0.55 * g * g * g;
+    float d = 1.0 - k * dot(-uSunDir, v);
+    float phase = (1.0 - k * k) / (4.0 * PI * d * d);
+    return (weight * SUN_DIFFUSE_SCALE * phase * length(uSunDir.xy)) * sunLight * perCrest;
 }
 
 // GPU Gems 2 §18.3: alpha = (H - H0) / (Hmax - H0), clamped (the C++ twin: foamAlpha in Lighting.h).
