@@ -16,6 +16,7 @@
 #include <engine/Ecs.h>
 #include <engine/Log.h>
 #include <engine/Space.h>
+#include <engine/Stats.h>
 #include <engine/Time.h>
 #if PACIFICA_GAME_SCREENSHOTS
 #include <engine/capture/Capture.h>
@@ -63,14 +64,6 @@ constexpr double WATCH_S = 10.0;            ///< the weapon camera watches an im
 constexpr double PREHISTORY_S = 120.0;      ///< ships sail this long before the first frame (wakes)
 constexpr double AIRCRAFT_LENGTH = 17.0;    ///< m, the drawn jet
 constexpr double SCRIPTED_RECORD_HZ = 10.0; ///< recording rate of positions (events keep their own time)
-
-double median(std::vector<double> v) {
-    if (v.empty())
-        return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /// The ocean for a quality preset, surface model and sea state: the wind speed sets every model's wave
 /// height and the whitecap coverage through ocean::applySeaState (ocean/SeaState.h).

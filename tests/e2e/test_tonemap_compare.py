@@ -18,14 +18,14 @@ Usage: test_tonemap_compare.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 
 """
 import json
 import os
-import struct
 import subprocess
 import sys
 import time
-import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "common"))
 import test_e2e  # noqa: E402
+from pngread import read_png  # noqa: E402
 from test_e2e import child_env, oiio_tool  # noqa: E402
 
 RUN_TIMEOUT_S = 240
@@ -42,41 +42,6 @@ def run(exe, args):
     p = subprocess.run(cmd, env=child_env(), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
     print(f"    exit {p.returncode} after {time.monotonic() - t:.1f} s")
     return p
-
-
-def png_rows(path):
-    """Decodes an 8-bit RGB PNG (what the tool writes) into (width, height, rows of bytes)."""
-    with open(path, "rb") as f:
-        data = f.read()
-    pos, idat, width, height = 8, b"", 0, 0
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            width, height, depth, ctype = struct.unpack(">IIBB", body[:10])
-            assert depth == 8 and ctype == 2, "expected 8-bit RGB"
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + n
-    raw, stride, rows, prev = zlib.decompress(idat), width * 3, [], bytearray(width * 3)
-    for y in range(height):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - 3] if i >= 3 else 0
-            b, c = prev[i], prev[i - 3] if i >= 3 else 0
-            if f == 1:
-                line[i] = (line[i] + a) & 255
-            elif f == 2:
-                line[i] = (line[i] + b) & 255
-            elif f == 3:
-                line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(bytes(line))
-        prev = line
-    return width, height, rows
 
 
 def case_hdr(c, exe, source_dir, tmp):
@@ -157,11 +122,11 @@ def case_hdr(c, exe, source_dir, tmp):
     pair = by["brightrings"]["pair"]
     c.check(pair["a"].startswith("pacifica: AgX base") and pair["b"] == "embedded: sRGB / ACES 1.0 - SDR Video"
             and 0.01 < pair["max_code_difference"] < 1.0, "default wipe pair and its difference", pair)
-    w, h, rows = png_rows(os.path.join(out, "sheets", "brightrings-wipe.png"))
+    w, h, _, rows = read_png(os.path.join(out, "sheets", "brightrings-wipe.png"))
     mid = [rows[h // 4][3 * x] for x in (w // 2 - 1, w // 2)] if w == 720 else []
     c.check(mid == [255, 255], "the wipe's divider is drawn at the middle", (w, mid))
     c.check("src=\"sheets/" not in html and "<link" not in html, "report.html is self-contained")
-    w, h, rows = png_rows(os.path.join(out, "sheets", "brightrings.png"))
+    w, h, _, rows = read_png(os.path.join(out, "sheets", "brightrings.png"))
     c.check(w > 1000 and h > 1000, "contact sheet size", (w, h))
     # The header (first ~18 rows) is dark grey (0.12 -> code 31) except where the title text is drawn.
     lit = sum(1 for y in range(4, 20) for x in range(0, 300) if rows[y][3 * x] > 160)

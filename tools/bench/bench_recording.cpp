@@ -7,6 +7,7 @@
 // the wall time (steady_clock) of readRecording(), median of --runs. Writes DIR/recording_bench.{json,md}.
 //
 //   pacifica-bench-recording --out DIR [--mb 200] [--runs 3] [--keep]
+#include <engine/Stats.h>
 #include <recording/Recording.h>
 
 #include <nlohmann/json.hpp>
@@ -26,6 +27,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using pacifica::median;
 using pacifica::recording::ObjectSample;
 using pacifica::recording::Recording;
 
@@ -206,11 +208,6 @@ Measure parseInChild(const fs::path& file) {
     if (got != static_cast<ssize_t>(sizeof m) || !m.ok)
         throw std::runtime_error("parsing " + file.string() + " failed in the child");
     return m;
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
 } // namespace

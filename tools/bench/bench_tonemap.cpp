@@ -7,6 +7,7 @@
 // No OIIO, so it runs on the GPU benchmark machine. Writes DIR/tonemap_bench.{json,md}.
 //
 //   pacifica-bench-tonemap --out DIR [--frames 60] [--cpu-frames 5] [--size 1920x1080]
+#include <engine/Stats.h>
 #include <engine/color/ColorPipeline.h>
 #include <engine/color/Tonemapper.h>
 #include <engine/gl/GlContext.h>
@@ -28,15 +29,11 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using pacifica::median;
 using pacifica::color::ColorPipeline;
 namespace tmap = pacifica::tonemap;
 
 namespace {
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 double msSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -9,6 +9,7 @@
 #include "engine/Ecs.h"
 #include "engine/Log.h"
 #include "engine/Space.h"
+#include "engine/Stats.h"
 #include "engine/capture/Capture.h"
 #include "engine/color/ColorPipeline.h"
 #include "engine/color/Tonemapper.h"
@@ -42,14 +43,6 @@ namespace pacifica::tools {
 namespace fs = std::filesystem;
 
 namespace {
-
-double median(std::vector<double> v) {
-    if (v.empty())
-        return 0.0;
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 std::string shortNumber(double v) {
     char buf[32];
