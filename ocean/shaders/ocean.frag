@@ -48,13 +48,13 @@ uniform float uCrestHeight; // Hs / 2 of the surface model, metres
 // (1 - k cos theta)^2), k = 1.55 g - 0.55 g^3 (Blasi, Le Saec & Schlick 1993), of the angle between the
 // light's travel (-sun) and the eye. The light enters through the crest's side: scaled by the sun's
 // horizontal share, and by the diffuse sun irradiance (SUN_DIFFUSE_SCALE) as foam is. The caller weights it
-// by (1 - Fresnel). It fades out with distance as foam does (FOAM_FADE_START..END): farther, the grid's
-// sparse vertices alias the crest heights, and beyond the displaced radius the skirt has none -- faded,
+// by (1 - Fresnel). It fades out with distance as foam does (nearFade, FOAM_FADE_START..END): farther, the
+// grid's sparse vertices alias the crest heights, and beyond the displaced radius the skirt has none -- faded,
 // there is no seam at either. Per pixel it is a few multiplies and one division (the exponentials are
 // constants): the GPU's graphics pipe has few SMs here, so exp() per channel per pixel showed in the frame.
-vec3 crestScatter(vec3 v, float z, vec3 sunLight, float dist) {
+vec3 crestScatter(vec3 v, float z, vec3 sunLight, float nearFade) {
     float c = uCrestHeight > 0.0 ? clamp(z / uCrestHeight, 0.0, 1.0) : 0.0;
-    float weight = uSubsurface * c * (1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist));
+    float weight = uSubsurface * c * nearFade;
     const vec3 sigma = vec3(WATER_EXT_R, WATER_EXT_G, WATER_EXT_B);
     const vec3 perCrest = WATER_SCATTERING * CREST_SCATTER_PATH * exp(-sigma * CREST_SCATTER_PATH);
     const float g = CREST_SCATTER_G;
@@ -132,15 +132,16 @@ void main() {
     r.z = abs(r.z); // rays reflected into the sea would hit another wave: use the sky above instead
     vec3 sunLight = sunLightAt(max(z, 0.0));
     vec2 fi = foamInputs(); // (height at this fragment, Jacobian)
+    // Crest heights are resolved only near the eye: foam and the crests' glow fade out between these.
+    float nearFade = 1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist);
     vec3 water = fresnel * reflectedSky(r, m2, max(z, 0.0)) +
-                 (1.0 - fresnel) * (waterBody(v, n) + crestScatter(v, fi.x, sunLight, dist)) +
+                 (1.0 - fresnel) * (waterBody(v, n) + crestScatter(v, fi.x, sunLight, nearFade)) +
                  sunSpecular(n, v, m2, fresnel, sunLight);
 
     // Foam (§18.3): coverage from height and folding, textured by the pattern; a diffuse white (albedo
     // FOAM_ALBEDO) lit by the sun (SUN_DIFFUSE_SCALE) and the sky, covering the water's reflection and
     // highlight.
-    float coverage = max(foamAlpha(fi.x), foamAlphaJacobian(fi.y)) * uFoamIntensity *
-                     (1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist));
+    float coverage = max(foamAlpha(fi.x), foamAlphaJacobian(fi.y)) * uFoamIntensity * nearFade;
     // The coverage thresholds the pattern: a little coverage shows only its densest films and bubbles,
     // full coverage is solid foam (the texture is the §18.3 "foam texture", its alpha the coverage).
     float pattern = foamPattern(); // outside any branch: implicit derivatives need uniform control flow
