@@ -1,16 +1,19 @@
 // ocean.frag: per-pixel sea lighting in scene-linear HDR — normals from the surface model's modelLighting()
 // (for octaves: all maps light, the leading ones displace, §18.2.1), the normal tilt toward the viewer
 // (§18.2.6), Schlick's Fresnel (Schlick 1994), reflection of the sky or environment map over the LEAN
-// roughness lobe, a normalised Blinn-Phong sun highlight, the view-dependent water body colour (Snell),
-// foam (§18.3 height threshold, Jacobian folding) and Perlin fog with height falloff (seed 003). The shared
+// roughness lobe, the sun glitter of Cox & Munk (Beckmann microfacets, Smith masking), the view-dependent
+// water body colour (Snell), foam (§18.3 height threshold, Jacobian folding) and Perlin fog with height
+// falloff (seed 003). The shared
 // pieces (sky, fog, water body, highlight) are in sky.glsl, included before this file.
 //
 // Foam inputs — the optional third function of the surface-model contract (ocean/src/gpu/SurfaceGpu.h):
 // a model that knows its height and horizontal-displacement Jacobian per fragment adds
 //     #define MODEL_HAS_FOAM_INPUTS
 //     vec2 modelFoamInputs(vec2 rel); // (H: height above mean sea level, metres; J: Jacobian determinant)
-// to its GLSL file (rel = the camera-relative undisplaced grid point, as for modelLighting). Without it the
-// height is the interpolated displaced vertex height and J = 1 (no folding foam).
+// to its GLSL file (rel = the camera-relative undisplaced grid point, as for modelLighting; it is called
+// after modelLighting at the same point). Without it the height is the interpolated displaced vertex height
+// and J = 1 (no folding foam). A model whose H remembers crests (the octaves' living whitecaps) also defines
+// MODEL_FOAM_REMEMBERS, and the crests' glow takes the displaced height instead.
 
 in vec3 vRel;  // camera-relative displaced position (ocean.vert)
 in vec2 vGrid; // camera-relative undisplaced grid point
@@ -134,9 +137,14 @@ void main() {
     vec2 fi = foamInputs(); // (height at this fragment, Jacobian)
     // Crest heights are resolved only near the eye: foam and the crests' glow fade out between these.
     float nearFade = 1.0 - smoothstep(FOAM_FADE_START, FOAM_FADE_END, dist);
+#ifdef MODEL_FOAM_REMEMBERS
+    float crest = z; // the foam input remembers crests that have passed: the glow needs the crest that stands
+#else
+    float crest = fi.x;
+#endif
     vec3 water = fresnel * reflectedSky(r, m2, max(z, 0.0)) +
-                 (1.0 - fresnel) * (waterBody(v, n) + crestScatter(v, fi.x, sunLight, nearFade)) +
-                 sunSpecular(n, v, m2, fresnel, sunLight);
+                 (1.0 - fresnel) * (waterBody(v, n) + crestScatter(v, crest, sunLight, nearFade)) +
+                 sunSpecular(n, v, m2, sunLight);
 
     // Foam (§18.3): coverage from height and folding, textured by the pattern; a diffuse white (albedo
     // FOAM_ALBEDO) lit by the sun (SUN_DIFFUSE_SCALE) and the sky, covering the water's reflection and

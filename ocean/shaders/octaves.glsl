@@ -169,15 +169,21 @@ float combinedHeight(vec2 rel) {
 
 // World-space gradient (dH/dx, dH/dy) from every lighting octave, with hardware trilinear filtering, and
 // in .z the slope variance the mip filtering averaged away: sum_i (A_i B_i)^2 (E[|s|^2] - |E[s]|^2)
-// (LEAN mapping, Olano & Baker 2010), which the lighting adds to the specular roughness.
+// (LEAN mapping, Olano & Baker 2010), which the lighting adds to the specular roughness. The same fetches
+// give the living whitecaps' foam height: a displaced octave's map carries its foam memory in the channel the
+// lighting does not read (OctaveMap::foam, HeightOctaves::foamHeightAt), summed into gOctaveFoam.
+float gOctaveFoam = 0.0;
 vec3 filteredGradient(vec2 rel) {
     vec3 g = vec3(0.0);
+    float foam = 0.0;
     for (int i = 0; i < uOctaveCount; ++i) {
-        vec3 d = texture(uLightNow, vec3(octaveUv(i, rel), float(i))).yzw;
+        vec4 d = texture(uLightNow, vec3(octaveUv(i, rel), float(i)));
         float scale = uAmplitude[i] * uInvTile[i];
-        g.xy += scale * d.xy;
-        g.z += scale * scale * max(d.z - dot(d.xy, d.xy), 0.0);
+        g.xy += scale * d.yz;
+        g.z += scale * scale * max(d.w - dot(d.yz, d.yz), 0.0);
+        foam += i < uDisplacedCount ? uAmplitude[i] * d.x : 0.0;
     }
+    gOctaveFoam = foam;
     return g;
 }
 
@@ -188,3 +194,9 @@ vec3 modelDisplacement(vec2 rel) { return vec3(0.0, 0.0, combinedHeight(rel)); }
 vec3 modelDisplacement(vec2 rel) { return vec3(0.0, 0.0, displacedHeight(rel)); }
 #endif
 vec3 modelLighting(vec2 rel) { return filteredGradient(rel); }
+// Foam inputs: (foam height, J = 1). The foam height comes with the lighting fetches, so this must follow
+// modelLighting() at the same point (ocean.frag calls them in that order). It is a memory of crests, not the
+// surface's height: the crests' glow takes the displaced height instead (MODEL_FOAM_REMEMBERS).
+#define MODEL_HAS_FOAM_INPUTS
+#define MODEL_FOAM_REMEMBERS
+vec2 modelFoamInputs(vec2 rel) { return vec2(gOctaveFoam, 1.0); }

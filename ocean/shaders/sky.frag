@@ -27,7 +27,7 @@ vec3 distantSea(vec3 dir) {
     float fresnel = fresnelSchlick(clamp(v.z, 0.0, 1.0));
     vec3 r = reflect(dir, n);
     vec3 sea = fresnel * reflectedSky(r, m2, 0.0) + (1.0 - fresnel) * waterBody(v, n) +
-               sunSpecular(n, v, m2, fresnel, sunLightAt(0.0));
+               sunSpecular(n, v, m2, sunLightAt(0.0));
     return sea;
 }
 

@@ -87,8 +87,8 @@ vec3 skyRadiance(vec3 dir) {
 // spread by about sqrt(2 m2) radians (twice the slope angle per axis), so the map is read at the level
 // whose texels (2 pi / width radians at level 0) are that wide.
 vec3 skyRadianceLobe(vec3 dir, float m2) {
-    if (!uHasEnvironment)
-        return proceduralSky(dir, true);
+    if (!uHasEnvironment) // without the sun's disk: its reflection is the glitter, sunSpecular()
+        return proceduralSky(dir, false);
     float spread = sqrt(2.0 * m2);
     float texel = 2.0 * PI / exp2(uEnvironmentMaxLod);
     // Toward the poles a lat-long texel spans only cos(elevation) of its width in angle, so neighbouring
@@ -236,13 +236,24 @@ vec3 waterBody(vec3 v, vec3 n) {
            (0.6 + 0.4 * max(uSunDir.z, 0.0)) * 4.0;
 }
 
-// Normalised Blinn-Phong sun highlight for a Beckmann mean-square slope m2: exponent 2/m2 - 2 (Walter et
-// al. 2007, eq. 30), times Fresnel and the sunlight that reaches the surface.
-vec3 sunSpecular(vec3 n, vec3 v, float m2, float fresnel, vec3 sunLight) {
+// The sun's glitter: Cox & Munk's (1954) radiance of a sea whose facet slopes are Gaussian with mean-square
+// slope m2 (the microfacet BRDF of Walter et al. 2007, eq. 20, with the Beckmann distribution, eq. 33):
+//   L = E F(v.h) p(h) G1(v) / (4 cos(theta_v) cos^4(theta_h)),  p = e^(-tan^2(theta_h) / m2) / (pi m2),
+// E the sunlight reaching the surface, theta_h the half vector's angle from the normal n (the slopes the
+// model resolves tilt n; m2 holds the rest: Bruneton, Neyret & Holzschuch 2010, sec. 4) and G1 Smith's
+// masking of the eye for Beckmann slopes by Walter et al.'s rational fit (eq. 27, a = cot(theta_v) / m),
+// which keeps the glitter finite at grazing views. The mean radiance of a glitter pattern against this very
+// formula is test_look_gl's SunGlitterFollowsCoxAndMunk.
+vec3 sunSpecular(vec3 n, vec3 v, float m2, vec3 sunLight) {
     vec3 h = normalize(uSunDir + v);
-    float shininess = max(2.0 / m2 - 2.0, 1.0);
-    float spec = pow(max(dot(n, h), 0.0), shininess) * (shininess + 8.0) / (8.0 * PI);
-    return sunLight * spec * fresnel;
+    float c = max(dot(n, h), 1e-3);
+    float c2 = c * c;
+    float p = exp((c2 - 1.0) / (c2 * m2)) / (PI * m2 * c2 * c2);
+    float cv = max(dot(n, v), 1e-3);
+    float a = cv * inversesqrt(m2 * max(1.0 - cv * cv, 1e-6));
+    float g1 = a < 1.6 ? (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a) : 1.0;
+    float fresnel = fresnelSchlick(clamp(dot(v, h), 0.0, 1.0));
+    return sunLight * (fresnel * p * g1 / (4.0 * cv));
 }
 
 // The sky reflected at a surface point of altitude z: the sky over the reflection lobe, seen through the

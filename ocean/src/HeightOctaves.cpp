@@ -349,11 +349,58 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
         mMaxStep.push_back(step);
     }
     for (int i = 0; i < desc.displacedOctaves; ++i) {
+        const OctaveDesc& o = oct[static_cast<size_t>(i)];
+        mMaps[static_cast<size_t>(i)].foam =
+            foamMemory(mMaps[static_cast<size_t>(i)], o.tileSize / desc.mapSize, o.loopPeriod / desc.frames);
+    }
+    for (int i = 0; i < desc.displacedOctaves; ++i) {
         float peak = 0.0f;
         for (size_t t = 0; t < mMaps[i].texels.size(); t += 4)
             peak = std::max(peak, std::abs(mMaps[i].texels[t]));
         mMaxDisplacement += oct[i].amplitude * peak;
     }
+}
+
+std::vector<float> foamMemory(const OctaveMap& map, double texelMetres, double sliceSeconds) {
+    if (!(texelMetres > 0.0) || !(sliceSeconds > 0.0))
+        throw std::invalid_argument("foamMemory(): texelMetres and sliceSeconds must be > 0");
+    const int s = map.size, frames = map.frames;
+    const size_t area = static_cast<size_t>(s) * s;
+    const double decay = std::exp(-sliceSeconds / FOAM_DECAY_TIME);
+    const double variance = 2.0 * FOAM_SPREAD_DIFFUSIVITY * sliceSeconds / (texelMetres * texelMetres);
+    const int passes = std::max(1, static_cast<int>(std::ceil(variance / 0.5))); // w = variance / 2 <= 1/4
+    const double w = 0.5 * variance / passes;
+    std::vector<double> m(area, 0.0), tmp(area);
+    auto spread = [&]() {
+        for (int p = 0; p < passes; ++p) {
+            for (int y = 0; y < s; ++y)
+                for (int x = 0; x < s; ++x) {
+                    const size_t r = static_cast<size_t>(y) * s;
+                    tmp[r + x] =
+                        (1.0 - 2.0 * w) * m[r + x] + w * (m[r + (x + s - 1) % s] + m[r + (x + 1) % s]);
+                }
+            for (int y = 0; y < s; ++y)
+                for (int x = 0; x < s; ++x)
+                    m[static_cast<size_t>(y) * s + x] =
+                        (1.0 - 2.0 * w) * tmp[static_cast<size_t>(y) * s + x] +
+                        w * (tmp[static_cast<size_t>((y + s - 1) % s) * s + x] +
+                             tmp[static_cast<size_t>((y + 1) % s) * s + x]);
+        }
+    };
+    std::vector<float> out(area * frames);
+    for (int lap = 0; lap < 2; ++lap)
+        for (int f = 0; f < frames; ++f) {
+            spread();
+            for (int y = 0; y < s; ++y)
+                for (int x = 0; x < s; ++x) {
+                    double& v = m[static_cast<size_t>(y) * s + x];
+                    v = std::max(std::max(static_cast<double>(map.texel(f, x, y)[0]), 0.0), decay * v);
+                    if (lap == 1)
+                        out[static_cast<size_t>(f) * area + static_cast<size_t>(y) * s + x] =
+                            glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(v)));
+                }
+        }
+    return out;
 }
 
 std::vector<OctaveFrameParams> HeightOctaves::frameParams(const glm::dvec2& cameraXY, double time) const {
@@ -416,6 +463,35 @@ glm::dvec3 HeightOctaves::heightAndGradient(const glm::dvec2& worldXY, double ti
         const glm::dvec3 h = sampleMap(i, worldXY * b, fpos);
         // H = sum A_i h_i(B_i x): dH/dx = A_i B_i dh/du.
         sum += glm::dvec3(o.amplitude * h.x, o.amplitude * b * h.y, o.amplitude * b * h.z);
+    }
+    return sum;
+}
+
+double HeightOctaves::foamHeightAt(const glm::dvec2& worldXY, double time) const {
+    double sum = 0.0;
+    for (int i = 0; i < mDesc.displacedOctaves; ++i) {
+        const OctaveDesc& o = mDesc.octaves[static_cast<size_t>(i)];
+        const OctaveMap& map = mMaps[static_cast<size_t>(i)];
+        const int s = map.size;
+        // The lighting array's texel-centre convention (sampleMap), bilinear, then linear in time.
+        const glm::dvec2 u = worldXY / o.tileSize;
+        const double px = wrapPhase(u.x, 1.0) * s - 0.5, py = wrapPhase(u.y, 1.0) * s - 0.5;
+        const double fx0 = std::floor(px), fy0 = std::floor(py), ax = px - fx0, ay = py - fy0;
+        const int x0 = wrapIndex(static_cast<long long>(fx0), s),
+                  x1 = wrapIndex(static_cast<long long>(fx0) + 1, s);
+        const int y0 = wrapIndex(static_cast<long long>(fy0), s),
+                  y1 = wrapIndex(static_cast<long long>(fy0) + 1, s);
+        const double fpos = wrapPhase(time, o.loopPeriod) / o.loopPeriod * mDesc.frames;
+        const double ff = std::floor(fpos), at = fpos - ff;
+        auto slice = [&](long long f) {
+            const size_t base = static_cast<size_t>(wrapIndex(f, map.frames)) * s * s;
+            auto t = [&](int x, int y) { return double(map.foam[base + static_cast<size_t>(y) * s + x]); };
+            const double bottom = t(x0, y0) + (t(x1, y0) - t(x0, y0)) * ax;
+            const double top = t(x0, y1) + (t(x1, y1) - t(x0, y1)) * ax;
+            return bottom + (top - bottom) * ay;
+        };
+        const double a = slice(static_cast<long long>(ff)), b = slice(static_cast<long long>(ff) + 1);
+        sum += o.amplitude * (a + (b - a) * at);
     }
     return sum;
 }

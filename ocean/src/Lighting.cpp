@@ -399,4 +399,29 @@ std::vector<float> makeFoamPattern(int size, uint32_t seed) {
     return v;
 }
 
+double meanFoamOpacity(double coverage) {
+    // Tabulated once over c in [0, 1] (256 steps; the mean is piecewise smooth in c), linear in between.
+    constexpr int STEPS = 256;
+    static const std::vector<double> table = [] {
+        const std::vector<float> pattern = makeFoamPattern(FOAM_PATTERN_SIZE);
+        const size_t n = pattern.size();
+        std::vector<double> t(STEPS + 1);
+        for (int i = 0; i <= STEPS; ++i) {
+            const double c = static_cast<double>(i) / STEPS;
+            double sum = 0.0;
+            // a at texel k, b at texel k * 7919 (a prime) mod n: unrelated texels of the two layers.
+            for (size_t k = 0; k < n; ++k) {
+                const double p = 0.6 * pattern[k] + 0.4 * pattern[(k * 7919u) % n];
+                sum += std::clamp((p + 1.2 * c - 1.0) / 0.3, 0.0, 1.0);
+            }
+            t[static_cast<size_t>(i)] = sum / static_cast<double>(n);
+        }
+        return t;
+    }();
+    const double x = std::clamp(coverage, 0.0, 1.0) * STEPS;
+    const int i = std::min(static_cast<int>(x), STEPS - 1);
+    return table[static_cast<size_t>(i)] +
+           (table[static_cast<size_t>(i) + 1] - table[static_cast<size_t>(i)]) * (x - i);
+}
+
 } // namespace pacifica::ocean

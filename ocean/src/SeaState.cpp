@@ -2,6 +2,7 @@
 #include "ocean/SeaState.h"
 
 #include "ocean/GerstnerWaves.h"
+#include "ocean/Lighting.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,26 +76,28 @@ OceanDesc applySeaState(OceanDesc d, const SeaState& sea) {
         d.gerstner.waves = GerstnerWaves::defaultWaves(8, sea.windDirectionDeg, d.gerstner.seed);
     for (GerstnerWave& w : d.gerstner.waves)
         w.amplitude *= scale;
-    // Foam: h1 = h0 + sigma (the model's RMS height), h0 by bisection so the mean coverage over the
-    // model's own heights -- sampled on a lattice at three times; fewer points for the FFT, whose CPU
-    // evaluation sums every mode -- equals W. (Its heights are not Gaussian: a sum of few waves has lighter
-    // tails, which decide the coverage of a light sea.)
+    // Foam: h1 = h0 + sigma (the model's RMS height), h0 by bisection so the share of the sea the rendered
+    // foam covers, over the model's own foam heights (foamHeightAt: the octaves' remember crests), equals W.
+    // Fewer points for the FFT, whose CPU evaluation sums every mode. (The heights are not Gaussian: a sum
+    // of few waves has lighter tails, which decide the coverage of a light sea.)
     const OceanComponent built = makeOcean(d);
     const double sigma = built.surface->significantWaveHeight() / 4.0;
-    // Points of the R2 low-discrepancy sequence (Roberts 2018: fractional parts of n / 1.3247..,
-    // n / 1.3247..^2) over 5 km x 5 km: a lattice would alias with the octaves' tile periods.
-    const int count = d.model == SurfaceKind::Fft ? 768 : 6000;
-    constexpr double PLASTIC = 1.32471795724474602596;
+    // Points and times of the R3 low-discrepancy sequence (Roberts 2018: fractional parts of n / phi3^k,
+    // phi3 = 1.2207.., k = 1..3) over 5 km x 5 km x 100 s: a lattice would alias with the octaves' tile
+    // periods, and a few fixed times with their loops (a light sea's foam is rare crests, so both matter).
+    const int count = d.model == SurfaceKind::Fft ? 768 : 24000;
+    constexpr double PHI3 = 1.22074408460575947536;
     std::vector<double> heights;
     for (int n = 0; n < count; ++n) {
-        const double x = std::fmod(0.5 + n / PLASTIC, 1.0), y = std::fmod(0.5 + n / (PLASTIC * PLASTIC), 1.0);
-        const double t = 7.9 * (n % 3);
-        heights.push_back(built.surface->displacementAt({5000.0 * x, 5000.0 * y}, t).z);
+        const double x = std::fmod(0.5 + n / PHI3, 1.0), y = std::fmod(0.5 + n / (PHI3 * PHI3), 1.0);
+        const double t = 100.0 * std::fmod(0.5 + n / (PHI3 * PHI3 * PHI3), 1.0);
+        heights.push_back(built.surface->foamHeightAt({5000.0 * x, 5000.0 * y}, t));
     }
+    // The share of the sea the rendered foam covers: the pattern thresholded by the coverage.
     auto coverage = [&](double h0) {
         double sum = 0.0;
         for (double h : heights)
-            sum += std::clamp((h - h0) / sigma, 0.0, 1.0);
+            sum += meanFoamOpacity(std::clamp((h - h0) / sigma, 0.0, 1.0));
         return sum / static_cast<double>(heights.size());
     };
     const double target = monahanWhitecapCoverage(u);
@@ -108,7 +111,7 @@ OceanDesc applySeaState(OceanDesc d, const SeaState& sea) {
     double sx = 0.0, sy = 0.0, sxx = 0.0;
     const int slopeCount = d.model == SurfaceKind::Fft ? 256 : 2000;
     for (int n = 0; n < slopeCount; ++n) {
-        const double x = std::fmod(0.5 + n / PLASTIC, 1.0), y = std::fmod(0.5 + n / (PLASTIC * PLASTIC), 1.0);
+        const double x = std::fmod(0.5 + n / PHI3, 1.0), y = std::fmod(0.5 + n / (PHI3 * PHI3), 1.0);
         const glm::dvec3 nrm = built.surface->normalAt({5000.0 * x, 5000.0 * y}, 7.9 * (n % 3));
         const double gx = -nrm.x / nrm.z, gy = -nrm.y / nrm.z;
         sx += gx;

@@ -230,6 +230,35 @@ TEST(OctaveLightingGpu, LightingMapsFollowTimeLinearlyBetweenSlices) {
     EXPECT_LE(worst, 2e-3 * scale) << "one half rounding of the mixed map (2^-11 relative) and float noise";
 }
 
+// Living whitecaps: the foam height the shaders threshold (modelFoamInputs, from the lighting fetches) equals
+// HeightOctaves::foamHeightAt in double, near the origin and 10^7 m away, at t = 17 s and 10^6 s. The default
+// octaves; the probe runs in the vertex stage, so the lighting array is read at level 0 like the CPU's
+// bilinear lookup. Bound: the mix to the frame's time is rounded to half (2^-11 of a memory of up to ~4
+// unit heights, times A_i) plus the float tile coordinate at 40 km.
+TEST(OctaveLightingGpu, FoamHeightMatchesTheCpu) {
+    auto ctx = gl::createHeadlessContext();
+    const auto surface = std::make_shared<const HeightOctaves>(HeightOctavesDesc{});
+    ocean::OctavesGpu gpu(surface);
+    const std::vector<glm::vec2> rel = probePoints(2000);
+    for (const glm::dvec3 camera :
+         {glm::dvec3(0.0, 0.0, 30.0), glm::dvec3(1.0e7 + 0.37, -1.0e7 + 0.81, 30.0)})
+        for (double t : {17.0, 1.0e6 + 0.123}) {
+            const ocean::ProbeResult r = ocean::probeSurface(gpu, rel, camera, t);
+            ASSERT_EQ(r.foam.size(), rel.size());
+            double worst = 0.0, largest = 0.0;
+            for (size_t i = 0; i < rel.size(); ++i) {
+                const double cpu = surface->foamHeightAt(glm::dvec2(camera) + glm::dvec2(rel[i]), t);
+                ASSERT_TRUE(std::isfinite(r.foam[i].x)) << i;
+                worst = std::max(worst, std::abs(double(r.foam[i].x) - cpu));
+                largest = std::max(largest, cpu);
+            }
+            std::printf("foam height: camera %.3g t %.3g: max |GPU - CPU| = %.3g m (largest %.3f m)\n",
+                        camera.x, t, worst, largest);
+            EXPECT_GT(largest, 0.5);
+            EXPECT_LE(worst, 3e-3);
+        }
+}
+
 double minMs(const std::vector<double>& v) {
     return *std::min_element(v.begin(), v.end());
 }

@@ -2,6 +2,7 @@
 // maps, analytic slopes, camera-relative parameters far from the origin and at huge times; every vertex
 // filter at texel centres and between them, the Trilinear snap band, the combined path's interpolation bound.
 #include "ocean/HeightOctaves.h"
+#include "ocean/OceanConstants.h"
 
 #include <gtest/gtest.h>
 
@@ -377,4 +378,77 @@ TEST(HeightOctavesFilters, InvalidFilterFieldsNameTheField) {
     d.vertexFilter = static_cast<VertexFilter>(17);
     EXPECT_NE(message(d).find("vertexFilter"), std::string::npos) << message(d);
     EXPECT_STREQ(toString(VertexFilter::Packed4Tap), "packed-4tap");
+}
+
+// Living whitecaps (foamMemory): a crest that stands for one slice leaves foam where it stood, which decays
+// by e^(-dt / FOAM_DECAY_TIME) per slice and spreads with variance 2 D dt per slice (mass kept); a crest that
+// keeps standing keeps its foam; troughs remember nothing of their own.
+TEST(HeightOctavesFoam, CrestFoamStaysDecaysAndSpreads) {
+    OctaveMap map;
+    map.size = 32;
+    map.frames = 64;
+    map.texels.assign(static_cast<size_t>(map.frames) * 32 * 32 * 4, -1.0f);  // a trough everywhere...
+    map.texels[(static_cast<size_t>(0) * 32 * 32 + 16 * 32 + 16) * 4] = 2.0f; // ...but one crest at slice 0
+    const double texel = 0.5, dt = 0.25;
+    const std::vector<float> m = foamMemory(map, texel, dt);
+    ASSERT_EQ(m.size(), static_cast<size_t>(64) * 32 * 32);
+    auto at = [&](int f, int x, int y) { return double(m[static_cast<size_t>(f) * 1024 + y * 32 + x]); };
+    EXPECT_FLOAT_EQ(at(0, 16, 16), 2.0f); // it forms where the crest stands
+    EXPECT_LT(at(0, 3, 3), 1e-4);         // no crest passed there (only the last loop's crest, spread thin)
+    const double decay = std::exp(-dt / FOAM_DECAY_TIME),
+                 var = 2.0 * FOAM_SPREAD_DIFFUSIVITY * dt / (texel * texel);
+    for (int k : {4, 16}) {
+        double mass = 0.0, second = 0.0;
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x) {
+                mass += at(k, x, y);
+                second += at(k, x, y) * ((x - 16) * (x - 16));
+            }
+        // The loop is periodic: the crest of the previous loop (64 slices earlier) adds its residue.
+        const double now = std::pow(decay, k), before = std::pow(decay, k + 64);
+        const double expectedMass = 2.0 * (now + before),
+                     expectedVar = var * (now * k + before * (k + 64)) / (now + before);
+        std::printf(
+            "slice %d: centre %.4f, mass %.4f (expected %.4f), x variance %.3f (expected %.3f) texels^2\n", k,
+            at(k, 16, 16), mass, expectedMass, second / mass, expectedVar);
+        EXPECT_NEAR(mass, expectedMass, 2e-3 * k);                   // decays, half rounding per texel
+        EXPECT_NEAR(second / mass, expectedVar, 0.03 * expectedVar); // spreads as a diffusion
+        EXPECT_LT(at(k, 16, 16), at(k - 1, 16, 16));                 // fades where it formed
+        EXPECT_GT(at(k, 18, 16), 0.0);                               // and reaches the neighbours
+    }
+    // A crest that stands all the time keeps its full foam.
+    OctaveMap steady = map;
+    for (int f = 0; f < steady.frames; ++f)
+        steady.texels[(static_cast<size_t>(f) * 1024 + 16 * 32 + 16) * 4] = 2.0f;
+    const std::vector<float> s = foamMemory(steady, texel, dt);
+    for (int f = 0; f < steady.frames; ++f)
+        EXPECT_FLOAT_EQ(s[static_cast<size_t>(f) * 1024 + 16 * 32 + 16], 2.0f);
+    EXPECT_THROW(foamMemory(map, 0.0, dt), std::invalid_argument);
+    EXPECT_THROW(foamMemory(map, texel, std::nan("")), std::invalid_argument);
+}
+
+// The octave surface's foam height input is at least the positive part of every displaced octave's height
+// (a standing crest foams as before), and exceeds the current height where crests stood lately: sampled at
+// 2000 points, it is >= H+ everywhere (within half rounding) and above it by > 1 cm at a share of them.
+TEST(HeightOctavesFoam, FoamHeightRemembersCrests) {
+    const HeightOctaves& s = surface();
+    int above = 0;
+    for (int n = 0; n < 2000; ++n) {
+        const glm::dvec2 p(37.1 * n, 91.7 * std::fmod(n * 0.618, 7.0));
+        const double t = 3.3 + 0.7 * n;
+        double positive = 0.0;
+        for (int i = 0; i < s.desc().displacedOctaves; ++i) {
+            const OctaveDesc& o = s.desc().octaves[static_cast<size_t>(i)];
+            const double fpos = std::fmod(t, o.loopPeriod) / o.loopPeriod * s.desc().frames;
+            positive += o.amplitude *
+                        std::max(0.0, s.sampleHeight(i, VertexFilter::Bilinear, p / o.tileSize, fpos, 0.0));
+        }
+        const double f = s.foamHeightAt(p, t);
+        ASSERT_TRUE(std::isfinite(f));
+        EXPECT_GE(f, s.heightAt(p, t) - 1e-3) << n;
+        if (f > positive + 0.01)
+            ++above;
+    }
+    std::printf("foam height above the octaves' positive heights by > 1 cm at %d of 2000 points\n", above);
+    EXPECT_GT(above, 200);
 }

@@ -81,8 +81,8 @@ TEST(SeaState, OctaveSeaFoamCoverageFollowsMonahan) {
         std::mt19937_64 rng(17);
         std::uniform_real_distribution<double> pos(-4000.0, 4000.0), time(0.0, 100.0);
         for (int k = 0; k < 12000; ++k) {
-            const double h = c.surface->displacementAt({pos(rng), pos(rng)}, time(rng)).z;
-            sum += foamAlpha(h, d.lighting);
+            const double h = c.surface->foamHeightAt({pos(rng), pos(rng)}, time(rng)); // living whitecaps
+            sum += meanFoamOpacity(foamAlpha(h, d.lighting)); // the share the rendered foam covers
             ++n;
         }
         const double coverage = sum / n, w = monahanWhitecapCoverage(u);

@@ -146,10 +146,23 @@ struct OctaveMap {
     int size = 0;
     int frames = 0;
     std::vector<float> texels;
+    /// Displaced octaves only (else empty): frames * size * size remembered crest heights (foamMemory()),
+    /// slice-major, row-major, rounded to half. The GPU's lighting array carries them in its unused h
+    /// channel.
+    std::vector<float> foam;
     const float* texel(int frame, int x, int y) const {
         return &texels[(static_cast<size_t>(frame) * size * size + static_cast<size_t>(y) * size + x) * 4];
     }
 };
+
+/// Living whitecaps: the remembered crest height of one octave's map (unit RMS), looped like the map. Slice
+/// by slice, m(f) = max(h+(f), e^(-dt / FOAM_DECAY_TIME) S(m(f - 1))), h+ = max(h, 0), dt = the slices'
+/// spacing in seconds and S a spread of variance 2 D dt (D = FOAM_SPREAD_DIFFUSIVITY) in texels of
+/// `texelMetres` (a separable [w, 1 - 2w, w] kernel, variance 2w per pass, repeated while w would exceed
+/// 1/4). So foam forms where a crest stands, stays where it stood while the crest travels on, spreads and
+/// decays (GPU Gems 2 §18.3's height threshold applied to this memory instead of the current height). The
+/// loop is run twice around so the result is the loop's periodic steady state. Values rounded to half.
+std::vector<float> foamMemory(const OctaveMap& map, double texelMetres, double sliceSeconds);
 
 /// Builds the GPU/CPU map of a caller-supplied image: `frames` slices (a still image is repeated), each
 /// texel (h, dh/du, dh/dv, |grad h|^2) rounded to half like a generated map. The derivatives are spectral:
@@ -200,6 +213,12 @@ public:
     /// map has zero mean and unit RMS).
     double significantWaveHeight() const override;
 
+    /// Foam height input (the GPU's modelFoamInputs().x): sum over the displaced octaves of A_i times the
+    /// octave's foam memory (OctaveMap::foam) at B_i x, bilinear in space and linear in time like
+    /// sampleMap(). >= the positive part of each octave's height: crests, and where crests stood lately.
+    /// The swell octave counts too: without it the whitecaps sat on the 61 m octave's lattice, visible
+    /// from 500 m.
+    double foamHeightAt(const glm::dvec2& worldXY, double time) const override;
     /// Height of the displaced surface (the first displacedOctaves octaves) at world (x, y), time t, as the
     /// GPU draws it for a camera right above (x, y): heightSeenFrom(worldXY, time, worldXY). Equal to what
     /// is drawn anywhere for Nearest, Bilinear, HardwareBilinear and Packed4Tap; near the camera for

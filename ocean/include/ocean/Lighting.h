@@ -160,6 +160,13 @@ double foamAlpha(double height, const LightingDesc& lighting);
 /// Folding foam: clamp((J0 - J) / J0, 0, 1) (0 when J0 <= 0).
 double foamAlphaJacobian(double jacobian, const LightingDesc& lighting);
 
+/// The share of the sea that foam covers where the foam coverage (foamAlpha, times foamIntensity) is c:
+/// ocean.frag's opacity clamp((p + 1.2 c - 1) / 0.3, 0, 1) of the two pattern layers p = 0.6 a + 0.4 b,
+/// averaged over the pattern (makeFoamPattern(FOAM_PATTERN_SIZE), the layers at unrelated texels: they drift
+/// apart). Increasing in c, 0 at c = 0. A texel-resolved pattern: from far away the pattern's mipmaps narrow
+/// its distribution. What applySeaState() matches to Monahan's whitecap coverage.
+double meanFoamOpacity(double coverage);
+
 /// The tileable fog density noise: size^3 values in [0, 1] (x fastest), mean ~0.5, a sum of 3 octaves of
 /// periodic gradient (Perlin) noise blurred once with the binomial (1,2,1) kernel, wrapping at the edges
 /// (seed 003: noise octaves + Gaussian blur, "a mod operator to wrap the sampling space").

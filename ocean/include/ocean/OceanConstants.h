@@ -46,6 +46,13 @@ inline constexpr double FOG_NOISE_TILE_VERTICAL = 1500.0; ///< metres per vertic
 /// far apart to resolve wave crests, so a single high vertex would paint a triangle-sized white patch.
 inline constexpr float FOAM_FADE_START = 1500.0f;
 inline constexpr float FOAM_FADE_END = 5000.0f;
+/// Living whitecaps (HeightOctaves foam memory, foamMemory()): a breaking crest's foam stays where the crest
+/// was, decays with an e-folding time of FOAM_DECAY_TIME seconds (whitecap foam area decays over a few
+/// seconds: Callaghan, Deane & Stokes 2012, "Two regimes of laboratory whitecap foam decay", JGR 117, decay
+/// times 1-5 s; Monahan's "stage B" residual foam lasts longest) and spreads as a diffusion of coefficient
+/// FOAM_SPREAD_DIFFUSIVITY m^2/s (a patch grows by sqrt(2 D t) ~ 1.8 m over 8 s).
+inline constexpr double FOAM_DECAY_TIME = 4.0;
+inline constexpr double FOAM_SPREAD_DIFFUSIVITY = 0.2;
 inline constexpr int ENVIRONMENT_HORIZON_BINS = 64; ///< azimuth bins of environmentHorizonBand() (Lighting.h)
 
 /// How far the sea surface at horizontal distance d from the camera lies below the camera's tangent plane

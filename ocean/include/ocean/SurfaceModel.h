@@ -42,6 +42,9 @@ public:
         return displacementAt(xy, t);
     }
 
+    /// The height the foam thresholds (LightingDesc::foamHeightStart/Full) apply to at grid point (x, y):
+    /// the displaced height by default; the octave model's living whitecaps remember crests that passed.
+    virtual double foamHeightAt(const glm::dvec2& xy, double t) const { return displacementAt(xy, t).z; }
     /// Height of the surface above world point (x, y) (Eulerian): solves x0 + d_xy(x0) = (x, y) by
     /// fixed-point iteration (converges while the surface does not fold), then returns dz(x0).
     virtual double heightAt(const glm::dvec2& xy, double t) const;

@@ -111,10 +111,13 @@ OctavesGpu::OctavesGpu(std::shared_ptr<const HeightOctaves> surface) : mSurface(
             const OctaveMap& map = maps[o];
             if (map.size != size || map.frames != frames)
                 throw std::logic_error("OctavesGpu::OctavesGpu(): octave maps differ in size or frames");
-            // The CPU copy already holds half-rounded values, so this conversion is exact.
+            // The CPU copy already holds half-rounded values, so this conversion is exact. The lighting reads
+            // only the gradient channels; a displaced octave's h channel carries its foam memory instead
+            // (OctaveMap::foam: the living whitecaps, mixed to the frame's time and mipmapped with the rest).
             std::vector<uint16_t> half(map.texels.size());
             for (size_t i = 0; i < half.size(); ++i)
-                half[i] = glm::packHalf1x16(map.texels[i]);
+                half[i] =
+                    glm::packHalf1x16(i % 4 == 0 && !map.foam.empty() ? map.foam[i / 4] : map.texels[i]);
             glTextureSubImage3D(mLightMaps.id(), 0, 0, 0, static_cast<int>(o) * frames, size, size, frames,
                                 GL_RGBA, GL_HALF_FLOAT, half.data());
         }
