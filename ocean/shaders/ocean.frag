@@ -99,12 +99,26 @@ vec2 foamInputs() {
 #endif
 }
 
-// The foam texture at this point of the water: two layers of the pattern at incommensurate scales drifting
-// apart, so the bubbles change over time and the repetition does not show.
-float foamPattern() {
-    float a = texture(uFoamMap, vGrid / FOAM_TILE_NEAR + uFoamOffsetNear).r;
-    float b = texture(uFoamMap, vGrid / FOAM_TILE_FAR + uFoamOffsetFar).r;
-    return 0.6 * a + 0.4 * b;
+// Foam share-preserving threshold. The pattern's texels are ranks (makeFoamPattern equalises them); the mix
+// x = 0.6 a + 0.4 b of two independent uniform ranks has the trapezoid CDF below, so foamRank is uniform on
+// [0, 1] again, and thresholding it at 1 - c (soft edge FOAM_EDGE) covers a share foamOpacity(c) of the sea.
+float foamRank(float a, float b) {
+    float x = 0.6 * a + 0.4 * b;
+    if (x < 0.4)
+        return x * x / 0.48;
+    if (x < 0.6)
+        return (x - 0.2) / 0.6;
+    return 1.0 - (1.0 - x) * (1.0 - x) / 0.48;
+}
+float foamThreshold(float rank, float c) {
+    return clamp((rank - 1.0 + c * (1.0 + FOAM_EDGE)) / FOAM_EDGE, 0.0, 1.0);
+}
+// The mean of foamThreshold over a uniform rank (the C++ twin: meanFoamOpacity in Lighting.h).
+float foamOpacity(float c) {
+    float t0 = 1.0 - c * (1.0 + FOAM_EDGE);
+    float lo = clamp(t0, 0.0, 1.0);
+    float hi = clamp(t0 + FOAM_EDGE, 0.0, 1.0);
+    return (1.0 - hi) + ((hi - t0) * (hi - t0) - (lo - t0) * (lo - t0)) / (2.0 * FOAM_EDGE);
 }
 
 void main() {
@@ -150,10 +164,17 @@ void main() {
     // FOAM_ALBEDO) lit by the sun (SUN_DIFFUSE_SCALE) and the sky, covering the water's reflection and
     // highlight.
     float coverage = max(foamAlpha(fi.x), foamAlphaJacobian(fi.y)) * uFoamIntensity * nearFade;
-    // The coverage thresholds the pattern: a little coverage shows only its densest films and bubbles,
-    // full coverage is solid foam (the texture is the §18.3 "foam texture", its alpha the coverage).
-    float pattern = foamPattern(); // outside any branch: implicit derivatives need uniform control flow
-    float foam = clamp((pattern + 1.2 * coverage - 1.0) / 0.3, 0.0, 1.0);
+    // The coverage thresholds the pattern (the §18.3 "foam texture", its alpha the coverage): a little
+    // coverage shows only its densest films and bubbles, full coverage is solid foam. Two layers at
+    // incommensurate scales drift apart, so the bubbles change over time and the repetition does not show.
+    // Where the fine layer is not resolved (its mipmaps blur the ranks) the threshold gives way to its mean,
+    // so the share of the sea under foam is foamOpacity(coverage) at every distance.
+    vec2 nearUv = vGrid / FOAM_TILE_NEAR + uFoamOffsetNear;
+    float a = texture(uFoamMap, nearUv).r; // outside any branch: implicit derivatives
+    float b = texture(uFoamMap, vGrid / FOAM_TILE_FAR + uFoamOffsetFar).r;
+    float resolved = 1.0 - smoothstep(0.5, 2.5, textureQueryLod(uFoamMap, nearUv).y);
+    float pattern = 0.6 * a + 0.4 * b;
+    float foam = mix(foamOpacity(coverage), foamThreshold(foamRank(a, b), coverage), resolved);
 #ifdef EFFECT_GRID
     // Effect foam (crown, crests, wake strip) is churned white water: its coverage is the foam itself,
     // textured by the pattern, and not faded with distance (the effect grid resolves it wherever it is, and

@@ -52,7 +52,9 @@ vec3 proceduralSky(vec3 dir, bool sunDisk) {
     float z = dir.z;
     vec3 sky;
     if (z >= 0.0) {
-        float t = pow(1.0 - z, 7.0);
+        // max(): a normalised direction straight up can have z a rounding above 1, and GLSL's pow of a
+        // negative base is undefined (NaN on llvmpipe: a sea pixel looking straight down reflected it).
+        float t = pow(max(1.0 - z, 0.0), 7.0);
         sky = mix(SKY_ZENITH, SKY_HORIZON, t);
     } else {
         sky = mix(SKY_HORIZON, SKY_BELOW, clamp(-z * 8.0, 0.0, 1.0));

@@ -395,33 +395,23 @@ std::vector<float> makeFoamPattern(int size, uint32_t seed) {
             const double s = patches * (0.3 + 0.7 * film) * (1.0 - 0.75 * hole);
             v[static_cast<size_t>(y) * size + x] = static_cast<float>(s);
         }
-    normaliseToUnitRange(v);
+    // Equalise: each texel's rank (ties by index), so a threshold covers a known share (meanFoamOpacity).
+    std::vector<size_t> order(v.size());
+    for (size_t i = 0; i < order.size(); ++i)
+        order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return v[a] < v[b]; });
+    for (size_t k = 0; k < order.size(); ++k)
+        v[order[k]] = static_cast<float>((static_cast<double>(k) + 0.5) / static_cast<double>(order.size()));
     return v;
 }
 
 double meanFoamOpacity(double coverage) {
-    // Tabulated once over c in [0, 1] (256 steps; the mean is piecewise smooth in c), linear in between.
-    constexpr int STEPS = 256;
-    static const std::vector<double> table = [] {
-        const std::vector<float> pattern = makeFoamPattern(FOAM_PATTERN_SIZE);
-        const size_t n = pattern.size();
-        std::vector<double> t(STEPS + 1);
-        for (int i = 0; i <= STEPS; ++i) {
-            const double c = static_cast<double>(i) / STEPS;
-            double sum = 0.0;
-            // a at texel k, b at texel k * 7919 (a prime) mod n: unrelated texels of the two layers.
-            for (size_t k = 0; k < n; ++k) {
-                const double p = 0.6 * pattern[k] + 0.4 * pattern[(k * 7919u) % n];
-                sum += std::clamp((p + 1.2 * c - 1.0) / 0.3, 0.0, 1.0);
-            }
-            t[static_cast<size_t>(i)] = sum / static_cast<double>(n);
-        }
-        return t;
-    }();
-    const double x = std::clamp(coverage, 0.0, 1.0) * STEPS;
-    const int i = std::min(static_cast<int>(x), STEPS - 1);
-    return table[static_cast<size_t>(i)] +
-           (table[static_cast<size_t>(i) + 1] - table[static_cast<size_t>(i)]) * (x - i);
+    // E over r ~ U(0, 1) of clamp((r - t0) / e, 0, 1), t0 = 1 - c (1 + e): with lo, hi = t0, t0 + e clamped
+    // to [0, 1], the ramp's part inside plus the full part above it.
+    const double c = std::clamp(coverage, 0.0, 1.0), e = FOAM_EDGE;
+    const double t0 = 1.0 - c * (1.0 + e);
+    const double lo = std::clamp(t0, 0.0, 1.0), hi = std::clamp(t0 + e, 0.0, 1.0);
+    return (1.0 - hi) + ((hi - t0) * (hi - t0) - (lo - t0) * (lo - t0)) / (2.0 * e);
 }
 
 } // namespace pacifica::ocean

@@ -209,20 +209,20 @@ def exr_xxh64(directory, names):
     return {name: "%016x" % xxh64(struct.pack(f"<{len(v)}e", *v)) for name, v in values.items()}
 
 
-def exr_mean_rgb(directory, name):
-    """Mean scene-linear (R, G, B) of an EXR, from `oiiotool --dumpdata` (RGBA per pixel)."""
+def exr_pixels(directory, name):
+    """Scene-linear (R, G, B) of every pixel of an EXR, from `oiiotool --dumpdata` (RGBA per pixel)."""
     proc = subprocess.run([oiio_tool("oiiotool"), "--dumpdata", name], cwd=directory, capture_output=True,
                           text=True, timeout=RUN_TIMEOUT_S)
     if proc.returncode != 0:
         raise CaseAborted(f"oiiotool --dumpdata failed (exit {proc.returncode}): {proc.stderr.strip()}")
-    sums, n = [0.0, 0.0, 0.0], 0
-    for line in proc.stdout.splitlines():
-        if line.startswith("    Pixel ("):
-            v = [float(x) for x in line.split(":", 1)[1].split()]
-            for i in range(3):
-                sums[i] += v[i]
-            n += 1
-    return tuple(x / max(n, 1) for x in sums)
+    return [tuple(float(x) for x in line.split(":", 1)[1].split()[:3])
+            for line in proc.stdout.splitlines() if line.startswith("    Pixel (")]
+
+
+def exr_mean_rgb(directory, name):
+    """Mean scene-linear (R, G, B) of an EXR."""
+    px = exr_pixels(directory, name)
+    return tuple(sum(p[i] for p in px) / max(len(px), 1) for i in range(3))
 
 
 def read_flight(path):

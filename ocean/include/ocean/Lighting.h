@@ -161,10 +161,11 @@ double foamAlpha(double height, const LightingDesc& lighting);
 double foamAlphaJacobian(double jacobian, const LightingDesc& lighting);
 
 /// The share of the sea that foam covers where the foam coverage (foamAlpha, times foamIntensity) is c:
-/// ocean.frag's opacity clamp((p + 1.2 c - 1) / 0.3, 0, 1) of the two pattern layers p = 0.6 a + 0.4 b,
-/// averaged over the pattern (makeFoamPattern(FOAM_PATTERN_SIZE), the layers at unrelated texels: they drift
-/// apart). Increasing in c, 0 at c = 0. A texel-resolved pattern: from far away the pattern's mipmaps narrow
-/// its distribution. What applySeaState() matches to Monahan's whitecap coverage.
+/// ocean.frag thresholds the pattern's rank r (uniform on [0, 1]: makeFoamPattern is equalised and the two
+/// layers' mix is equalised again by its CDF) as clamp((r - 1 + c (1 + e)) / e, 0, 1), e = FOAM_EDGE, whose
+/// mean over r is this closed form: 0 at c = 0, 1 at c = 1, increasing. Where the pattern is not resolved
+/// (its mipmaps blur the ranks) the shader uses this mean itself, so the share does not change with distance.
+/// What applySeaState() matches to Monahan's whitecap coverage.
 double meanFoamOpacity(double coverage);
 
 /// The tileable fog density noise: size^3 values in [0, 1] (x fastest), mean ~0.5, a sum of 3 octaves of
@@ -172,7 +173,8 @@ double meanFoamOpacity(double coverage);
 /// (seed 003: noise octaves + Gaussian blur, "a mod operator to wrap the sampling space").
 std::vector<float> makeFogNoise(int size, uint32_t seed = 7);
 /// The tileable foam pattern: size^2 values in [0, 1], a bubbly cellular (Worley) texture: bright cell
-/// walls and speckle over two scales, wrapping at the edges.
+/// walls and speckle over two scales, wrapping at the edges. Equalised: the values are the texels' ranks,
+/// (k + 0.5) / size^2, so thresholding it at 1 - c covers exactly a share c of the texels.
 std::vector<float> makeFoamPattern(int size, uint32_t seed = 11);
 
 } // namespace pacifica::ocean

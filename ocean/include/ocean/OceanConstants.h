@@ -35,12 +35,14 @@ inline constexpr float FOAM_ALBEDO = 0.8f; ///< diffuse reflectance of whitecap 
 inline constexpr float WATER_SCATTERING = 0.03f;
 inline constexpr float CREST_SCATTER_G = 0.6f;
 inline constexpr float CREST_SCATTER_PATH = 3.0f;
-inline constexpr int FOAM_PATTERN_SIZE = 256;     ///< texels per side of the foam texture (mipmapped)
-inline constexpr double FOAM_TILE_NEAR = 7.3;     ///< metres per repeat of the fine foam layer
-inline constexpr double FOAM_TILE_FAR = 23.9;     ///< metres per repeat of the coarse layer (incommensurate)
-inline constexpr double FOAM_DRIFT_SPEED = 0.4;   ///< m/s the two foam layers drift apart (animation)
-inline constexpr int FOG_NOISE_SIZE = 32;         ///< texels per side of the 3D fog noise (mipmapped)
-inline constexpr double FOG_NOISE_TILE = 12000.0; ///< metres per horizontal repeat of the fog noise
+inline constexpr int FOAM_PATTERN_SIZE = 256;   ///< texels per side of the foam texture (mipmapped)
+inline constexpr double FOAM_TILE_NEAR = 7.3;   ///< metres per repeat of the fine foam layer
+inline constexpr double FOAM_TILE_FAR = 23.9;   ///< metres per repeat of the coarse layer (incommensurate)
+inline constexpr double FOAM_DRIFT_SPEED = 0.4; ///< m/s the two foam layers drift apart (animation)
+/// Width of the foam's soft edge in pattern rank (ocean.frag foamThreshold, Lighting.h meanFoamOpacity).
+inline constexpr double FOAM_EDGE = 0.3;
+inline constexpr int FOG_NOISE_SIZE = 32;                 ///< texels per side of the 3D fog noise (mipmapped)
+inline constexpr double FOG_NOISE_TILE = 12000.0;         ///< metres per horizontal repeat of the fog noise
 inline constexpr double FOG_NOISE_TILE_VERTICAL = 1500.0; ///< metres per vertical repeat of the fog noise
 /// Height foam fades out between these distances (metres): beyond them the radial grid's vertices are too
 /// far apart to resolve wave crests, so a single high vertex would paint a triangle-sized white patch.
