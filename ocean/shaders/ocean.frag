@@ -169,21 +169,34 @@ void main() {
     // incommensurate scales drift apart, so the bubbles change over time and the repetition does not show.
     // Where the fine layer is not resolved (its mipmaps blur the ranks) the threshold gives way to its mean,
     // so the share of the sea under foam is foamOpacity(coverage) at every distance.
+    // Most of the sea has no foam: its fetches and shading are skipped there, the derivatives taken first
+    // (in uniform control flow) and the layers read with them.
     vec2 nearUv = vGrid / FOAM_TILE_NEAR + uFoamOffsetNear;
-    float a = texture(uFoamMap, nearUv).r; // outside any branch: implicit derivatives
-    float b = texture(uFoamMap, vGrid / FOAM_TILE_FAR + uFoamOffsetFar).r;
-    float resolved = 1.0 - smoothstep(0.5, 2.5, textureQueryLod(uFoamMap, nearUv).y);
-    float pattern = 0.6 * a + 0.4 * b;
-    float foam = mix(foamOpacity(coverage), foamThreshold(foamRank(a, b), coverage), resolved);
+    vec2 dnx = dFdx(nearUv), dny = dFdy(nearUv);
+    vec3 color = water;
 #ifdef EFFECT_GRID
-    // Effect foam (crown, crests, wake strip) is churned white water: its coverage is the foam itself,
-    // textured by the pattern, and not faded with distance (the effect grid resolves it wherever it is, and
-    // a wake must stay visible from 10 km).
-    foam = max(foam, clamp(vEffect.z * uFoamIntensity * (0.7 + 0.3 * pattern), 0.0, 1.0));
+    float effectFoam = vEffect.z * uFoamIntensity;
+    if (coverage > 0.0 || effectFoam > 0.0) {
+#else
+    if (coverage > 0.0) {
 #endif
-    vec3 foamColor =
-        FOAM_ALBEDO / PI * (sunLight * (SUN_DIFFUSE_SCALE * max(dot(n, uSunDir), 0.0)) + skyIrradiance());
-    vec3 color = mix(water, foamColor, foam);
+        const float farScale = FOAM_TILE_NEAR / FOAM_TILE_FAR;
+        float a = textureGrad(uFoamMap, nearUv, dnx, dny).r;
+        float b = textureGrad(uFoamMap, vGrid / FOAM_TILE_FAR + uFoamOffsetFar, dnx * farScale, dny * farScale).r;
+        // The fine layer's level of detail, log2 of its footprint in texels (GL 4.5 §8.14.1).
+        float lod = log2(max(max(length(dnx), length(dny)) * float(FOAM_PATTERN_SIZE), 1e-6));
+        float resolved = 1.0 - smoothstep(0.5, 2.5, lod);
+        float foam = mix(foamOpacity(coverage), foamThreshold(foamRank(a, b), coverage), resolved);
+#ifdef EFFECT_GRID
+        // Effect foam (crown, crests, wake strip) is churned white water: its coverage is the foam itself,
+        // textured by the pattern, and not faded with distance (the effect grid resolves it wherever it is,
+        // and a wake must stay visible from 10 km).
+        foam = max(foam, clamp(effectFoam * (0.7 + 0.3 * (0.6 * a + 0.4 * b)), 0.0, 1.0));
+#endif
+        vec3 foamColor =
+            FOAM_ALBEDO / PI * (sunLight * (SUN_DIFFUSE_SCALE * max(dot(n, uSunDir), 0.0)) + skyIrradiance());
+        color = mix(water, foamColor, foam);
+    }
 
     // Fog between the eye and the surface (seed 003: f = e^(-tau n)), tau integrated over the height falloff
     // and the noise over the path (fogNoiseAlongPath).

@@ -212,7 +212,9 @@ float skyTransmittance(float z0, vec3 dir) {
 // ---- water -------------------------------------------------------------------------------------------
 
 float fresnelSchlick(float ndv) {
-    return WATER_F0 + (1.0 - WATER_F0) * pow(1.0 - ndv, 5.0);
+    float x = 1.0 - ndv;
+    float x2 = x * x;
+    return WATER_F0 + (1.0 - WATER_F0) * x2 * x2 * x; // (1 - ndv)^5 by multiplies
 } // Schlick 1994
 
 // Sunlight reaching altitude z through the fog.
@@ -250,7 +252,10 @@ vec3 sunSpecular(vec3 n, vec3 v, float m2, vec3 sunLight) {
     vec3 h = normalize(uSunDir + v);
     float c = max(dot(n, h), 1e-3);
     float c2 = c * c;
-    float p = exp((c2 - 1.0) / (c2 * m2)) / (PI * m2 * c2 * c2);
+    float e = (c2 - 1.0) / (c2 * m2); // -tan^2(theta_h) / m2
+    if (e < -16.0)
+        return vec3(0.0); // e^-16 = 1e-7 of the lobe's peak: most of the sea, which skips the rest
+    float p = exp(e) / (PI * m2 * c2 * c2);
     float cv = max(dot(n, v), 1e-3);
     float a = cv * inversesqrt(m2 * max(1.0 - cv * cv, 1e-6));
     float g1 = a < 1.6 ? (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a) : 1.0;
