@@ -348,7 +348,7 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
                 }
         mMaxStep.push_back(step);
     }
-    for (int i = 0; i < desc.displacedOctaves; ++i) {
+    for (int i = 0; desc.foamMemory && i < desc.displacedOctaves; ++i) {
         const OctaveDesc& o = oct[static_cast<size_t>(i)];
         mMaps[static_cast<size_t>(i)].foam =
             foamMemory(mMaps[static_cast<size_t>(i)], o.tileSize / desc.mapSize, o.loopPeriod / desc.frames);
@@ -485,7 +485,10 @@ double HeightOctaves::foamHeightAt(const glm::dvec2& worldXY, double time) const
         const double ff = std::floor(fpos), at = fpos - ff;
         auto slice = [&](long long f) {
             const size_t base = static_cast<size_t>(wrapIndex(f, map.frames)) * s * s;
-            auto t = [&](int x, int y) { return double(map.foam[base + static_cast<size_t>(y) * s + x]); };
+            auto t = [&](int x, int y) {
+                const size_t k = base + static_cast<size_t>(y) * s + x;
+                return double(map.foam.empty() ? map.texels[k * 4] : map.foam[k]);
+            };
             const double bottom = t(x0, y0) + (t(x1, y0) - t(x0, y0)) * ax;
             const double top = t(x0, y1) + (t(x1, y1) - t(x0, y1)) * ax;
             return bottom + (top - bottom) * ay;

@@ -452,3 +452,17 @@ TEST(HeightOctavesFoam, FoamHeightRemembersCrests) {
     std::printf("foam height above the octaves' positive heights by > 1 cm at %d of 2000 points\n", above);
     EXPECT_GT(above, 200);
 }
+
+// Without foam memory (the accuracy bench's knob) the foam height is the displaced octaves' height itself.
+TEST(HeightOctavesFoam, WithoutMemoryTheFoamHeightIsTheHeight) {
+    HeightOctavesDesc d = smallDesc();
+    d.foamMemory = false;
+    const HeightOctaves s(d);
+    for (const OctaveMap& m : s.maps())
+        EXPECT_TRUE(m.foam.empty());
+    for (int n = 0; n < 200; ++n) {
+        const glm::dvec2 p(13.7 * n - 900.0, 5.3 * n);
+        const double t = 0.37 * n;
+        EXPECT_NEAR(s.foamHeightAt(p, t), s.heightAt(p, t), 1e-9) << n;
+    }
+}

@@ -162,6 +162,7 @@ std::vector<Setting> sweep(bool quick) {
                 add(m, "vertex_filter", ocean::toString(f),
                     [f](ocean::OceanDesc& d) { d.octaves.vertexFilter = f; });
             add(m, "combined", "on", [](ocean::OceanDesc& d) { d.octaves.combinedDisplacement = true; });
+            add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.octaves.foamMemory = false; });
         }
         for (auto [r, s] : {std::pair{64, 128}, {128, 256}, {512, 1024}}) // 256x512 = baseline
             grid(m, r, s);

@@ -105,7 +105,11 @@ struct HeightOctavesDesc {
         {13.7, 0.035, 6.0}, // finer octaves: lighting only by default
         {3.1, 0.008, 3.0},
     };
-    int displacedOctaves = 3;       ///< how many leading octaves displace vertices (seed: 2 of 4)
+    int displacedOctaves = 3; ///< how many leading octaves displace vertices (seed: 2 of 4)
+    /// Living whitecaps (foamMemory()): the foam thresholds apply to the displaced octaves' remembered
+    /// crests. false: to their current height, per pixel (the §18.3 threshold; a knob of `pacifica bench
+    /// accuracy`).
+    bool foamMemory = true;
     int mapSize = 128;              ///< texels per side of each height map (power of two)
     int frames = 32;                ///< time slices per loop
     int wavesPerOctave = 48;        ///< cosine components generated per map
@@ -146,7 +150,8 @@ struct OctaveMap {
     int size = 0;
     int frames = 0;
     std::vector<float> texels;
-    /// Displaced octaves only (else empty): frames * size * size remembered crest heights (foamMemory()),
+    /// Displaced octaves with HeightOctavesDesc::foamMemory only (else empty): frames * size * size
+    /// remembered crest heights (foamMemory()),
     /// slice-major, row-major, rounded to half. The GPU's lighting array carries them in its unused h
     /// channel.
     std::vector<float> foam;
@@ -217,7 +222,7 @@ public:
     /// octave's foam memory (OctaveMap::foam) at B_i x, bilinear in space and linear in time like
     /// sampleMap(). >= the positive part of each octave's height: crests, and where crests stood lately.
     /// The swell octave counts too: without it the whitecaps sat on the 61 m octave's lattice, visible
-    /// from 500 m.
+    /// from 500 m. Without foamMemory: the octaves' heights themselves (the map's h), as the GPU then reads.
     double foamHeightAt(const glm::dvec2& worldXY, double time) const override;
     /// Height of the displaced surface (the first displacedOctaves octaves) at world (x, y), time t, as the
     /// GPU draws it for a camera right above (x, y): heightSeenFrom(worldXY, time, worldXY). Equal to what
