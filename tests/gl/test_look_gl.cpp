@@ -33,22 +33,29 @@ constexpr double ALTITUDE = 2000.0, SUN_ELEVATION_DEG = 50.0;
 
 /// Renders the sea of `desc` (alone) from `camera` at `time` into a w x h scene-linear RGBA image, rows top
 /// down.
+/// Renders `registry`'s sea with `renderer` from `camera` at `time` into `targets` (its size) and returns the
+/// scene-linear RGBA image, rows top down.
+std::vector<float> renderInto(ocean::OceanRenderer& renderer, gl::FrameTargets& targets,
+                              ecs::Registry& registry, const CameraFrame& camera, double time) {
+    ocean::OceanFrame f;
+    f.camera = camera;
+    f.time = time;
+    f.targetFramebuffer = targets.sceneFramebuffer().id();
+    f.width = targets.width();
+    f.height = targets.height();
+    renderer.render(registry, f);
+    std::vector<float> px;
+    targets.readScene(px);
+    return px;
+}
+
 std::vector<float> renderSea(const ocean::OceanDesc& desc, const CameraFrame& camera, double time, int w,
                              int h) {
     ecs::Registry registry;
     registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(desc));
     ocean::OceanRenderer renderer;
     gl::FrameTargets targets(w, h);
-    ocean::OceanFrame f;
-    f.camera = camera;
-    f.time = time;
-    f.targetFramebuffer = targets.sceneFramebuffer().id();
-    f.width = w;
-    f.height = h;
-    renderer.render(registry, f);
-    std::vector<float> px;
-    targets.readScene(px);
-    return px;
+    return renderInto(renderer, targets, registry, camera, time);
 }
 
 /// Rec. 709 luminance of pixel i of an RGBA image.
@@ -567,16 +574,8 @@ TEST_F(LookGl, RenderedWhitecapCoverageFollowsMonahan) {
             const double time = 500.0 + 48.0 * r3;
             const CameraFrame frame = makeCameraFrame(cam, static_cast<float>(M_PI / 2.0), 1.0f, 1.0f);
             std::vector<float> px[3];
-            for (int mode = 0; mode < 3; ++mode) {
-                ocean::OceanFrame f;
-                f.camera = frame;
-                f.time = time;
-                f.targetFramebuffer = targets.sceneFramebuffer().id();
-                f.width = S;
-                f.height = S;
-                renderer.render(scenes[mode], f);
-                targets.readScene(px[mode]);
-            }
+            for (int mode = 0; mode < 3; ++mode)
+                px[mode] = renderInto(renderer, targets, scenes[mode], frame, time);
             const glm::mat4 inv = glm::inverse(frame.viewProj);
             for (size_t i = 0; i < static_cast<size_t>(S) * S; ++i) {
                 const double y0 = luminance(px[0], i), y1 = luminance(px[1], i), yw = luminance(px[2], i);
@@ -647,17 +646,10 @@ effectRimStep(double altitude, double t, const glm::dvec2& centre,
         fx.update(t, cam.position);
         ocean::OceanRenderer renderer;
         gl::FrameTargets targets(W, H);
-        ocean::OceanFrame f;
-        f.camera = frame;
-        f.time = t;
-        f.targetFramebuffer = targets.sceneFramebuffer().id();
-        f.width = W;
-        f.height = H;
-        renderer.render(registry, f);
+        px[withFx] = renderInto(renderer, targets, registry, frame, t);
         if (withFx == 1) {
             EXPECT_EQ(renderer.lastStats().explosions.drawn + renderer.lastStats().wakes.drawn, 1);
         }
-        targets.readScene(px[withFx]);
     }
     const glm::mat4 inv = glm::inverse(frame.viewProj);
     double sum[2][2] = {{0, 0}, {0, 0}}; // [inside, outside][without, with]
