@@ -421,36 +421,40 @@ std::vector<OctaveFrameParams> HeightOctaves::frameParams(const glm::dvec2& came
     return out;
 }
 
-glm::dvec3 HeightOctaves::sampleMap(int octave, const glm::dvec2& u, double framePosition) const {
-    const OctaveMap& map = mMaps[static_cast<size_t>(octave)];
-    const int s = map.size;
-    // Same formula as ocean_common.glsl sampleOctave(): texel centres at (i + 0.5) / size.
-    const double px = wrapPhase(u.x, 1.0) * s - 0.5, py = wrapPhase(u.y, 1.0) * s - 0.5;
+namespace {
+
+/// A looped map (size^2 texels, `frames` slices) at tile coordinate u and frame position: bilinear in space
+/// with texel centres at (i + 0.5) / size (ocean_common.glsl sampleOctave()), then linear in time.
+/// value(frame, x, y) gives a texel (double or glm::dvec3).
+template <typename F>
+auto loopedBilinear(int size, int frames, const glm::dvec2& u, double framePosition, const F& value) {
+    const double px = wrapPhase(u.x, 1.0) * size - 0.5, py = wrapPhase(u.y, 1.0) * size - 0.5;
     const double fx0 = std::floor(px), fy0 = std::floor(py);
     const double ax = px - fx0, ay = py - fy0;
-    const int x0 = wrapIndex(static_cast<long long>(fx0), s),
-              x1 = wrapIndex(static_cast<long long>(fx0) + 1, s);
-    const int y0 = wrapIndex(static_cast<long long>(fy0), s),
-              y1 = wrapIndex(static_cast<long long>(fy0) + 1, s);
+    const int x0 = wrapIndex(static_cast<long long>(fx0), size),
+              x1 = wrapIndex(static_cast<long long>(fx0) + 1, size);
+    const int y0 = wrapIndex(static_cast<long long>(fy0), size),
+              y1 = wrapIndex(static_cast<long long>(fy0) + 1, size);
     const double ff = std::floor(framePosition);
     const double at = framePosition - ff;
-    const int f0 = wrapIndex(static_cast<long long>(ff), map.frames);
-    const int f1 = wrapIndex(static_cast<long long>(ff) + 1, map.frames);
     auto bilinear = [&](int f) {
-        glm::dvec3 r(0.0);
-        const float* t00 = map.texel(f, x0, y0);
-        const float* t10 = map.texel(f, x1, y0);
-        const float* t01 = map.texel(f, x0, y1);
-        const float* t11 = map.texel(f, x1, y1);
-        for (int c = 0; c < 3; ++c) {
-            const double bottom = t00[c] + (t10[c] - t00[c]) * ax;
-            const double top = t01[c] + (t11[c] - t01[c]) * ax;
-            r[c] = bottom + (top - bottom) * ay;
-        }
-        return r;
+        const auto bottom = value(f, x0, y0) + (value(f, x1, y0) - value(f, x0, y0)) * ax;
+        const auto top = value(f, x0, y1) + (value(f, x1, y1) - value(f, x0, y1)) * ax;
+        return bottom + (top - bottom) * ay;
     };
-    const glm::dvec3 a = bilinear(f0), b = bilinear(f1);
+    const auto a = bilinear(wrapIndex(static_cast<long long>(ff), frames));
+    const auto b = bilinear(wrapIndex(static_cast<long long>(ff) + 1, frames));
     return a + (b - a) * at;
+}
+
+} // namespace
+
+glm::dvec3 HeightOctaves::sampleMap(int octave, const glm::dvec2& u, double framePosition) const {
+    const OctaveMap& map = mMaps[static_cast<size_t>(octave)];
+    return loopedBilinear(map.size, map.frames, u, framePosition, [&](int f, int x, int y) {
+        const float* t = map.texel(f, x, y);
+        return glm::dvec3(t[0], t[1], t[2]);
+    });
 }
 
 glm::dvec3 HeightOctaves::heightAndGradient(const glm::dvec2& worldXY, double time, int octaveCount) const {
@@ -472,29 +476,13 @@ double HeightOctaves::foamHeightAt(const glm::dvec2& worldXY, double time) const
     for (int i = 0; i < mDesc.displacedOctaves; ++i) {
         const OctaveDesc& o = mDesc.octaves[static_cast<size_t>(i)];
         const OctaveMap& map = mMaps[static_cast<size_t>(i)];
-        const int s = map.size;
-        // The lighting array's texel-centre convention (sampleMap), bilinear, then linear in time.
-        const glm::dvec2 u = worldXY / o.tileSize;
-        const double px = wrapPhase(u.x, 1.0) * s - 0.5, py = wrapPhase(u.y, 1.0) * s - 0.5;
-        const double fx0 = std::floor(px), fy0 = std::floor(py), ax = px - fx0, ay = py - fy0;
-        const int x0 = wrapIndex(static_cast<long long>(fx0), s),
-                  x1 = wrapIndex(static_cast<long long>(fx0) + 1, s);
-        const int y0 = wrapIndex(static_cast<long long>(fy0), s),
-                  y1 = wrapIndex(static_cast<long long>(fy0) + 1, s);
+        const size_t area = static_cast<size_t>(map.size) * map.size;
         const double fpos = wrapPhase(time, o.loopPeriod) / o.loopPeriod * mDesc.frames;
-        const double ff = std::floor(fpos), at = fpos - ff;
-        auto slice = [&](long long f) {
-            const size_t base = static_cast<size_t>(wrapIndex(f, map.frames)) * s * s;
-            auto t = [&](int x, int y) {
-                const size_t k = base + static_cast<size_t>(y) * s + x;
-                return double(map.foam.empty() ? map.texels[k * 4] : map.foam[k]);
-            };
-            const double bottom = t(x0, y0) + (t(x1, y0) - t(x0, y0)) * ax;
-            const double top = t(x0, y1) + (t(x1, y1) - t(x0, y1)) * ax;
-            return bottom + (top - bottom) * ay;
-        };
-        const double a = slice(static_cast<long long>(ff)), b = slice(static_cast<long long>(ff) + 1);
-        sum += o.amplitude * (a + (b - a) * at);
+        sum += o.amplitude *
+               loopedBilinear(map.size, map.frames, worldXY / o.tileSize, fpos, [&](int f, int x, int y) {
+                   const size_t k = static_cast<size_t>(f) * area + static_cast<size_t>(y) * map.size + x;
+                   return double(map.foam.empty() ? map.texels[k * 4] : map.foam[k]);
+               });
     }
     return sum;
 }
