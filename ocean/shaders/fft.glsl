@@ -9,6 +9,13 @@
 //     (i + 0.5) / N, hence the half-texel shift) and, in .z, the slope variance the filtering averaged
 //     away, E[|g|^2] - |E[g]|^2 (LEAN mapping, Olano & Baker 2010), as ocean_common.glsl does for octaves.
 
+// GRID_TEXTURE(s, p, scale): the lighting's mipmapped lookup at p = rel * scale + offset. The fragment stage
+// takes its footprint from the pixel quad; compute shading (shade_compute.glsl) defines it with the
+// G-buffer's derivatives of rel.
+#ifndef GRID_TEXTURE
+#define GRID_TEXTURE(s, p, scale) texture(s, p)
+#endif
+
 uniform sampler2D uFftDisplacement; // RGBA32F (lambda Dx, lambda Dy, h, J), one level
 uniform sampler2D uFftSlope;        // RGBA32F (g_x, g_y, g_x^2, g_y^2), full mip chain, repeat
 uniform vec2 uFftUvOffset;          // fract(camera.xy / L)
@@ -50,6 +57,6 @@ vec2 modelFoamInputs(vec2 rel) {
 
 vec3 modelLighting(vec2 rel) {
     vec2 uv = rel * uFftInvTile + uFftUvOffset + 0.5 / float(uFftSize);
-    vec4 s = texture(uFftSlope, uv);
+    vec4 s = GRID_TEXTURE(uFftSlope, uv, uFftInvTile);
     return vec3(s.xy, max(s.z + s.w - dot(s.xy, s.xy), 0.0));
 }

@@ -15,15 +15,27 @@
 // and J = 1 (no folding foam). A model whose H remembers crests (the octaves' living whitecaps) also defines
 // MODEL_FOAM_REMEMBERS, and the crests' glow takes the displaced height instead.
 
+// Compute shading (OceanDesc::computeShading, ocean_shade.comp): the same lighting runs per pixel of a
+// compute pass from a G-buffer (ocean_gbuffer.frag); it sets these inputs, and the screen derivatives the
+// fragment stage takes with dFdx/dFdy (gGridDx.., shade_compute.glsl), itself.
+#ifdef SHADE_COMPUTE
+vec3 vRel = vec3(0.0);
+vec2 vGrid = vec2(0.0);
+#else
 in vec3 vRel;  // camera-relative displaced position (ocean.vert)
 in vec2 vGrid; // camera-relative undisplaced grid point
 out vec4 fragColor;
+#endif
 
 // Effects (Effects.h): the variant drawing an effect's secondary grid (effects.vert) adds the effect's slope
 // and foam; the base grid's variant with effects present leaves out the discs the effect grids cover.
 // Neither is compiled into a scene without effects.
 #ifdef EFFECT_GRID
+#ifdef SHADE_COMPUTE
+vec3 vEffect = vec3(0.0); // (dE/dx, dE/dy, foam); 0 on the base grid's pixels
+#else
 in vec3 vEffect; // (dE/dx, dE/dy, foam)
+#endif
 #endif
 
 uniform float uNormalTilt;
@@ -121,11 +133,8 @@ float foamOpacity(float c) {
     return (1.0 - hi) + ((hi - t0) * (hi - t0) - (lo - t0) * (lo - t0)) / (2.0 * FOAM_EDGE);
 }
 
-void main() {
-#ifdef EFFECT_HOLES
-    if (insideEffectGrid(vGrid))
-        discard;
-#endif
+// The lit, fogged sea at this pixel (scene-linear).
+vec3 shadeSea() {
     float dist = length(vRel);
     vec3 v = -vRel / max(dist, 1e-6); // towards the eye
     vec3 g = modelLighting(vGrid);
@@ -172,7 +181,11 @@ void main() {
     // Most of the sea has no foam: its fetches and shading are skipped there, the derivatives taken first
     // (in uniform control flow) and the layers read with them.
     vec2 nearUv = vGrid / FOAM_TILE_NEAR + uFoamOffsetNear;
+#ifdef SHADE_COMPUTE
+    vec2 dnx = gGridDx / FOAM_TILE_NEAR, dny = gGridDy / FOAM_TILE_NEAR;
+#else
     vec2 dnx = dFdx(nearUv), dny = dFdy(nearUv);
+#endif
     vec3 color = water;
 #ifdef EFFECT_GRID
     float effectFoam = vEffect.z * uFoamIntensity;
@@ -201,5 +214,15 @@ void main() {
     // Fog between the eye and the surface (seed 003: f = e^(-tau n)), tau integrated over the height falloff
     // and the noise over the path (fogNoiseAlongPath).
     float tau = fogOpticalDepth(uCameraHeight, z, dist) * fogNoiseAlongPath(vRel, uCameraHeight, z);
-    fragColor = vec4(mix(fogColor(-v), color, exp(-tau)), 1.0);
+    return mix(fogColor(-v), color, exp(-tau));
 }
+
+#ifndef SHADE_COMPUTE
+void main() {
+#ifdef EFFECT_HOLES
+    if (insideEffectGrid(vGrid))
+        discard;
+#endif
+    fragColor = vec4(shadeSea(), 1.0);
+}
+#endif

@@ -8,6 +8,13 @@
 // octaves_variant_*.glsl files before this one, which defines OCTAVE_VERTEX_FILTER (default: Bilinear)
 // and/or OCTAVES_COMBINED.
 
+// GRID_TEXTURE(s, p, scale): the lighting's mipmapped lookup at p = rel * scale + offset. The fragment stage
+// takes its footprint from the pixel quad; compute shading (shade_compute.glsl) defines it with the
+// G-buffer's derivatives of rel.
+#ifndef GRID_TEXTURE
+#define GRID_TEXTURE(s, p, scale) texture(s, p)
+#endif
+
 #define OCTAVE_FILTER_NEAREST 0
 #define OCTAVE_FILTER_BILINEAR 1
 #define OCTAVE_FILTER_HARDWARE_BILINEAR 2
@@ -177,7 +184,7 @@ vec3 filteredGradient(vec2 rel) {
     vec3 g = vec3(0.0);
     float foam = 0.0;
     for (int i = 0; i < uOctaveCount; ++i) {
-        vec4 d = texture(uLightNow, vec3(octaveUv(i, rel), float(i)));
+        vec4 d = GRID_TEXTURE(uLightNow, vec3(octaveUv(i, rel), float(i)), uInvTile[i]);
         float scale = uAmplitude[i] * uInvTile[i];
         g.xy += scale * d.yz;
         g.z += scale * scale * max(d.w - dot(d.yz, d.yz), 0.0);

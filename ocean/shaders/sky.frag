@@ -2,8 +2,11 @@
 // sky or the environment map, fogged from the camera's altitude (sky.glsl). Rays that reach the sea beyond
 // the grid (a host's smaller grid, or altitudes where the horizon lies past the skirt) see a flat, distant
 // sea with the same water shading and fog as ocean.frag, so the two meet without a seam.
+// With SHADE_COMPUTE (ocean_shade.comp) only the functions are compiled: the compute pass calls skyColor().
+#ifndef SHADE_COMPUTE
 in vec2 vNdc;
 out vec4 fragColor;
+#endif
 uniform mat4 uInvViewProj; // inverse of the camera-relative view-projection
 
 // Distance along dir (unit) from the camera to the sea on a sphere (surface drop k x^2 at horizontal
@@ -31,9 +34,8 @@ vec3 distantSea(vec3 dir) {
     return sea;
 }
 
-void main() {
-    vec4 p = uInvViewProj * vec4(vNdc, 0.5, 1.0);
-    vec3 dir = normalize(p.xyz / p.w);
+// What a ray from the camera in direction dir (unit) sees beyond the grid: the sky, or the distant sea.
+vec3 skyColor(vec3 dir) {
     float z0 = max(uCameraHeight, 0.01);
     float s = seaHitDistance(dir, z0);
     vec3 color;
@@ -49,5 +51,12 @@ void main() {
         sky = mix(sky, fogColor(dir), smoothstep(0.0, 0.009, -dir.z));
         color = mix(fogColor(dir), sky, skyTransmittance(z0, dir));
     }
-    fragColor = vec4(color, 1.0);
+    return color;
 }
+
+#ifndef SHADE_COMPUTE
+void main() {
+    vec4 p = uInvViewProj * vec4(vNdc, 0.5, 1.0);
+    fragColor = vec4(skyColor(normalize(p.xyz / p.w)), 1.0);
+}
+#endif

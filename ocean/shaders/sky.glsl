@@ -175,9 +175,17 @@ float fogOpticalDepthToSky(float z0, vec3 dir) {
 
 // Seed 003's noise factor n at a camera-relative point: 1 + uFogNoise (2 N - 1), N the tileable noise
 // (mean 0.5) scrolled with the wind. Mipmapped, so far away it averages to n = 1.
-float fogNoiseFactor(vec3 rel) {
+// `along` scales the pixel's footprint: the point is rel * along of the way from the eye (compute shading
+// takes the texture's screen derivatives from the G-buffer's, gRelDx/gRelDy; the fragment stage from the quad).
+float fogNoiseFactor(vec3 rel, float along) {
     vec3 p = vec3(rel.xy / FOG_NOISE_TILE, rel.z / FOG_NOISE_TILE_VERTICAL) + uFogNoiseOffset;
-    return 1.0 + uFogNoise * (2.0 * texture(uFogNoiseMap, p).r - 1.0);
+#ifdef SHADE_COMPUTE
+    const vec3 scale = vec3(1.0 / FOG_NOISE_TILE, 1.0 / FOG_NOISE_TILE, 1.0 / FOG_NOISE_TILE_VERTICAL);
+    float n = textureGrad(uFogNoiseMap, p, gRelDx * scale * along, gRelDy * scale * along).r;
+#else
+    float n = texture(uFogNoiseMap, p).r;
+#endif
+    return 1.0 + uFogNoise * (2.0 * n - 1.0);
 }
 
 // The noise factor of the whole path from a sea point (camera-relative rel, altitude zSurface) to the eye at
@@ -199,7 +207,7 @@ float fogNoiseAlongPath(vec3 rel, float zCamera, float zSurface) {
     for (int k = 0; k < 2; ++k) {
         float q = k == 0 ? 0.21132487 : 0.78867513; // 1/2 -+ 1/(2 sqrt 3)
         float s = layered ? -H * log(1.0 - q * decay) / dz : q; // fraction of the way to the eye
-        n += fogNoiseFactor(rel * (1.0 - s));
+        n += fogNoiseFactor(rel * (1.0 - s), 1.0 - s);
     }
     return 0.5 * n;
 }

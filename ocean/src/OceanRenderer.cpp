@@ -7,6 +7,7 @@
 #include "engine/Log.h"
 #include "engine/gl/GlObjects.h"
 #include "engine/gl/Shader.h"
+#include "gpu/ComputeShading.h"
 #include "gpu/EffectsGpu.h"
 #include "gpu/GridMesh.h"
 #include "gpu/LightingGpu.h"
@@ -66,7 +67,10 @@ struct OceanRenderer::Programs {
     std::map<std::string, gl::Program> seaFeedback; // vertex stage only, captures vRel
     std::map<std::string, gl::Program> effects;     // per model and kinds present: secondary grids
     std::map<std::string, gl::Program> effectsFeedback;
-    gl::Program sky;           // built on first use
+    std::map<std::string, gl::Program> seaGeometry; // compute shading: the grids into the G-buffer
+    std::map<std::string, gl::Program> effectsGeometry;
+    std::map<std::string, gl::Program> shade; // compute shading: per model, effects, output format
+    gl::Program sky;                          // built on first use
     gl::VertexArray emptyVao;  // the sky's fullscreen triangle needs a bound VAO in core profile
     gl::Texture feedbackColor; // a 1x1 target: drawing needs a complete framebuffer even with discard
     gl::Framebuffer feedbackFbo;
@@ -284,7 +288,7 @@ void countEffectUploads(const EffectsGpu& fx, OceanStats& stats) {
 
 OceanRenderer::OceanRenderer()
     : mPrograms(std::make_unique<Programs>()), mLighting(std::make_unique<LightingGpu>()),
-      mEffects(std::make_unique<EffectsGpu>()) {}
+      mEffects(std::make_unique<EffectsGpu>()), mCompute(std::make_unique<ComputeShading>()) {}
 
 OceanRenderer::~OceanRenderer() = default;
 
@@ -306,16 +310,22 @@ OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& 
     return *gpu;
 }
 
-unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback) {
+unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback, bool geometry) {
     const std::string kinds = mEffects->defines();
-    gl::Program& program =
-        (feedback ? mPrograms->effectsFeedback : mPrograms->effects)[gpu.programKey + kinds];
+    gl::Program& program = (feedback   ? mPrograms->effectsFeedback
+                            : geometry ? mPrograms->effectsGeometry
+                                       : mPrograms->effects)[gpu.programKey + kinds];
     if (!program) {
         ++mStats.programsBuilt;
         const std::vector<std::string> model = gpu.model->glslFiles();
         const std::string name = "ocean effect grids (" + gpu.programKey + ")";
         auto vertex = sources(concat(model, {"effects.glsl", "effects.vert"}), kinds);
-        if (feedback)
+        if (geometry)
+            program = gl::buildProgram(
+                {{gl::ShaderStage::Vertex, vertex},
+                 {gl::ShaderStage::Fragment, sources({"ocean_gbuffer.frag"}, "#define EFFECT_GRID\n")}},
+                name + " geometry");
+        else if (feedback)
             program =
                 gl::buildProgram({{gl::ShaderStage::Vertex, vertex}}, name + " feedback", {"vRel", "vLocal"});
         else
@@ -329,7 +339,7 @@ unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback) {
 }
 
 namespace {
-enum TimedPass { PassCompute, PassSky, PassSea, PassEffects, PassCount };
+enum TimedPass { PassCompute, PassSky, PassSea, PassEffects, PassShade, PassCount };
 } // namespace
 
 void OceanRenderer::setPassTiming(std::optional<gl::GpuTimer::Clock> clock) {
@@ -355,6 +365,7 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
         mPassTimes.skyMs = (*ms)[PassSky];
         mPassTimes.seaMs = (*ms)[PassSea];
         mPassTimes.effectsMs = (*ms)[PassEffects];
+        mPassTimes.shadeMs = (*ms)[PassShade];
     }
     mStats.passTimes = mPassTimes;
 }
@@ -448,27 +459,70 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
         const bool holes = effects && mEffects->any();
         const std::string fxDefines = holes ? mEffects->defines() : std::string();
 
+        // Compute shading (OceanDesc::computeShading): the grids only fill a G-buffer sharing the host's
+        // depth, and one compute pass lights every pixel, the sky's included (ComputeShading.h).
+        const bool displaced = horizontalGuard(ocean) > 0.0; // the surface moves sideways (Gerstner, FFT)
+        const bool deferred =
+            ocean.desc.computeShading &&
+            mCompute->attach(frame.targetFramebuffer, frame.width, frame.height, displaced, holes);
+        mStats.computeShaded = deferred;
+        auto shadePixels = [&] {
+            const std::string defines = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
+                                        mCompute->outputFormat() + "\n" +
+                                        (holes ? "#define EFFECT_GRID\n" : "") +
+                                        (displaced ? "#define GBUFFER_DISPLACED\n" : "");
+            gl::Program& program = mPrograms->shade[gpu.programKey + defines];
+            if (!program) {
+                ++mStats.programsBuilt;
+                std::vector<std::string> files{"shade_compute.glsl"};
+                for (const std::string& f : gpu.model->glslFiles())
+                    files.push_back(f);
+                program = gl::buildProgram(
+                    {{gl::ShaderStage::Compute,
+                      sources(concat(files, {"sky.glsl", "sky.frag", "ocean.frag", "ocean_shade.comp"}),
+                              defines)}},
+                    "ocean compute shading (" + gpu.programKey + ")");
+            }
+            const GLuint prog = program.id();
+            setSurfaceUniforms(prog, ocean, gpu, frame);
+            mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
+                                      glm::value_ptr(invViewProj));
+            mCompute->shade(prog, ocean.desc.drawSky);
+            mStats.passes += 1;
+            marks.mark(PassShade);
+        };
+
         const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
-        gl::Program& seaProgram = mPrograms->sea[gpu.programKey + vert + fxDefines];
+        gl::Program& seaProgram =
+            (deferred ? mPrograms->seaGeometry : mPrograms->sea)[gpu.programKey + vert + fxDefines];
         if (!seaProgram) {
             ++mStats.programsBuilt;
             const std::vector<std::string> model = gpu.model->glslFiles();
-            std::vector<std::string> frag = model;
+            std::vector<std::string> frag = deferred ? std::vector<std::string>{} : model;
             if (holes)
                 frag.emplace_back("effects.glsl");
             seaProgram = gl::buildProgram(
                 {{gl::ShaderStage::Vertex, sources(concat(model, {vert}))},
-                 {gl::ShaderStage::Fragment, sources(concat(frag, {"sky.glsl", "ocean.frag"}),
+                 {gl::ShaderStage::Fragment, sources(deferred ? concat(frag, {"ocean_gbuffer.frag"})
+                                                              : concat(frag, {"sky.glsl", "ocean.frag"}),
                                                      holes ? fxDefines + "#define EFFECT_HOLES\n" : "")}},
-                "ocean sea (" + gpu.programKey + (holes ? ", effect holes" : "") + ")");
+                std::string(deferred ? "ocean sea geometry (" : "ocean sea (") + gpu.programKey +
+                    (holes ? ", effect holes" : "") + ")");
         }
         const GLuint sea = seaProgram.id();
         glUseProgram(sea);
+        if (deferred)
+            mCompute->beginGeometry();
         if (!setSeaUniforms(sea, ocean, gpu, frame)) {
-            drawSky(); // no sea in view: the sky pass alone
+            if (deferred)
+                shadePixels(); // no sea in view: the sky alone
+            else
+                drawSky(); // no sea in view: the sky pass alone
             return;
         }
-        mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+        if (!deferred)
+            mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
         if (holes)
             mEffects->bind(sea);
         glEnable(GL_DEPTH_TEST);
@@ -485,10 +539,15 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
 
         // The secondary grids, one instanced draw per kind in view (after the base grid: same depth test).
         if (!holes) {
-            drawSky();
+            if (deferred)
+                shadePixels();
+            else
+                drawSky();
             return;
         }
-        const GLuint fx = effectProgram(gpu, false);
+        if (deferred)
+            mCompute->drawEffects(true);
+        const GLuint fx = effectProgram(gpu, false, deferred);
         glUseProgram(fx);
         setSurfaceUniforms(fx, ocean, gpu, frame);
         // The effect grids' guard adds the effect field's reach; the feedback programs (tests) leave the test
@@ -509,7 +568,10 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
             mStats.vertices += vertices;
         }
         marks.mark(PassEffects);
-        drawSky();
+        if (deferred)
+            shadePixels();
+        else
+            drawSky();
     });
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }
@@ -574,7 +636,7 @@ std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Regi
     }
     gl::StateGuard guard;
     gpu.model->update(frame.time, frame.camera.origin);
-    const GLuint prog = effectProgram(gpu, true);
+    const GLuint prog = effectProgram(gpu, true, false);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
     glUseProgram(prog);
     setSurfaceUniforms(prog, *ocean, gpu, frame);

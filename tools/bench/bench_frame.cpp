@@ -5,11 +5,12 @@
 //     around glFinish on llvmpipe): the frame time, nothing added;
 //   - profiled: the same with OceanRenderer::setPassTiming (GL_TIMESTAMP between passes on hardware, a
 //     glFinish between passes on llvmpipe): the per-pass split (compute, sky, sea, effects).
-// Settings: the presets low, medium, high, and the high preset with one knob changed at a time (sky off,
-// vertex filter, lighting octaves, displaced octaves, grid density, culling) — the cost of each feature is
-// the difference to high. Settings are interleaved frame by frame (round robin) so a shared machine's load
-// hits them alike; figures are medians (and p90) over the timed frames. No OpenImageIO: it runs on the
-// NVIDIA H100 benchmark machine too.
+// Settings: the presets low, medium, high, each preset with the other shading path
+// (OceanDesc::computeShading), and the high preset with one knob changed at a time (sky off, vertex filter,
+// lighting octaves, displaced octaves, grid density, culling) — the cost of each feature is the difference to
+// high. Settings are interleaved frame by frame (round robin) so a shared machine's load hits them alike;
+// figures are medians (and p90) over the timed frames. No OpenImageIO: it runs on the NVIDIA H100 benchmark
+// machine too.
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/gl/FrameTargets.h"
@@ -100,6 +101,15 @@ std::vector<Setting> settings(bool quick) {
         d.grid.segments = 256;
     });
     high("high/no-cull", "per-vertex frustum test off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
+    for (Quality q : {Quality::Low, Quality::Medium, Quality::High}) {
+        ocean::OceanDesc d = ocean::oceanPreset(q);
+        d.computeShading = !d.computeShading;
+        out.push_back(
+            {std::string(ocean::toString(q)) + (d.computeShading ? "/compute-shading" : "/forward-shading"),
+             d.computeShading ? "lit in one compute pass (OceanDesc::computeShading)"
+                              : "lit in the grids' fragment stage",
+             d});
+    }
     return out;
 }
 
@@ -110,7 +120,7 @@ struct Scene {
     // Its own timer: on hardware results arrive frames later, and one timer shared by the round robin
     // would hand a scene another scene's span.
     gl::GpuTimer timer;
-    std::vector<double> compute, sky, sea, effects;
+    std::vector<double> compute, sky, sea, effects, shade;
     size_t warmupSpans = 0; // the timer's first spans belong to the warm-up frames
     ocean::OceanStats stats;
 
@@ -151,6 +161,7 @@ struct Scene {
             sky.push_back(p.skyMs);
             sea.push_back(p.seaMs);
             effects.push_back(p.effectsMs);
+            shade.push_back(p.shadeMs);
         }
     }
 };
@@ -158,7 +169,7 @@ struct Scene {
 struct Row {
     std::string setting, knob;
     int width = 0, height = 0;
-    double ms = 0, p90 = 0, compute = 0, sky = 0, sea = 0, effects = 0;
+    double ms = 0, p90 = 0, compute = 0, sky = 0, sea = 0, effects = 0, shade = 0;
     long long vertices = 0;
     int passes = 0, draws = 0, samples = 0;
 };
@@ -277,6 +288,7 @@ int main(int argc, char** argv) {
                 r.sky = quantile(scene->sky, 0.5);
                 r.sea = quantile(scene->sea, 0.5);
                 r.effects = quantile(scene->effects, 0.5);
+                r.shade = quantile(scene->shade, 0.5);
                 r.vertices = scene->stats.vertices;
                 r.passes = scene->stats.passes;
                 r.draws = scene->stats.draws;
@@ -284,21 +296,23 @@ int main(int argc, char** argv) {
                 if (r.samples == 0 || !(r.ms > 0.0))
                     throw std::runtime_error("setting " + r.setting + ": no frame time measured");
                 rows.push_back(r);
-                std::fprintf(stderr, "  %-22s %8.3f ms (p90 %8.3f)  sky %7.3f  sea %8.3f  compute %6.3f\n",
-                             r.setting.c_str(), r.ms, r.p90, r.sky, r.sea, r.compute);
+                std::fprintf(
+                    stderr,
+                    "  %-22s %8.3f ms (p90 %8.3f)  sky %7.3f  sea %8.3f  shade %7.3f  compute %6.3f\n",
+                    r.setting.c_str(), r.ms, r.p90, r.sky, r.sea, r.shade, r.compute);
             }
         }
 
         const std::string date = utcNow();
         std::ofstream csv(std::filesystem::path(outDir) / "frame.csv");
         csv << "setting,knob,width,height,ms_median,ms_p90,samples,compute_ms,sky_ms,sea_ms,effects_ms,"
-               "vertices,passes,draws,clock,pass_clock,renderer\n";
+               "shade_ms,vertices,passes,draws,clock,pass_clock,renderer\n";
         for (const Row& r : rows)
             csv << r.setting << "," << csvQuote(r.knob) << "," << r.width << "," << r.height << ","
                 << num(r.ms) << "," << num(r.p90) << "," << r.samples << "," << num(r.compute) << ","
-                << num(r.sky) << "," << num(r.sea) << "," << num(r.effects) << "," << r.vertices << ","
-                << r.passes << "," << r.draws << "," << csvQuote(timer.clockName()) << ","
-                << csvQuote(passClock) << "," << csvQuote(info.renderer) << "\n";
+                << num(r.sky) << "," << num(r.sea) << "," << num(r.effects) << "," << num(r.shade) << ","
+                << r.vertices << "," << r.passes << "," << r.draws << "," << csvQuote(timer.clockName())
+                << "," << csvQuote(passClock) << "," << csvQuote(info.renderer) << "\n";
         std::ofstream md(std::filesystem::path(outDir) / "frame.md");
         md << "# Ocean frame cost per preset (pacifica-bench-frame)\n\n"
            << "- GL_RENDERER: " << info.renderer << "\n- frame clock: " << timer.clockName()
@@ -306,8 +320,8 @@ int main(int argc, char** argv) {
            << "\n- command: `" << commandLine << "`\n- view: 20 m up, pitch " << PITCH_DEG
            << " deg, vertical fov " << FOV_Y_DEG << " deg; median (p90) of " << frames
            << " frames per setting, round robin\n\n"
-           << "| setting | size | ms median | p90 | sky | sea | compute | vertices | vs high |\n"
-           << "|---|---|---|---|---|---|---|---|---|\n";
+           << "| setting | size | ms median | p90 | sky | sea | shade | compute | vertices | vs high |\n"
+           << "|---|---|---|---|---|---|---|---|---|---|\n";
         for (const Row& r : rows) {
             double high = 0.0;
             for (const Row& h : rows)
@@ -315,8 +329,8 @@ int main(int argc, char** argv) {
                     high = h.ms;
             md << "| " << r.setting << " | " << r.width << "x" << r.height << " | " << num(r.ms, 4) << " | "
                << num(r.p90, 4) << " | " << num(r.sky, 3) << " | " << num(r.sea, 4) << " | "
-               << num(r.compute, 3) << " | " << r.vertices << " | " << (high > 0 ? num(r.ms / high, 3) : "-")
-               << " |\n";
+               << num(r.shade, 3) << " | " << num(r.compute, 3) << " | " << r.vertices << " | "
+               << (high > 0 ? num(r.ms / high, 3) : "-") << " |\n";
         }
         nlohmann::json js;
         js["renderer"] = info.renderer;
@@ -337,6 +351,7 @@ int main(int argc, char** argv) {
                                   {"sky_ms", r.sky},
                                   {"sea_ms", r.sea},
                                   {"effects_ms", r.effects},
+                                  {"shade_ms", r.shade},
                                   {"vertices", r.vertices},
                                   {"passes", r.passes},
                                   {"draws", r.draws}});

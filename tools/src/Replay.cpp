@@ -527,7 +527,8 @@ void runReplay(const ReplayOptions& o) {
                     pj = {{"compute", pt.computeMs},
                           {"sky", pt.skyMs},
                           {"sea", pt.seaMs},
-                          {"effects", pt.effectsMs}};
+                          {"effects", pt.effectsMs},
+                          {"shade", pt.shadeMs}};
                 if (auto own = passTimer->poll()) {
                     pj["objects"] = (*own)[PassObjects];
                     pj["tonemap"] = (*own)[PassTonemap];

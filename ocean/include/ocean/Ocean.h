@@ -10,7 +10,7 @@
 //      It draws sky + sea into the host's framebuffer (scene-linear HDR, e.g. RGBA16F with a depth
 //      attachment; reverse-Z: it clears depth to 0 and tests GL_GREATER) and restores the host's GL state
 //      (gl::StateGuard), except texture bindings: units 0..(model units - 1) and 12..14 (lighting) are left
-//      changed, and image unit 0 when the octave combine pass runs.
+//      changed, image unit 0 when the octave combine pass runs, and units 15..18 under compute shading.
 //   5. CPU queries (physics, buoyancy, cameras): component.surface->heightAt({x, y}, simTime) matches what
 //      the GPU drew to float precision.
 // Entities without an OceanComponent cost nothing; removing the component frees its GPU resources on the
@@ -70,6 +70,16 @@ struct OceanDesc {
     bool cullVertices = true;
     double cullGuardNdc = 0.1;
     EffectGridDesc effectGrids;
+    /// Light the sea and sky in one compute pass instead of in the grids' fragment stage: the grids write
+    /// only depth and a thin G-buffer (the quad's derivatives of the grid point), and the same lighting code
+    /// runs once per pixel on every compute unit, the surface point rebuilt from the depth (on the H100 only
+    /// 4 of 132 SMs run fragment work: 1080p high 2.09 -> 0.86 ms; docs/PERFORMANCE.md). It writes the
+    /// host's colour texture through an image binding, so it needs a host framebuffer whose draw buffer 0
+    /// is a 2D texture of RGBA16F, RGBA32F, RGBA8, RGB10_A2 or R11F_G11F_B10F and whose depth is a 2D
+    /// 32-bit float texture (as engine's FrameTargets); with any other target the frame is shaded forward
+    /// (OceanStats::computeShaded says which ran). Same depth, same image to within a few 1e-5 of mean
+    /// luminance (the fog noise's footprint comes from neighbouring pixels; test_compute_shading_gl).
+    bool computeShading = false;
 };
 
 /// The component: a description plus the CPU surface model built from it (shared, immutable). CPU queries
@@ -108,8 +118,9 @@ struct EffectKindStats {
 /// grids. Absent passes measure ~0.
 struct OceanPassTimes {
     bool measured = false; ///< false while timing is off or no frame's results have arrived yet
-    double computeMs = 0.0, skyMs = 0.0, seaMs = 0.0, effectsMs = 0.0;
-    double totalMs() const { return computeMs + skyMs + seaMs + effectsMs; }
+    /// shade: the compute-shading pass (OceanDesc::computeShading), which also draws the sky (skyMs ~0).
+    double computeMs = 0.0, skyMs = 0.0, seaMs = 0.0, effectsMs = 0.0, shadeMs = 0.0;
+    double totalMs() const { return computeMs + skyMs + seaMs + effectsMs + shadeMs; }
 };
 
 struct OceanStats {
@@ -118,12 +129,14 @@ struct OceanStats {
     int uploads = 0;
     long long vertices = 0;
     int programsBuilt = 0; ///< shader programs compiled this frame (a variant is built on first use only)
+    bool computeShaded = false; ///< the frame was lit by the compute pass (OceanDesc::computeShading)
     EffectKindStats explosions, wakes;
     OceanPassTimes passTimes; ///< only with OceanRenderer::setPassTiming()
 };
 
-class LightingGpu; // implementation detail (ocean/src/gpu/LightingGpu.h)
-class EffectsGpu;  // implementation detail (ocean/src/gpu/EffectsGpu.h)
+class LightingGpu;    // implementation detail (ocean/src/gpu/LightingGpu.h)
+class EffectsGpu;     // implementation detail (ocean/src/gpu/EffectsGpu.h)
+class ComputeShading; // implementation detail (ocean/src/gpu/ComputeShading.h)
 
 /// The ocean render system: draws every OceanComponent in a registry.
 class OceanRenderer {
@@ -170,11 +183,13 @@ public:
 private:
     void renderPasses(ecs::Registry& registry, const OceanFrame& frame);
     Gpu& prepare(ecs::Entity e, const OceanComponent& ocean);
-    /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once).
-    unsigned effectProgram(Gpu& gpu, bool feedback);
+    /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once):
+    /// lit, transform feedback (tests), or into the G-buffer (compute shading).
+    unsigned effectProgram(Gpu& gpu, bool feedback, bool geometry);
     std::unique_ptr<Programs> mPrograms;
     std::unique_ptr<LightingGpu> mLighting;
     std::unique_ptr<EffectsGpu> mEffects;
+    std::unique_ptr<ComputeShading> mCompute; // OceanDesc::computeShading's G-buffer
     std::unordered_map<ecs::Entity, std::unique_ptr<Gpu>> mGpu;
     OceanStats mStats;
     std::unique_ptr<gl::PassTimer> mPassTimer;

@@ -1,0 +1,145 @@
+// ComputeShading: see ComputeShading.h.
+#include "gpu/ComputeShading.h"
+
+#include <epoxy/gl.h>
+
+namespace pacifica::ocean {
+
+namespace {
+
+/// The GLSL image format of a colour texture's internal format, or nullptr when images cannot store it.
+const char* imageFormatName(GLint format) {
+    switch (format) {
+    case GL_RGBA16F:
+        return "rgba16f";
+    case GL_RGBA32F:
+        return "rgba32f";
+    case GL_RGBA8:
+        return "rgba8";
+    case GL_RGB10_A2:
+        return "rgb10_a2";
+    case GL_R11F_G11F_B10F:
+        return "r11f_g11f_b10f";
+    default:
+        return nullptr;
+    }
+}
+
+GLint attachmentParameter(GLuint fbo, GLenum attachment, GLenum pname) {
+    GLint v = 0;
+    glGetNamedFramebufferAttachmentParameteriv(fbo, attachment, pname, &v);
+    return v;
+}
+
+} // namespace
+
+ComputeShading::~ComputeShading() {
+    if (mDepthSampler)
+        glDeleteSamplers(1, &mDepthSampler);
+}
+
+bool ComputeShading::attach(unsigned hostFbo, int width, int height, bool displaced, bool effects) {
+    if (hostFbo == 0 || width <= 0 || height <= 0)
+        return false;
+    GLint drawBuffer = GL_NONE;
+    glGetIntegerv(GL_DRAW_BUFFER0, &drawBuffer);
+    if (drawBuffer < GL_COLOR_ATTACHMENT0 || drawBuffer > GL_COLOR_ATTACHMENT0 + 7)
+        return false;
+    // A single-level view of a 2D texture: its internal format, or 0.
+    auto texture2D = [&](GLenum attachment, unsigned& name, int& level) -> GLint {
+        if (attachmentParameter(hostFbo, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE) != GL_TEXTURE ||
+            attachmentParameter(hostFbo, attachment, GL_FRAMEBUFFER_ATTACHMENT_LAYERED) == GL_TRUE)
+            return 0;
+        name = static_cast<unsigned>(
+            attachmentParameter(hostFbo, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME));
+        level = attachmentParameter(hostFbo, attachment, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL);
+        GLint target = 0, w = 0, h = 0, format = 0;
+        glGetTextureParameteriv(name, GL_TEXTURE_TARGET, &target);
+        if (target != GL_TEXTURE_2D)
+            return 0;
+        glGetTextureLevelParameteriv(name, level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+        glGetTextureLevelParameteriv(name, level, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(name, level, GL_TEXTURE_HEIGHT, &h);
+        return w >= width && h >= height ? format : 0;
+    };
+    Key key;
+    key.format = texture2D(static_cast<GLenum>(drawBuffer), key.color, key.colorLevel);
+    const char* format = imageFormatName(key.format);
+    const GLint depthFormat = texture2D(GL_DEPTH_ATTACHMENT, key.depth, key.depthLevel);
+    if (!format || (depthFormat != GL_DEPTH_COMPONENT32F && depthFormat != GL_DEPTH32F_STENCIL8))
+        return false;
+    key.width = width;
+    key.height = height;
+    key.displaced = displaced;
+    key.effects = effects || (mEffect && mKey.width == width && mKey.height == height);
+    mFormatName = format;
+    if (!mFbo || key.width != mKey.width || key.height != mKey.height || key.effects != mKey.effects ||
+        key.displaced != mKey.displaced) {
+        mGeometry = gl::Texture::create2D(GL_RGBA16F, width, height);
+        mOffset = displaced ? gl::Texture::create2D(GL_RG16F, width, height) : gl::Texture();
+        mEffect = key.effects ? gl::Texture::create2D(GL_RGBA16F, width, height) : gl::Texture();
+        mFbo = gl::Framebuffer::create();
+        mFbo.attachColor(0, mGeometry);
+        if (mOffset)
+            mFbo.attachColor(1, mOffset);
+        if (mEffect)
+            mFbo.attachColor(2, mEffect);
+    }
+    if (!mDepthSampler) { // the host's depth read as values, whatever comparison its texture has set
+        glCreateSamplers(1, &mDepthSampler);
+        glSamplerParameteri(mDepthSampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+        glSamplerParameteri(mDepthSampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glSamplerParameteri(mDepthSampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    mKey = key;
+    // The host's depth is attached every frame: a host may delete its target and get the same name back
+    // for a new one, and a cached attachment would keep the old object.
+    glNamedFramebufferTexture(
+        mFbo.id(), depthFormat == GL_DEPTH32F_STENCIL8 ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
+        key.depth, key.depthLevel);
+    return glCheckNamedFramebufferStatus(mFbo.id(), GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+}
+
+void ComputeShading::drawEffects(bool on) {
+    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, mOffset ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE),
+                               on && mEffect ? GLenum(GL_COLOR_ATTACHMENT2) : GLenum(GL_NONE)};
+    glNamedFramebufferDrawBuffers(mFbo.id(), 3, buffers);
+}
+
+void ComputeShading::beginGeometry() {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mFbo.id());
+    if (mEffect) {
+        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        drawEffects(true);
+        glClearBufferfv(GL_COLOR, 2, zero);
+    }
+    drawEffects(false);
+}
+
+void ComputeShading::shade(unsigned program, bool drawSky) {
+    glBindTextureUnit(DEPTH_UNIT, mKey.depth);
+    glBindSampler(DEPTH_UNIT, mDepthSampler);
+    glBindTextureUnit(GEOMETRY_UNIT, mGeometry.id());
+    glBindTextureUnit(OFFSET_UNIT, mOffset ? mOffset.id() : 0);
+    glBindTextureUnit(EFFECT_UNIT, mEffect ? mEffect.id() : 0);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uDepth"), DEPTH_UNIT);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uDepthLevel"), mKey.depthLevel);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uGeometry"), GEOMETRY_UNIT);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uOffset"), OFFSET_UNIT);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uEffectGeometry"), EFFECT_UNIT);
+    glProgramUniform2i(program, glGetUniformLocation(program, "uShadeSize"), mKey.width, mKey.height);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uShadeSky"), drawSky ? 1 : 0);
+    glBindImageTexture(OUTPUT_IMAGE_UNIT, mKey.color, mKey.colorLevel, GL_FALSE, 0, GL_WRITE_ONLY,
+                       static_cast<GLenum>(mKey.format));
+    glUseProgram(program);
+    glDispatchCompute(static_cast<GLuint>((mKey.width + 7) / 8), static_cast<GLuint>((mKey.height + 7) / 8),
+                      1);
+    // The host reads or draws over its colour next, by any path.
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                    GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                    GL_PIXEL_BUFFER_BARRIER_BIT);
+    glBindImageTexture(OUTPUT_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindSampler(DEPTH_UNIT, 0);
+}
+
+} // namespace pacifica::ocean
