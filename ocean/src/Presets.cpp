@@ -50,6 +50,7 @@ OceanDesc oceanPreset(Quality quality) {
         d.grid.rings = 512;
         d.grid.segments = 1024;
         d.cullVertices = false;
+        d.computeShading = false; // the fragment stage's own derivatives: the shading the others are held to
         break;
     }
     return d;

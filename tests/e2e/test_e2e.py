@@ -502,6 +502,17 @@ def case_ocean_options(c, exe, source_dir, tmp):
     c.check(frame_w["exr_pixel_hash"] != frame_d["exr_pixel_hash"] and mean_w[0] > mean_d[0],
             "--water-color changes the EXR pixels and adds red", f"{mean_w} vs {mean_d}")
 
+    print("[shading] --forward-shading: the grids' fragment stage lights the sea instead of the compute pass")
+    out_fw, frame_fw = run("forward", ["--forward-shading"])
+    mean_fw = exr_mean_rgb(out_fw, frame_fw["exr"])
+    print(f"    mean RGB {mean_fw}")
+    shaded = (frame_d.get("counters", {}).get("compute_shaded"), frame_fw.get("counters", {}).get("compute_shaded"))
+    c.check(shaded == (True, False), "compute shading by default, forward with --forward-shading (counters)",
+            str(shaded))
+    # The same picture (test_compute_shading_gl measures the per-pixel difference): mean colour within 0.1%.
+    c.check(all(abs(a - b) <= 1e-3 * b for a, b in zip(mean_fw, mean_d)),
+            "--forward-shading: mean RGB within 0.1% of the compute-shaded frame", f"{mean_fw} vs {mean_d}")
+
     print("[octaves] --octaves 2 --displaced-octaves 1")
     _, frame_o = run("octaves", ["--octaves", "2", "--displaced-octaves", "1"])
     c.check(frame_o["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "octave count options change the EXR pixels",
@@ -602,7 +613,7 @@ def case_effects(c, exe, source_dir, tmp):
     c.check(all("pass_ms" not in f for f in f_fx), "without --profile no frame has pass_ms")
     s_prof, f_prof = run("profiled", ["--profile"])
     medians = s_prof.get("timings", {}).get("passes_ms_median", {})
-    want = {"compute", "sky", "sea", "effects", "objects", "tonemap", "readback", "encode"}
+    want = {"compute", "sky", "sea", "effects", "shade", "objects", "tonemap", "readback", "encode"}
     c.check(want <= set(medians), "summary timings.passes_ms_median names every pass", str(medians))
     c.check("glFinish" in s_prof.get("timings", {}).get("pass_clock", "") or
             "GL_TIMESTAMP" in s_prof.get("timings", {}).get("pass_clock", ""),
@@ -612,8 +623,10 @@ def case_effects(c, exe, source_dir, tmp):
         c.check(fp["exr_pixel_hash"] == fe["exr_pixel_hash"], f"t={fp['time_s']}: --profile changes no pixel")
         c.check(all(isinstance(pm.get(k), (int, float)) and pm[k] >= 0 for k in want),
                 f"t={fp['time_s']}: pass_ms has every pass, none negative", str(pm))
-        c.check(pm.get("sea", 0) > 0 and pm.get("sky", 0) > 0 and pm.get("tonemap", 0) > 0,
-                f"t={fp['time_s']}: sky, sea and tonemap take time", str(pm))
+        # Compute shading (the default, counters.compute_shaded) lights the sky in its shading pass.
+        sky_pass = "shade" if fp["counters"]["compute_shaded"] else "sky"
+        c.check(pm.get("sea", 0) > 0 and pm.get(sky_pass, 0) > 0 and pm.get("tonemap", 0) > 0,
+                f"t={fp['time_s']}: {sky_pass}, sea and tonemap take time", str(pm))
         if fe["counters"]["wakes"]["drawn"] or fe["counters"]["explosions"]["drawn"]:
             c.check(pm.get("effects", 0) > 0, f"t={fp['time_s']}: drawn effects take time", str(pm))
 

@@ -1,8 +1,9 @@
 // Compute shading (OceanDesc::computeShading, ctest labels gl, performance): the sea and sky lit by one
 // compute pass over a G-buffer draw the same picture as the grids' fragment stage. Forward and compute
 // frames of the same view are compared pixel by pixel in the host's own RGBA16F + D32F framebuffer: the
-// depth the host gets is identical, and the colours differ little (measured: at most 0.03% of pixels by
-// more than 2% in luminance, mean 0.008%; the fog noise's footprint comes from neighbouring pixels). Views
+// depth the host gets is identical, and the colours differ little (measured on llvmpipe: at most 0.0104% of
+// pixels by more than 2% in luminance, mean at most 0.0044%; the fog noise's footprint lacks its vertical
+// part; the most at 2 m toward the sun). Views
 // from 2 m to 10 km, at 10^7 m from the origin at t = 10^6 s, the three surface models, a scene with an
 // explosion and a wake; without the sky the host's pixels stay untouched; a target it cannot use (a
 // renderbuffer colour, 24-bit depth) is shaded forward.
@@ -177,8 +178,8 @@ protected:
         std::printf("[%s] pixels > 2%%: %.4f%%, mean %.5f%%, max %.3f%%\n", what.c_str(),
                     100.0 * d.over2Percent, 100.0 * d.mean, 100.0 * d.max);
         EXPECT_EQ(d.nonFinite, 0u) << what;
-        EXPECT_LT(d.over2Percent, 0.002) << what;
-        EXPECT_LT(d.mean, 0.0003) << what;
+        EXPECT_LT(d.over2Percent, 0.0005) << what;
+        EXPECT_LT(d.mean, 0.0001) << what;
     }
 };
 
@@ -195,6 +196,13 @@ const View VIEWS[] = {
     {"10 km", {5000.0, -3000.0, 10000.0}, 120.0, -35.0, 60.0},
     {"10^7 m from the origin at t = 10^6 s", {1.0e7, -1.0e7, 30.0}, 300.0, -6.0, 1.0e6},
 };
+
+TEST(ComputeShadingDefaults, OnInThePresetsForwardInTheReference) {
+    EXPECT_TRUE(OceanDesc{}.computeShading);
+    for (Quality q : {Quality::Low, Quality::Medium, Quality::High})
+        EXPECT_TRUE(oceanPreset(q).computeShading) << toString(q);
+    EXPECT_FALSE(oceanPreset(Quality::Reference).computeShading);
+}
 
 TEST_F(ComputeShadingGl, OctaveSeaMatchesForwardShading) {
     setOcean(oceanPreset(Quality::High));

@@ -134,13 +134,15 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
         EXPECT_EQ(k.vertices, 0);
     }
     // 2. One explosion ahead: one extra pass and draw for explosions, uploads for its data (+ mesh once),
-    // two new shader variants (sea with holes, explosion grid); wakes nothing.
+    // three new shader variants (under compute shading, the default: the sea's G-buffer with holes, the
+    // explosion grid's G-buffer, the shading pass with the effect layer); wakes nothing.
     events.enqueue(SpawnExplosion{{300.0, 0.0}, 1.0, 1.0});
     events.dispatch();
     fx.update(3.0, cam);
     renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.0));
     OceanStats s = renderer.lastStats();
-    EXPECT_EQ(s.programsBuilt, 2);
+    ASSERT_TRUE(s.computeShaded);
+    EXPECT_EQ(s.programsBuilt, 3);
     EXPECT_EQ(s.explosions.active, 1);
     EXPECT_EQ(s.explosions.drawn, 1);
     EXPECT_EQ(s.explosions.passes, 1);
@@ -200,7 +202,8 @@ TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
     EXPECT_EQ(timed, untimed) << "timing must not change what is drawn";
     OceanPassTimes p = renderer.lastStats().passTimes;
     ASSERT_TRUE(p.measured);
-    EXPECT_GT(p.skyMs, 0.0);
+    ASSERT_TRUE(renderer.lastStats().computeShaded); // the default: the sky is lit in the shading pass
+    EXPECT_GT(p.shadeMs, 0.0);
     EXPECT_GT(p.seaMs, 0.0);
     EXPECT_LE(p.totalMs(), frameMs);
     // No effects: the effects span is a glFinish with nothing queued, far below the sea's draw.
@@ -215,6 +218,16 @@ TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
     ASSERT_EQ(renderer.lastStats().explosions.draws, 1);
     EXPECT_GT(p.effectsMs, 0.0);
     EXPECT_GT(p.seaMs, 0.0);
+
+    // Shaded forward: the sky is a pass of its own again, and the shading span is ~empty.
+    OceanDesc forward;
+    forward.computeShading = false;
+    registry.emplaceOrReplace<OceanComponent>(oceanEntity, makeOcean(forward));
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.05));
+    p = renderer.lastStats().passTimes;
+    ASSERT_FALSE(renderer.lastStats().computeShaded);
+    EXPECT_GT(p.skyMs, 0.0);
+    EXPECT_LT(p.shadeMs, 0.25 * p.seaMs) << p.shadeMs << " vs sea " << p.seaMs;
 
     // Off again: no new measurement.
     renderer.setPassTiming(std::nullopt);

@@ -172,8 +172,9 @@ std::vector<Setting> sweep(bool quick) {
             for (int n : {64, 128}) // 256 = baseline
                 add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
         add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
-        // Where the lighting runs: the grids' fragment stage (baseline) or one compute pass (OceanDesc).
-        add(m, "shading", "compute", [](ocean::OceanDesc& d) { d.computeShading = true; });
+        // Where the lighting runs: one compute pass (baseline, OceanDesc::computeShading) or the grids'
+        // fragment stage.
+        add(m, "shading", "forward", [](ocean::OceanDesc& d) { d.computeShading = false; });
         // Look features (issue 10): what switching each off changes in the image, and saves.
         add(m, "subsurface", "off", [](ocean::OceanDesc& d) { d.lighting.subsurface = 0.0f; });
         add(m, "fog_noise", "off", [](ocean::OceanDesc& d) { d.lighting.fogNoise = 0.0f; });

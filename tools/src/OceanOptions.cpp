@@ -181,6 +181,9 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
         ->default_val("bilinear");
     app.add_flag("--combined", o.combined, "octaves: combine displaced octaves in a compute pass first");
     app.add_flag("--no-cull", o.noCull, "displace every vertex (no per-vertex frustum test)");
+    app.add_flag(
+        "--forward-shading", o.forwardShading,
+        "light the sea in the grids' fragment stage instead of one compute pass (docs/PERFORMANCE.md)");
     app.add_flag("--no-view-sector", o.noViewSector, "tessellate the full circle, not just the view sector");
     app.add_option(
         "--octaves", o.octaveCount,
@@ -300,6 +303,8 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
                          o.vertexFilter + "'");
     d.octaves.combinedDisplacement = o.combined;
     d.cullVertices = !o.noCull;
+    if (o.forwardShading)
+        d.computeShading = false;
     d.viewSector = !o.noViewSector;
     if (o.octaveCount != 0) {
         const int available = static_cast<int>(d.octaves.octaves.size());

@@ -506,6 +506,7 @@ void runReplay(const ReplayOptions& o) {
                               {"uploads", st.uploads},
                               {"vertices", st.vertices},
                               {"programs_built", st.programsBuilt},
+                              {"compute_shaded", st.computeShaded},
                               {"explosions", kindJson(st.explosions)},
                               {"wakes", kindJson(st.wakes)},
                               {"explosions_spawned", fx.spawned},

@@ -72,14 +72,15 @@ struct OceanDesc {
     EffectGridDesc effectGrids;
     /// Light the sea and sky in one compute pass instead of in the grids' fragment stage: the grids write
     /// only depth and a thin G-buffer (the quad's derivatives of the grid point), and the same lighting code
-    /// runs once per pixel on every compute unit, the surface point rebuilt from the depth (on the H100 only
-    /// 4 of 132 SMs run fragment work: 1080p high 2.09 -> 0.86 ms; docs/PERFORMANCE.md). It writes the
-    /// host's colour texture through an image binding, so it needs a host framebuffer whose draw buffer 0
-    /// is a 2D texture of RGBA16F, RGBA32F, RGBA8, RGB10_A2 or R11F_G11F_B10F and whose depth is a 2D
-    /// 32-bit float texture (as engine's FrameTargets); with any other target the frame is shaded forward
-    /// (OceanStats::computeShaded says which ran). Same depth, same image to within a few 1e-5 of mean
-    /// luminance (the fog noise's footprint comes from neighbouring pixels; test_compute_shading_gl).
-    bool computeShading = false;
+    /// runs once per pixel on every compute unit, the surface point rebuilt from the depth. On the H100/H200
+    /// only 4 of 132 SMs run fragment work: 1080p high preset 2.09 -> 0.85 ms; llvmpipe 640x360 high
+    /// -15%, low about equal (docs/PERFORMANCE.md). It writes the host's colour texture through an image
+    /// binding, so it needs a host framebuffer whose draw buffer 0 is a 2D texture of RGBA16F, RGBA32F,
+    /// RGBA8, RGB10_A2 or R11F_G11F_B10F and whose depth is a 2D 32-bit float texture (as engine's
+    /// FrameTargets); with any other target the frame is shaded forward (OceanStats::computeShaded says
+    /// which ran). Same depth, same image to within ~1e-5 of mean luminance (the fog noise's footprint
+    /// lacks its vertical part; test_compute_shading_gl). On by default; the reference preset shades forward.
+    bool computeShading = true;
 };
 
 /// The component: a description plus the CPU surface model built from it (shared, immutable). CPU queries
