@@ -3,7 +3,7 @@
 report: one row per preset, finite positive frame times, the per-pass split measured (sea and the compute shading
 pass, which lights the sky too, > 0; no effect time above the frame), vertices growing low < medium < high, the
 compute, sea and shading passes and the one draw counted, GL_RENDERER
-and both clocks named, CSV and Markdown written; a bad --size is refused with exit 2. Asserts nothing about speed
+and both clocks named, CSV and Markdown written; a bad --size is refused with exit 2; --only runs the named settings only. Asserts nothing about speed
 (docs/PERFORMANCE.md has the figures). Usage: test_frame_bench.py BENCH_EXE OUT_DIR"""
 import csv
 import json
@@ -52,5 +52,12 @@ p2 = subprocess.run([exe, "--out", out, "--size", "huge"], capture_output=True, 
 check(p2.returncode == 2 and "--size" in p2.stderr, "a bad --size is refused")
 p3 = subprocess.run([exe, "--quick"], capture_output=True, text=True, timeout=60)
 check(p3.returncode == 2 and "--out" in p3.stderr, "a missing --out is refused")
+only_out = os.path.join(out, "only")
+p4 = subprocess.run([exe, "--quick", "--only", "low", "--out", only_out], capture_output=True, text=True, timeout=120)
+only_rows = json.load(open(os.path.join(only_out, "frame.json")))["rows"] if p4.returncode == 0 else []
+check([r["setting"] for r in only_rows] == ["low"], "--only low runs just the low preset")
+p5 = subprocess.run([exe, "--quick", "--only", "lowest", "--out", only_out], capture_output=True, text=True,
+                    timeout=60)
+check(p5.returncode == 2 and "--only" in p5.stderr, "--only naming no setting is refused")
 print("FAILED: " + "; ".join(failed) if failed else "all checks passed")
 sys.exit(1 if failed else 0)

@@ -35,6 +35,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -177,10 +178,12 @@ struct Row {
 int usage(const char* argv0, int code) {
     (code == 0 ? std::cout : std::cerr)
         << "usage: " << argv0
-        << " --out DIR [--size WxH]... [--frames N] [--quick]\n"
+        << " --out DIR [--size WxH]... [--frames N] [--quick] [--only NAME,...]\n"
            "  Frame time per quality preset and size, and per-pass split (docs/PERFORMANCE.md).\n"
            "  Default sizes: 640x360 and 1280x720 on a software renderer, 1920x1080 on hardware;\n"
-           "  default frames 15 (llvmpipe) / 120 (hardware). --quick: the presets at 160x90, 3 frames.\n";
+           "  default frames 15 (llvmpipe) / 120 (hardware). --quick: the presets at 160x90, 3 frames.\n"
+           "  --only: just the named settings (rows of a full run: low, high/no-sky, low/forward-shading "
+           "...).\n";
     return code;
 }
 
@@ -191,6 +194,7 @@ int main(int argc, char** argv) {
     std::vector<std::pair<int, int>> sizes;
     std::optional<int> framesArg;
     bool quick = false;
+    std::vector<std::string> only; // --only NAME[,NAME...]: run just these settings
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::optional<std::string> {
@@ -217,6 +221,15 @@ int main(int argc, char** argv) {
                 return 2;
             }
             sizes.push_back(*size);
+        } else if (a == "--only") {
+            const auto v = value();
+            if (!v || v->empty()) {
+                std::cerr << "pacifica-bench-frame: --only expects setting names, e.g. low,high/no-sky\n";
+                return 2;
+            }
+            std::stringstream list(*v);
+            for (std::string name; std::getline(list, name, ',');)
+                only.push_back(name);
         } else if (a == "--frames") {
             const auto v = value();
             char* end = nullptr;
@@ -262,7 +275,13 @@ int main(int argc, char** argv) {
             gl::FrameTargets targets(width, height);
             std::vector<std::unique_ptr<Scene>> scenes;
             for (Setting& s : settings(quick))
-                scenes.push_back(std::make_unique<Scene>(std::move(s), timer.clock()));
+                if (only.empty() || std::find(only.begin(), only.end(), s.name) != only.end())
+                    scenes.push_back(std::make_unique<Scene>(std::move(s), timer.clock()));
+            if (scenes.empty()) {
+                std::cerr << "pacifica-bench-frame: --only names no setting (the names are the rows of a "
+                             "full run, e.g. low, high/no-sky)\n";
+                return 2;
+            }
             passClock = scenes.front()->profiled.passTimingClock();
             double t = T0;
             for (int i = 0; i < WARMUP_FRAMES; ++i, t += FRAME_DT)
