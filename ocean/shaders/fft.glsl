@@ -40,19 +40,36 @@ vec3 modelDisplacement(vec2 rel) {
 
 // Foam inputs (ocean.frag): (h, J) bilinear from the same texels as modelDisplacement — J is the Jacobian
 // determinant of the choppy map, computed with the displacement (fft_finalize.comp; Tessendorf 2001 §4.4).
+// With the living whitecaps (uFftFoamMemory, FftDesc::foamMemory) h is the remembered crest height,
+// max(h, decay * M) with M the memory map bilinear from the same texels (FftOcean::foamHeightAt, the CPU
+// twin): foam stays where a crest passed and fades. The crests' glow then takes the displaced height.
 #define MODEL_HAS_FOAM_INPUTS
+#define MODEL_FOAM_REMEMBERS
+uniform sampler2D uFftFoam;  // R32F memory map M_j (fft_foam.comp), one level
+uniform bool uFftFoamMemory;
+uniform float uFftFoamDecay; // e^(-(t - t_j) / FOAM_DECAY_TIME), formed in double
 vec2 modelFoamInputs(vec2 rel) {
     vec2 p = fract(rel * uFftInvTile + uFftUvOffset) * float(uFftSize);
     vec2 p0 = floor(p);
     vec2 a = p - p0;
     ivec2 t0 = ivec2(p0);
-    vec2 d00 = texelFetch(uFftDisplacement, t0 & (uFftSize - 1), 0).zw;
-    vec2 d10 = texelFetch(uFftDisplacement, (t0 + ivec2(1, 0)) & (uFftSize - 1), 0).zw;
-    vec2 d01 = texelFetch(uFftDisplacement, (t0 + ivec2(0, 1)) & (uFftSize - 1), 0).zw;
-    vec2 d11 = texelFetch(uFftDisplacement, (t0 + ivec2(1, 1)) & (uFftSize - 1), 0).zw;
+    ivec2 t00 = t0 & (uFftSize - 1), t10 = (t0 + ivec2(1, 0)) & (uFftSize - 1);
+    ivec2 t01 = (t0 + ivec2(0, 1)) & (uFftSize - 1), t11 = (t0 + ivec2(1, 1)) & (uFftSize - 1);
+    vec2 d00 = texelFetch(uFftDisplacement, t00, 0).zw;
+    vec2 d10 = texelFetch(uFftDisplacement, t10, 0).zw;
+    vec2 d01 = texelFetch(uFftDisplacement, t01, 0).zw;
+    vec2 d11 = texelFetch(uFftDisplacement, t11, 0).zw;
     vec2 bottom = d00 + (d10 - d00) * a.x;
     vec2 top = d01 + (d11 - d01) * a.x;
-    return bottom + (top - bottom) * a.y;
+    vec2 hj = bottom + (top - bottom) * a.y;
+    if (uFftFoamMemory) {
+        float m00 = texelFetch(uFftFoam, t00, 0).r, m10 = texelFetch(uFftFoam, t10, 0).r;
+        float m01 = texelFetch(uFftFoam, t01, 0).r, m11 = texelFetch(uFftFoam, t11, 0).r;
+        float mb = m00 + (m10 - m00) * a.x;
+        float mt = m01 + (m11 - m01) * a.x;
+        hj.x = max(hj.x, uFftFoamDecay * (mb + (mt - mb) * a.y));
+    }
+    return hj;
 }
 
 vec3 modelLighting(vec2 rel) {

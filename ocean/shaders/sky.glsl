@@ -261,8 +261,14 @@ vec3 waterBody(vec3 v, vec3 n) {
 // masking of the eye for Beckmann slopes by Walter et al.'s rational fit (eq. 27, a = cot(theta_v) / m),
 // which keeps the glitter finite at grazing views. The mean radiance of a glitter pattern against this very
 // formula is test_look_gl's SunGlitterFollowsCoxAndMunk.
+uniform bool uGlitterBlinnPhong; // LightingDesc::Glitter::BlinnPhong: the lobe the glitter replaced (a knob)
 vec3 sunSpecular(vec3 n, vec3 v, float m2, vec3 sunLight) {
     vec3 h = normalize(uSunDir + v);
+    if (uGlitterBlinnPhong) { // normalised Blinn-Phong, exponent 2 / m2 - 2 (Walter et al. 2007, eq. 30)
+        float shininess = max(2.0 / m2 - 2.0, 1.0);
+        float spec = pow(max(dot(n, h), 0.0), shininess) * (shininess + 8.0) / (8.0 * PI);
+        return sunLight * (spec * fresnelSchlick(clamp(dot(n, v), 0.0, 1.0)));
+    }
     float c = max(dot(n, h), 1e-3);
     float c2 = c * c;
     float e = (c2 - 1.0) / (c2 * m2); // -tan^2(theta_h) / m2

@@ -268,6 +268,77 @@ double FftOcean::significantWaveHeight() const {
     return mHs;
 }
 
+int64_t FftOcean::foamStepIndex(double t) {
+    if (!std::isfinite(t))
+        throw std::invalid_argument("FftOcean::foamStepIndex(): time must be finite");
+    return static_cast<int64_t>(std::floor(t / FFT_FOAM_STEP));
+}
+
+double FftOcean::foamStepTime(int64_t j) {
+    return static_cast<double>(j) * FFT_FOAM_STEP;
+}
+
+double FftOcean::foamHeightAt(const glm::dvec2& xy, double t) const {
+    return foamHeightsAt(xy, {t})[0];
+}
+
+std::vector<double> FftOcean::foamHeightsAt(const glm::dvec2& xy, const std::vector<double>& times) const {
+    std::vector<double> out;
+    out.reserve(times.size());
+    if (!mDesc.foamMemory) {
+        for (double t : times)
+            out.push_back(displacementAt(xy, t).z);
+        return out;
+    }
+    if (!std::isfinite(xy.x) || !std::isfinite(xy.y))
+        throw std::invalid_argument("FftOcean::foamHeightAt(): point must be finite");
+    // h(x, t) = Re sum_k htilde(k, t) e^{i k.x} = Re sum_q (a_q e^{i 2 pi q s} + b_q e^{-i 2 pi q s}),
+    // s = wrap(t, T) / T, with a_q = sum_{q(k) = q} h0(k) e^{i k.x} and b_q the same of conj(h0(-k)) (eq.
+    // 26): one O(N^2) pass per point, then O(q_max) per time (the same terms sumAt() adds, grouped by q).
+    const int n = mDesc.size;
+    const double tile = mDesc.tileSize;
+    const double u = wrapPhase(xy.x, tile) / tile, v = wrapPhase(xy.y, tile) / tile;
+    std::vector<std::complex<double>> ex(static_cast<size_t>(n)), ey(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        ex[static_cast<size_t>(i)] = cisTurns((i - n / 2) * u);
+        ey[static_cast<size_t>(i)] = cisTurns((i - n / 2) * v);
+    }
+    std::vector<std::complex<double>> a(static_cast<size_t>(mMaxQ) + 1), b(static_cast<size_t>(mMaxQ) + 1);
+    for (int m = 1; m < n; ++m) {
+        for (int i = 1; i < n; ++i) {
+            const size_t idx = static_cast<size_t>(m) * n + i;
+            const uint32_t q = mQ[idx];
+            if (q == 0)
+                continue;
+            const size_t neg = static_cast<size_t>(n - m) * n + (n - i);
+            const std::complex<double> e = ex[static_cast<size_t>(i)] * ey[static_cast<size_t>(m)];
+            a[q] += mH0[idx] * e;
+            b[q] += std::conj(mH0[neg]) * e;
+        }
+    }
+    // e^{i 2 pi q s} by powers of e^{i 2 pi s} (error ~q_max * 1e-16, far below the GPU's float FFT).
+    auto heightAt = [&](double time) {
+        const std::complex<double> step = cisTurns(wrapPhase(time, mDesc.loopPeriod) / mDesc.loopPeriod);
+        std::complex<double> c = 1.0;
+        double h = 0.0;
+        for (uint32_t q = 1; q <= mMaxQ; ++q) {
+            c *= step;
+            h += (a[q] * c + b[q] * std::conj(c)).real();
+        }
+        return h;
+    };
+    for (double t : times) {
+        const int64_t j = foamStepIndex(t);
+        double memory = 0.0;
+        for (int k = 0; k < FFT_FOAM_WINDOW; ++k)
+            memory = std::max(memory, std::exp(-k * FFT_FOAM_STEP / FOAM_DECAY_TIME) *
+                                          std::max(heightAt(foamStepTime(j - k)), 0.0));
+        const double decay = std::exp(-(t - foamStepTime(j)) / FOAM_DECAY_TIME);
+        out.push_back(std::max(heightAt(t), decay * memory));
+    }
+    return out;
+}
+
 glm::dvec3 FftOcean::displacementSeenFrom(const glm::dvec2& xy, double t, const glm::dvec2&) const {
     // Same lookup as fft.glsl's exact path: grid point i sits at x = i L / N (period L), bilinear between.
     const double l = mDesc.tileSize, n = mDesc.size, dx = l / n;

@@ -171,6 +171,8 @@ std::vector<Setting> sweep(bool quick) {
         if (m == SurfaceKind::Fft)
             for (int n : {64, 128}) // 256 = baseline
                 add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
+        if (m == SurfaceKind::Fft) // living whitecaps off: foam on the current crests only
+            add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.fft.foamMemory = false; });
         add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
         // Where the lighting runs: one compute pass (baseline, OceanDesc::computeShading) or the grids'
         // fragment stage.
@@ -178,6 +180,8 @@ std::vector<Setting> sweep(bool quick) {
         // Look features (issue 10): what switching each off changes in the image, and saves.
         add(m, "subsurface", "off", [](ocean::OceanDesc& d) { d.lighting.subsurface = 0.0f; });
         add(m, "fog_noise", "off", [](ocean::OceanDesc& d) { d.lighting.fogNoise = 0.0f; });
+        add(m, "glitter", "blinn-phong",
+            [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
         for (double px : {0.5, 1.0, 2.0}) // screen-space ring thinning (0 = baseline: every ring)
             add(m, "min_ring_pixels", bench::num(px),
                 [px](ocean::OceanDesc& d) { d.grid.minRingPixels = px; });

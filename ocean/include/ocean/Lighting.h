@@ -137,6 +137,11 @@ struct LightingDesc {
     /// Scale of the sunlight scattered out of thin lit crests toward the eye (ocean.frag crestScatter:
     /// single scattering over the crest's sunlit path, Henyey-Greenstein forward lobe), in [0, 10]; 0 = off.
     float subsurface = 1.0f;
+    /// The sun's glitter: Cox & Munk's radiance (Beckmann microfacets with Smith masking, sky.glsl
+    /// sunSpecular; the default) or the normalised Blinn-Phong lobe it replaced (exponent 2 / m2 - 2, Walter
+    /// et al. 2007 eq. 30, Fresnel at n.v, no masking) -- a knob of `pacifica bench accuracy`.
+    enum class Glitter { CoxMunk, BlinnPhong };
+    Glitter glitter = Glitter::CoxMunk;
 };
 
 /// Throws std::invalid_argument naming the first bad field ("OceanDesc.lighting.fogDensity must be ...").

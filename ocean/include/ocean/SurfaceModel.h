@@ -45,6 +45,15 @@ public:
     /// The height the foam thresholds (LightingDesc::foamHeightStart/Full) apply to at grid point (x, y):
     /// the displaced height by default; the octave model's living whitecaps remember crests that passed.
     virtual double foamHeightAt(const glm::dvec2& xy, double t) const { return displacementAt(xy, t).z; }
+    /// foamHeightAt(xy, t) for each of `times` at one point (a model whose point evaluation has a costly
+    /// per-point part, the FFT's direct sum, overrides it to share that part).
+    virtual std::vector<double> foamHeightsAt(const glm::dvec2& xy, const std::vector<double>& times) const {
+        std::vector<double> out;
+        out.reserve(times.size());
+        for (double t : times)
+            out.push_back(foamHeightAt(xy, t));
+        return out;
+    }
     /// Height of the surface above world point (x, y) (Eulerian): solves x0 + d_xy(x0) = (x, y) by
     /// fixed-point iteration (converges while the surface does not fold), then returns dz(x0).
     virtual double heightAt(const glm::dvec2& xy, double t) const;

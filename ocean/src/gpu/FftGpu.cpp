@@ -71,6 +71,15 @@ FftGpu::FftGpu(std::shared_ptr<const FftOcean> ocean) : mOcean(std::move(ocean))
     mSpectrumProgram = buildCompute("fft_spectrum.comp", defines);
     mPassProgram = buildCompute("fft_pass.comp", defines);
     mFinalizeProgram = buildCompute("fft_finalize.comp", defines);
+    if (mOcean->desc().foamMemory) {
+        const std::string foamDefines =
+            defines + "#define FFT_FOAM_WINDOW " + std::to_string(FFT_FOAM_WINDOW) + "\n";
+        mFoamSampleProgram = buildCompute("fft_foam.comp", foamDefines + "#define FFT_FOAM_SAMPLE\n");
+        mFoamMemoryProgram = buildCompute("fft_foam.comp", foamDefines);
+        mFoamSamples = gl::Texture::createArray2D(GL_R32F, n, n, FFT_FOAM_WINDOW, 1);
+        mFoamMemory = gl::Texture::create2D(GL_R32F, n, n, 1);
+        mFoamMemory.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
+    }
 
     const size_t cells = static_cast<size_t>(n) * n;
     mData = gl::Buffer::create(cells * FFT_PLANES * 2 * sizeof(float), nullptr);
@@ -119,10 +128,72 @@ void FftGpu::upload() {
     mUploaded = true;
 }
 
+void FftGpu::transform(uint32_t word, unsigned firstPlane, unsigned planes) {
+    const GLuint n = static_cast<GLuint>(mSize);
+    const GLuint groups2d = n / TILE_GROUP;
+    // 1. htilde(k, t) and the derived spectra.
+    glUseProgram(mSpectrumProgram.id());
+    glUniform1ui(location(mSpectrumProgram.id(), "uTimeWord"), word);
+    glUniform1f(location(mSpectrumProgram.id(), "uDeltaK"),
+                static_cast<float>(2.0 * std::numbers::pi / mOcean->desc().tileSize));
+    glDispatchCompute(groups2d, groups2d, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+
+    // 2-3. Inverse FFT along x (rows), then along y (columns), of planes [firstPlane, firstPlane + planes).
+    glUseProgram(mPassProgram.id());
+    const int dirLoc = location(mPassProgram.id(), "uDirection");
+    glUniform1ui(location(mPassProgram.id(), "uPlaneBase"), firstPlane);
+    for (int dir = 0; dir < 2; ++dir) {
+        glUniform1i(dirLoc, dir);
+        glDispatchCompute(n, planes, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+}
+
+int FftGpu::updateFoamMemory(double time) {
+    // The samples the window [j - W + 1, j] needs and the ring lacks: normally the one or two lattice times
+    // since the last frame; all W after a seek, a step back in time or the first frame. The ring then holds
+    // exactly the samples of the window whatever the frame times were, so the memory is a function of t.
+    const int64_t j = FftOcean::foamStepIndex(time);
+    if (mHaveFoam && j == mFoamStep)
+        return 0;
+    const int64_t first = mHaveFoam && j > mFoamStep && j - mFoamStep < FFT_FOAM_WINDOW
+                              ? mFoamStep + 1
+                              : j - FFT_FOAM_WINDOW + 1;
+    const GLuint groups2d = static_cast<GLuint>(mSize) / TILE_GROUP;
+    auto layerOf = [](int64_t step) {
+        return static_cast<int>(((step % FFT_FOAM_WINDOW) + FFT_FOAM_WINDOW) % FFT_FOAM_WINDOW);
+    };
+    int passes = 0;
+    glBindImageTexture(2, mFoamSamples.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
+    for (int64_t step = first; step <= j; ++step) {
+        transform(timeWord(FftOcean::foamStepTime(step), mOcean->desc().loopPeriod), 1, 1); // h: plane 1
+        glUseProgram(mFoamSampleProgram.id());
+        glUniform1i(location(mFoamSampleProgram.id(), "uLayer"), layerOf(step));
+        glDispatchCompute(groups2d, groups2d, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        passes += 4;
+    }
+    glUseProgram(mFoamMemoryProgram.id());
+    float weights[FFT_FOAM_WINDOW];
+    for (int k = 0; k < FFT_FOAM_WINDOW; ++k)
+        weights[k] = static_cast<float>(std::exp(-k * FFT_FOAM_STEP / FOAM_DECAY_TIME));
+    glUniform1fv(location(mFoamMemoryProgram.id(), "uWeight"), FFT_FOAM_WINDOW, weights);
+    glUniform1i(location(mFoamMemoryProgram.id(), "uNewest"), layerOf(j));
+    glBindImageTexture(3, mFoamMemory.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glDispatchCompute(groups2d, groups2d, 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    mHaveFoam = true;
+    mFoamStep = j;
+    return passes + 1;
+}
+
 SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
     SurfaceGpuStats stats;
     const uint32_t word = timeWord(time, mOcean->desc().loopPeriod);
-    if (mHaveMaps && word == mLastWord)
+    const bool foamDue =
+        mOcean->desc().foamMemory && !(mHaveFoam && FftOcean::foamStepIndex(time) == mFoamStep);
+    if (mHaveMaps && word == mLastWord && !foamDue)
         return stats;     // same wrapped time: the maps are already exactly these
     gl::StateGuard guard; // restores the host's program
     if (!mUploaded) {
@@ -135,23 +206,14 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, mH0Pairs.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, mOmegaMultiples.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, mTwiddles.id());
-
-    // 1. htilde(k, t) and the derived spectra.
-    glUseProgram(mSpectrumProgram.id());
-    glUniform1ui(location(mSpectrumProgram.id(), "uTimeWord"), word);
-    glUniform1f(location(mSpectrumProgram.id(), "uDeltaK"),
-                static_cast<float>(2.0 * std::numbers::pi / mOcean->desc().tileSize));
-    glDispatchCompute(groups2d, groups2d, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-
-    // 2-3. Inverse FFT along x (rows), then along y (columns).
-    glUseProgram(mPassProgram.id());
-    const int dirLoc = location(mPassProgram.id(), "uDirection");
-    for (int dir = 0; dir < 2; ++dir) {
-        glUniform1i(dirLoc, dir);
-        glDispatchCompute(n, FFT_PLANES, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (foamDue)
+        stats.computePasses += updateFoamMemory(time);
+    if (mHaveMaps && word == mLastWord) { // only the memory moved on (its samples leave the maps alone)
+        mTotals.computePasses += stats.computePasses;
+        mTotals.uploads += stats.uploads;
+        return stats;
     }
+    transform(word, 0, FFT_PLANES);
 
     // 4. Unpack into the maps.
     glUseProgram(mFinalizeProgram.id());
@@ -165,7 +227,7 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
     // Mip chain of the slope map for filtered lighting (LEAN-style variance, fft.glsl).
     glGenerateTextureMipmap(mSlope.id());
 
-    stats.computePasses = 4;
+    stats.computePasses += 4;
     mHaveMaps = true;
     mLastWord = word;
     mTotals.computePasses += stats.computePasses;
@@ -173,7 +235,7 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
     return stats;
 }
 
-void FftGpu::bind(unsigned program, int firstUnit, double /*time*/, const glm::dvec3& cameraWorld) {
+void FftGpu::bind(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld) {
     const double tile = mOcean->desc().tileSize;
     // fract(camera.xy / L) in double (exact fmod), so the GPU's float sees only [0, 1].
     const glm::vec2 offset(static_cast<float>(wrapPhase(cameraWorld.x, tile) / tile),
@@ -185,6 +247,25 @@ void FftGpu::bind(unsigned program, int firstUnit, double /*time*/, const glm::d
     glProgramUniform1i(program, location(program, "uFftSlope"), firstUnit + 1);
     glBindTextureUnit(static_cast<GLuint>(firstUnit), mDisplacement.id());
     glBindTextureUnit(static_cast<GLuint>(firstUnit + 1), mSlope.id());
+    // Foam memory on firstUnit + 2 (the sampler always names its unit); the decay since the last lattice
+    // time, formed in double: e^(-(t - t_j) / tau).
+    const bool memory = mOcean->desc().foamMemory;
+    glProgramUniform1i(program, location(program, "uFftFoam"), firstUnit + 2);
+    glProgramUniform1i(program, location(program, "uFftFoamMemory"), memory ? 1 : 0);
+    const double decay =
+        memory ? std::exp(-(time - FftOcean::foamStepTime(FftOcean::foamStepIndex(time))) / FOAM_DECAY_TIME)
+               : 0.0;
+    glProgramUniform1f(program, location(program, "uFftFoamDecay"), static_cast<float>(decay));
+    glBindTextureUnit(static_cast<GLuint>(firstUnit + 2), memory ? mFoamMemory.id() : 0);
+}
+
+std::vector<float> FftGpu::readFoamMemory() const {
+    std::vector<float> out(static_cast<size_t>(mSize) * mSize);
+    if (!mFoamMemory)
+        return {};
+    glGetTextureImage(mFoamMemory.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)),
+                      out.data());
+    return out;
 }
 
 std::vector<float> FftGpu::readDisplacementMap() const {

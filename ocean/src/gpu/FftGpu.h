@@ -9,14 +9,19 @@
 //   3. fft_pass.comp      inverse FFT along y: one workgroup per column and plane
 //   4. fft_finalize.comp  unpack, apply lambda, the displaced-surface gradient, write both maps
 // then glGenerateTextureMipmap on the slope map.
+// Living whitecaps (FftDesc::foamMemory; FftOcean::foamHeightAt): for every lattice time t_j =
+// j FFT_FOAM_STEP that passed since the last update, passes 1-3 on the height plane alone and fft_foam.comp
+// store max(h(t_j), 0) into a ring of FFT_FOAM_WINDOW R32F layers; one more pass takes the decayed maximum
+// over the ring into the memory map (R32F, N x N) that fft.glsl reads. Normally 0 or 1 sample a frame (5 per
+// simulated second); a seek or the first frame samples the whole window (30).
 //
 // Time: only w = q w0 (integer q) reaches the GPU, and the time as the 32-bit fixed-point fraction
 // word = round(wrap(t, T) / T * 2^32), formed in double here. The shader's phase q * word (mod 2^32, exact
 // uint arithmetic) / 2^32 turns is then exact up to the final float conversion, for any t.
 //
 // GL state: update() restores the current program (gl::StateGuard) but leaves shader-storage buffer
-// bindings 0..3 and image units 0..1 pointing at this object's resources; bind() binds texture units
-// [firstUnit, firstUnit + 2). Needs a current GL 4.5 context for construction, update(), bind() and the
+// bindings 0..3 and image units 0..3 pointing at this object's resources; bind() binds texture units
+// [firstUnit, firstUnit + 3). Needs a current GL 4.5 context for construction, update(), bind() and the
 // destructor.
 #pragma once
 
@@ -39,17 +44,18 @@ public:
     explicit FftGpu(std::shared_ptr<const FftOcean> ocean);
 
     std::vector<std::string> glslFiles() const override { return {"fft.glsl"}; }
-    /// Recomputes the maps for time t: 4 compute passes (+ 1 upload the first time). Skipped entirely — no
-    /// pass, returns zeros — when the time word equals the last update's (same wrapped time, e.g. t and
-    /// t + T, or a paused game), since the maps are then bitwise what they would be. The FFT tile does
-    /// not depend on the camera; cameraWorld is unused here (bind() uses it). Throws std::invalid_argument
-    /// for a non-finite time (wrapPhase).
+    /// Recomputes the maps for time t: 4 compute passes (+ 1 upload the first time), plus 4 per foam sample
+    /// and 1 for the memory when t entered a new foam lattice step. Skipped entirely — no pass, returns
+    /// zeros — when the time word equals the last update's (same wrapped time, e.g. t and t + T, or a paused
+    /// game) and the foam step is the last one, since the maps are then bitwise what they would be. The FFT
+    /// tile does not depend on the camera; cameraWorld is unused here (bind() uses it). Throws
+    /// std::invalid_argument for a non-finite time (wrapPhase).
     SurfaceGpuStats update(double time, const glm::dvec3& cameraWorld) override;
-    /// Sets fft.glsl's uniforms (tile offset fract(camera.xy / L) formed in double) and binds the maps of
-    /// the last update() to units firstUnit (displacement) and firstUnit + 1 (slopes). Does no GPU work;
-    /// `time` is not used (call update() first).
+    /// Sets fft.glsl's uniforms (tile offset fract(camera.xy / L) formed in double, the foam memory's decay
+    /// since its lattice time) and binds the maps of the last update() to units firstUnit (displacement),
+    /// firstUnit + 1 (slopes) and firstUnit + 2 (foam memory). Does no GPU work (call update(time) first).
     void bind(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld) override;
-    int unitsUsed() const override { return 2; }
+    int unitsUsed() const override { return 3; }
 
     const FftOcean& ocean() const { return *mOcean; }
     /// Sums of every update()'s stats since construction.
@@ -60,17 +66,29 @@ public:
     /// Read-backs for tests and tools: RGBA floats, row-major (j * N + i) * 4; level of the slope map.
     std::vector<float> readDisplacementMap() const;
     std::vector<float> readSlopeMap(int level = 0) const;
+    /// The living whitecaps' memory M_j of the last update() (FftOcean::foamHeightAt), N x N floats,
+    /// row-major; empty without FftDesc::foamMemory.
+    std::vector<float> readFoamMemory() const;
     unsigned displacementTexture() const { return mDisplacement.id(); }
     unsigned slopeTexture() const { return mSlope.id(); }
 
 private:
     void upload();
+    /// Passes 1-3 (spectrum, inverse FFT along x then y) for the time word, transforming only planes
+    /// [firstPlane, firstPlane + planes).
+    void transform(uint32_t word, unsigned firstPlane, unsigned planes);
+    /// Samples the lattice times the window lacks and rebuilds the memory map; returns the passes run.
+    int updateFoamMemory(double time);
 
     std::shared_ptr<const FftOcean> mOcean;
     int mSize = 0;
     gl::Program mSpectrumProgram, mPassProgram, mFinalizeProgram;
     gl::Buffer mH0Pairs, mOmegaMultiples, mTwiddles, mData;
     gl::Texture mDisplacement, mSlope;
+    gl::Program mFoamSampleProgram, mFoamMemoryProgram;
+    gl::Texture mFoamSamples, mFoamMemory; // the ring of FFT_FOAM_WINDOW crest samples; the memory map
+    bool mHaveFoam = false;
+    int64_t mFoamStep = 0; // lattice index of the memory map
     bool mUploaded = false;
     bool mHaveMaps = false;
     uint32_t mLastWord = 0;

@@ -127,6 +127,8 @@ void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& 
     glProgramUniform1f(prog, loc("uNormalTilt"), l.normalTilt);
     glProgramUniform1f(prog, loc("uMicroSlopeVariance"), l.microSlopeVariance);
     glProgramUniform1f(prog, loc("uSubsurface"), l.subsurface);
+    glProgramUniform1i(prog, loc("uGlitterBlinnPhong"),
+                       l.glitter == LightingDesc::Glitter::BlinnPhong ? 1 : 0);
 
     // Environment map on firstUnit (the sampler always names its unit: see LightingGpu.h).
     const Environment* env = environmentFor(l.environment);
