@@ -376,6 +376,30 @@ TEST(FftGpuTime, MeasureUpdateTime) {
                     n, ms[ms.size() / 2], ms.front(), ms.back(), context()->info().renderer.c_str());
         RecordProperty("update_ms_N" + std::to_string(n), std::to_string(ms[ms.size() / 2]));
     }
+    // The living whitecaps' cost (FftDesc::foamMemory): a frame that enters a new 0.2 s lattice step adds
+    // one sample (spectrum + FFT of the height plane) and the memory pass; the first frame samples all 30.
+    const auto sea = seaWithFoamMemory(256);
+    FftGpu gpu(sea);
+    auto timed = [&](double t, int expectedPasses) {
+        const auto start = std::chrono::steady_clock::now();
+        const ocean::SurfaceGpuStats s = gpu.update(t, {});
+        glFinish();
+        EXPECT_EQ(s.computePasses, expectedPasses) << "t = " << t;
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    };
+    const double first = timed(100.05, 4 * ocean::FFT_FOAM_WINDOW + 1 + 4);
+    std::vector<double> sampling, plain;
+    for (int i = 1; i <= 7; ++i) {
+        plain.push_back(timed(100.05 + 0.2 * i - 0.1, 4)); // inside the step entered before
+        sampling.push_back(timed(100.05 + 0.2 * i, 9));    // enters the next step
+    }
+    std::sort(sampling.begin(), sampling.end());
+    std::sort(plain.begin(), plain.end());
+    std::printf("FftGpu::update N=256 with foam memory: first frame %.1f ms (30 samples), a frame entering a "
+                "lattice step median %.2f ms, inside one %.2f ms (wall clock around glFinish, %s)\n",
+                first, sampling[3], plain[3], context()->info().renderer.c_str());
+    RecordProperty("foam_first_ms", std::to_string(first));
+    RecordProperty("foam_sampling_frame_ms", std::to_string(sampling[3]));
 }
 
 // Living whitecaps (FftDesc::foamMemory). At a lattice time t_j the memory map's texel (i, j) is
