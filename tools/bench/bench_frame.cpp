@@ -102,6 +102,17 @@ std::vector<Setting> settings(bool quick) {
         d.grid.segments = 256;
     });
     high("high/no-cull", "per-vertex frustum test off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
+    // Look knobs (issue 10): what each addition costs in the frame.
+    high("high/glitter-blinn-phong",
+         "the Blinn-Phong lobe instead of Cox-Munk glitter (LightingDesc::glitter)",
+         [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
+    high("high/fft", "FFT sea (N = 256) with its living whitecaps",
+         [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Fft; });
+    high("high/fft-no-foam-memory", "FFT sea without living whitecaps (FftDesc::foamMemory off)",
+         [](ocean::OceanDesc& d) {
+             d.model = ocean::SurfaceKind::Fft;
+             d.fft.foamMemory = false;
+         });
     for (Quality q : {Quality::Low, Quality::Medium, Quality::High}) {
         ocean::OceanDesc d = ocean::oceanPreset(q);
         d.computeShading = !d.computeShading;
