@@ -73,10 +73,22 @@ vec3 gerstnerLighting(vec2 rel) {
 
 // Foam inputs (ocean.frag): (H, det J) with the displacement fade — Tessendorf 2001 §4.4: the surface folds
 // where det J -> 0, so foam where J falls under the threshold. CPU twin: GerstnerWaves::foamInputsSeenFrom.
+// With the living whitecaps (uGerstnerFoamMemory, GerstnerDesc::foamMemory) H is the remembered crest
+// height max(h(t), decay * max_k w^k max(h(t_j - k s), 0)) over the FOAM_MEMORY_WINDOW lattice times
+// (GerstnerWaves::foamHeightAt): each wave's phase at t_j (uGerstnerMemory.x, wrapped in double) is rotated
+// back one step at a time by w_i s (cos, sin in .yz), so the window costs one sin/cos per wave and
+// multiply-adds. The crests' glow then takes the displaced height (MODEL_FOAM_REMEMBERS).
 #define MODEL_HAS_FOAM_INPUTS
+#define MODEL_FOAM_REMEMBERS
+uniform vec4 uGerstnerMemory[GERSTNER_MAX_WAVES]; // (theta0 at t_j, cos(w_i s), sin(w_i s), 0)
+uniform bool uGerstnerFoamMemory;
+uniform float uGerstnerFoamDecay; // e^(-(t - t_j) / FOAM_DECAY_TIME), formed in double
 vec2 modelFoamInputs(vec2 rel) {
     float r = length(rel);
     float h = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0;
+    float past[FOAM_MEMORY_WINDOW];
+    for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k)
+        past[k] = 0.0;
     for (int i = 0; i < uGerstnerCount; ++i) {
         vec4 w = uGerstnerWave[i];
         vec4 e = uGerstnerExtra[i];
@@ -89,6 +101,26 @@ vec2 modelFoamInputs(vec2 rel) {
         sxx += qaks * w.x * w.x;
         sxy += qaks * w.x * w.y;
         syy += qaks * w.y * w.y;
+        if (uGerstnerFoamMemory) {
+            vec4 m = uGerstnerMemory[i];
+            float theta = w.z * dot(w.xy, rel) + m.x;
+            float sn = sin(theta), cs = cos(theta);
+            for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k) {
+                past[k] += a * sn;
+                float next = sn * m.y + cs * m.z; // sin(theta + w s): one step back in time
+                cs = cs * m.y - sn * m.z;
+                sn = next;
+            }
+        }
+    }
+    if (uGerstnerFoamMemory) {
+        const float stepDecay = exp(-FOAM_MEMORY_STEP / FOAM_DECAY_TIME);
+        float weight = 1.0, memory = 0.0;
+        for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k) {
+            memory = max(memory, weight * max(past[k], 0.0));
+            weight *= stepDecay;
+        }
+        h = max(h, uGerstnerFoamDecay * memory);
     }
     return vec2(h, (1.0 - sxx) * (1.0 - syy) - sxy * sxy);
 }

@@ -268,16 +268,6 @@ double FftOcean::significantWaveHeight() const {
     return mHs;
 }
 
-int64_t FftOcean::foamStepIndex(double t) {
-    if (!std::isfinite(t))
-        throw std::invalid_argument("FftOcean::foamStepIndex(): time must be finite");
-    return static_cast<int64_t>(std::floor(t / FFT_FOAM_STEP));
-}
-
-double FftOcean::foamStepTime(int64_t j) {
-    return static_cast<double>(j) * FFT_FOAM_STEP;
-}
-
 double FftOcean::foamHeightAt(const glm::dvec2& xy, double t) const {
     return foamHeightsAt(xy, {t})[0];
 }
@@ -330,8 +320,8 @@ std::vector<double> FftOcean::foamHeightsAt(const glm::dvec2& xy, const std::vec
     for (double t : times) {
         const int64_t j = foamStepIndex(t);
         double memory = 0.0;
-        for (int k = 0; k < FFT_FOAM_WINDOW; ++k)
-            memory = std::max(memory, std::exp(-k * FFT_FOAM_STEP / FOAM_DECAY_TIME) *
+        for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k)
+            memory = std::max(memory, std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME) *
                                           std::max(heightAt(foamStepTime(j - k)), 0.0));
         const double decay = std::exp(-(t - foamStepTime(j)) / FOAM_DECAY_TIME);
         out.push_back(std::max(heightAt(t), decay * memory));

@@ -82,6 +82,7 @@ GerstnerWaves::GerstnerWaves(const GerstnerDesc& desc) {
             "GerstnerDesc.waves must hold at most " + std::to_string(MAX_WAVES) + " waves, got " +
                 std::to_string(desc.waves.size()));
     mWaves = desc.waves.empty() ? defaultWaves(8, 60.0, desc.seed) : desc.waves;
+    mFoamMemory = desc.foamMemory;
     for (size_t i = 0; i < mWaves.size(); ++i) {
         const GerstnerWave& w = mWaves[i];
         const std::string field = "GerstnerDesc.waves[" + std::to_string(i) + "].";
@@ -251,7 +252,22 @@ glm::dvec2 GerstnerWaves::foamInputsSeenFrom(const glm::dvec2& xy, double t,
     glm::dvec3 s;
     glm::dvec2 g;
     jacobianTerms(xy, t, fades, s, g);
-    return {displacement(xy, t, fades).z, (1.0 - s.x) * (1.0 - s.z) - s.y * s.y};
+    const double h = mFoamMemory ? rememberedHeight(xy, t, fades) : displacement(xy, t, fades).z;
+    return {h, (1.0 - s.x) * (1.0 - s.z) - s.y * s.y};
+}
+
+double GerstnerWaves::foamHeightAt(const glm::dvec2& xy, double t) const {
+    return mFoamMemory ? rememberedHeight(xy, t, nullptr) : displacement(xy, t, nullptr).z;
+}
+
+double GerstnerWaves::rememberedHeight(const glm::dvec2& xy, double t, const double* fades) const {
+    const int64_t j = foamStepIndex(t);
+    double memory = 0.0;
+    for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k)
+        memory = std::max(memory, std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME) *
+                                      std::max(displacement(xy, foamStepTime(j - k), fades).z, 0.0));
+    const double decay = std::exp(-(t - foamStepTime(j)) / FOAM_DECAY_TIME);
+    return std::max(displacement(xy, t, fades).z, decay * memory);
 }
 
 } // namespace pacifica::ocean

@@ -47,7 +47,13 @@ std::string shaderConstantDefines() {
         FOG_NOISE_TILE, FOG_NOISE_TILE_VERTICAL, ENVIRONMENT_HORIZON_BINS,
         static_cast<double>(WATER_SCATTERING), static_cast<double>(CREST_SCATTER_G),
         static_cast<double>(CREST_SCATTER_PATH), FOAM_EDGE, FOAM_PATTERN_SIZE);
-    return std::string(buf) + shading;
+    // Living whitecaps of the FFT and Gerstner seas (fft_foam.comp, gerstner.glsl).
+    char memory[256];
+    std::snprintf(
+        memory, sizeof memory,
+        "#define FOAM_MEMORY_WINDOW %d\n#define FOAM_MEMORY_STEP %.9g\n#define FOAM_DECAY_TIME %.9g\n",
+        FOAM_MEMORY_WINDOW, FOAM_MEMORY_STEP, FOAM_DECAY_TIME);
+    return std::string(buf) + shading + memory;
 }
 
 } // namespace pacifica::ocean

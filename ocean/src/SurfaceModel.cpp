@@ -1,7 +1,10 @@
 // SurfaceModel: the shared Eulerian height query (inverse of the horizontal displacement).
 #include "ocean/SurfaceModel.h"
 
+#include "ocean/OceanConstants.h"
+
 #include <cmath>
+#include <stdexcept>
 
 namespace pacifica::ocean {
 
@@ -15,6 +18,16 @@ const char* toString(SurfaceKind kind) {
         return "fft";
     }
     return "?";
+}
+
+int64_t foamStepIndex(double t) {
+    if (!std::isfinite(t))
+        throw std::invalid_argument("foamStepIndex(): time must be finite");
+    return static_cast<int64_t>(std::floor(t / FOAM_MEMORY_STEP));
+}
+
+double foamStepTime(int64_t j) {
+    return static_cast<double>(j) * FOAM_MEMORY_STEP;
 }
 
 double SurfaceModel::heightAt(const glm::dvec2& xy, double t) const {

@@ -387,7 +387,7 @@ TEST(FftGpuTime, MeasureUpdateTime) {
         EXPECT_EQ(s.computePasses, expectedPasses) << "t = " << t;
         return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     };
-    const double first = timed(100.05, 4 * ocean::FFT_FOAM_WINDOW + 1 + 4);
+    const double first = timed(100.05, 4 * ocean::FOAM_MEMORY_WINDOW + 1 + 4);
     std::vector<double> sampling, plain;
     for (int i = 1; i <= 7; ++i) {
         plain.push_back(timed(100.05 + 0.2 * i - 0.1, 4)); // inside the step entered before
@@ -403,10 +403,10 @@ TEST(FftGpuTime, MeasureUpdateTime) {
 }
 
 // Living whitecaps (FftDesc::foamMemory). At a lattice time t_j the memory map's texel (i, j) is
-// FftOcean::foamHeightAt at that grid point: max over the last FFT_FOAM_WINDOW samples of the decayed crest
-// heights, evaluated on the CPU as a trigonometric polynomial in time. Each sample is an FFT height (float
-// IFFT error as above, <= ~2e-7 Hs measured) and max and the weights are 1-Lipschitz, so the bound is the
-// maps' sanity bound 1e-4 Hs. Every texel of an N = 64 tile, at t = 17.4 s and ~10^6 s.
+// FftOcean::foamHeightAt at that grid point: max over the last FOAM_MEMORY_WINDOW samples of the decayed
+// crest heights, evaluated on the CPU as a trigonometric polynomial in time. Each sample is an FFT height
+// (float IFFT error as above, <= ~2e-7 Hs measured) and max and the weights are 1-Lipschitz, so the bound is
+// the maps' sanity bound 1e-4 Hs. Every texel of an N = 64 tile, at t = 17.4 s and ~10^6 s.
 TEST(FftFoamMemory, MatchesTheCpuTwinAtLatticeTimes) {
     ASSERT_TRUE(context());
     const auto sea = seaWithFoamMemory(64);
@@ -414,8 +414,8 @@ TEST(FftFoamMemory, MatchesTheCpuTwinAtLatticeTimes) {
     const int n = sea->desc().size;
     const double dx = sea->desc().tileSize / n, hs = sea->significantWaveHeight();
     for (int64_t j : {int64_t{87}, int64_t{5000003}}) {
-        const double t = FftOcean::foamStepTime(j);
-        ASSERT_EQ(FftOcean::foamStepIndex(t), j);
+        const double t = ocean::foamStepTime(j);
+        ASSERT_EQ(ocean::foamStepIndex(t), j);
         gpu.update(t, {});
         const std::vector<float> memory = gpu.readFoamMemory();
         ASSERT_EQ(memory.size(), static_cast<size_t>(n * n));
@@ -449,11 +449,11 @@ TEST(FftFoamMemory, DependsOnTheTimeAloneNotOnTheFrames) {
     FftGpu played(sea), jumped(sea), back(sea);
     const double t0 = 30.05, dt = 1.0 / 60.0;
     const int frames = 180;
-    EXPECT_EQ(played.update(t0, {}).computePasses, 4 * ocean::FFT_FOAM_WINDOW + 1 + 4);
+    EXPECT_EQ(played.update(t0, {}).computePasses, 4 * ocean::FOAM_MEMORY_WINDOW + 1 + 4);
     int stepsEntered = 0, inside = 0;
     for (int i = 1; i <= frames; ++i) {
         const double t = t0 + i * dt;
-        const bool newStep = FftOcean::foamStepIndex(t) != FftOcean::foamStepIndex(t0 + (i - 1) * dt);
+        const bool newStep = ocean::foamStepIndex(t) != ocean::foamStepIndex(t0 + (i - 1) * dt);
         const int passes = played.update(t, {}).computePasses;
         EXPECT_EQ(passes, newStep ? 9 : 4) << "frame " << i;
         (newStep ? stepsEntered : inside) += 1;
@@ -486,7 +486,7 @@ TEST(FftFoamMemory, FoamOutlivesTheCrest) {
     ASSERT_TRUE(context());
     const auto sea = seaWithFoamMemory(256);
     FftGpu gpu(sea);
-    const double t = FftOcean::foamStepTime(250);
+    const double t = ocean::foamStepTime(250);
     gpu.update(t, {});
     const std::vector<float> memory = gpu.readFoamMemory();
     const std::vector<float> map = gpu.readDisplacementMap();

@@ -173,6 +173,8 @@ std::vector<Setting> sweep(bool quick) {
                 add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
         if (m == SurfaceKind::Fft) // living whitecaps off: foam on the current crests only
             add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.fft.foamMemory = false; });
+        if (m == SurfaceKind::Gerstner)
+            add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.gerstner.foamMemory = false; });
         add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
         // Where the lighting runs: one compute pass (baseline, OceanDesc::computeShading) or the grids'
         // fragment stage.

@@ -108,6 +108,13 @@ std::vector<Setting> settings(bool quick) {
          [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
     high("high/fft", "FFT sea (N = 256) with its living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Fft; });
+    high("high/gerstner", "Gerstner sum (8 waves) with its living whitecaps",
+         [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Gerstner; });
+    high("high/gerstner-no-foam-memory",
+         "Gerstner sum without living whitecaps (GerstnerDesc::foamMemory off)", [](ocean::OceanDesc& d) {
+             d.model = ocean::SurfaceKind::Gerstner;
+             d.gerstner.foamMemory = false;
+         });
     high("high/fft-no-foam-memory", "FFT sea without living whitecaps (FftDesc::foamMemory off)",
          [](ocean::OceanDesc& d) {
              d.model = ocean::SurfaceKind::Fft;

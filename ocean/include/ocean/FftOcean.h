@@ -96,18 +96,14 @@ public:
     /// Foam height input (the GPU's modelFoamInputs().x, fft.glsl). With foamMemory: the living whitecaps'
     /// remembered crest height at grid point xy,
     ///   max(h(t), e^(-(t - t_j) / tau) M_j),  M_j = max_{k < W} e^(-k s / tau) max(h(t_{j-k}), 0),
-    /// t_j = j s the last lattice time <= t (s = FFT_FOAM_STEP, W = FFT_FOAM_WINDOW, tau = FOAM_DECAY_TIME;
-    /// OceanConstants.h): a crest leaves its height behind where it passed (at the grid point, which the
-    /// choppy displacement carries with the water, so the foam rides the orbital motion) and the memory
-    /// decays with Callaghan et al.'s e-folding time. Without: h(t). O(N^2 + W q_max): the height's time
-    /// series at a point is a trigonometric polynomial in q w0 t (FftGpu samples it by FFT).
+    /// t_j = j s the last lattice time <= t (s = FOAM_MEMORY_STEP, W = FOAM_MEMORY_WINDOW, tau =
+    /// FOAM_DECAY_TIME; OceanConstants.h): a crest leaves its height behind where it passed (at the grid
+    /// point, which the choppy displacement carries with the water, so the foam rides the orbital motion) and
+    /// the memory decays with Callaghan et al.'s e-folding time. Without: h(t). O(N^2 + W q_max): the
+    /// height's time series at a point is a trigonometric polynomial in q w0 t (FftGpu samples it by FFT).
     double foamHeightAt(const glm::dvec2& xy, double t) const override;
     /// The same at several times: one O(N^2) pass for the point, then O(W q_max) per time.
     std::vector<double> foamHeightsAt(const glm::dvec2& xy, const std::vector<double>& times) const override;
-    /// The lattice of the foam memory: j = floor(t / FFT_FOAM_STEP) and t_j = j FFT_FOAM_STEP, in double
-    /// (shared with FftGpu so both sample the same times).
-    static int64_t foamStepIndex(double t);
-    static double foamStepTime(int64_t j);
 
     /// 4 * RMS of h over one tile at t = 0, from Parseval: 4 sqrt(sum_k |htilde(k, 0)|^2) — the sea actually
     /// realised (random draws, lattice truncation), not the spectrum's expectation.

@@ -48,6 +48,10 @@ struct GerstnerDesc {
     std::vector<GerstnerWave> waves; ///< empty = a default 8-wave wind sea (see defaultWaves())
     double steepnessScale = 1.0;     ///< multiplies every Q_i before the limit (a quality/look knob)
     uint32_t seed = 7;               ///< for defaultWaves()
+    /// Living whitecaps: the foam thresholds apply to the remembered crests (foamHeightAt), so foam forms on
+    /// a crest, stays where the crest passed and decays over seconds. false: to the current height (a knob
+    /// of `pacifica bench accuracy`).
+    bool foamMemory = true;
 };
 
 class GerstnerWaves final : public SurfaceModel {
@@ -80,6 +84,8 @@ public:
     /// k_i = 2 pi / L_i, radians per metre.
     static double wavenumber(const GerstnerWave& wave);
 
+    /// GerstnerDesc::foamMemory.
+    bool foamMemory() const { return mFoamMemory; }
     /// The waves as used (steepness after the limit).
     const std::vector<GerstnerWave>& waves() const { return mWaves; }
     /// sum_i Q_i k_i A_i as requested, and the factor applied to every Q_i (1 if none was needed).
@@ -112,9 +118,16 @@ public:
     /// tilts the normal by at most 3 A_i / R_i), and the slope variance the fade removed,
     /// sum_i ((1 - f_i) k_i A_i)^2 / 2 (the mean |grad h|^2 of a sinusoid of slope amplitude k A).
     glm::dvec3 lightingSeenFrom(const glm::dvec2& xy, double t, const glm::dvec2& cameraXY) const;
-    /// The foam inputs the GPU computes per fragment (gerstner.glsl modelFoamInputs): (height dz, Jacobian
+    /// The foam inputs the GPU computes per fragment (gerstner.glsl modelFoamInputs): (foam height, Jacobian
     /// determinant), both with the displacement fade, as the sea is drawn. J < threshold makes folding foam.
+    /// The foam height is the current dz, or with foamMemory the remembered crest (foamHeightAt's formula).
     glm::dvec2 foamInputsSeenFrom(const glm::dvec2& xy, double t, const glm::dvec2& cameraXY) const;
+    /// With foamMemory, the living whitecaps' remembered crest height at grid point xy (unfaded), as the FFT
+    /// sea's (FftOcean::foamHeightAt): max(h(t), e^(-(t - t_j) / tau) max_{k < W} e^(-k s / tau)
+    /// max(h(t_{j-k}), 0)) on the lattice t_j = foamStepTime(j) (SurfaceModel.h, OceanConstants.h). The
+    /// grid point is the water parcel's label, so the foam rides the orbital motion and stays where the
+    /// crest passed. Without: dz.
+    double foamHeightAt(const glm::dvec2& xy, double t) const override;
 
 private:
     struct Terms {      // per wave, derived once from mWaves
@@ -126,10 +139,13 @@ private:
     void jacobianTerms(const glm::dvec2& xy, double t, const double* fades, glm::dvec3& s,
                        glm::dvec2& gradZ) const;
     glm::dvec3 displacement(const glm::dvec2& xy, double t, const double* fades) const;
+    /// foamHeightAt's formula with amplitudes A_i * fades[i] (fades null: 1).
+    double rememberedHeight(const glm::dvec2& xy, double t, const double* fades) const;
 
     std::vector<GerstnerWave> mWaves;
     std::vector<Terms> mTerms;
     double mRequestedSum = 0.0, mClampFactor = 1.0;
+    bool mFoamMemory = true;
 };
 
 } // namespace pacifica::ocean

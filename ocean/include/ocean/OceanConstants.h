@@ -55,17 +55,19 @@ inline constexpr float FOAM_FADE_END = 5000.0f;
 /// FOAM_SPREAD_DIFFUSIVITY m^2/s (a patch grows by sqrt(2 D t) ~ 1.8 m over 8 s).
 inline constexpr double FOAM_DECAY_TIME = 4.0;
 inline constexpr double FOAM_SPREAD_DIFFUSIVITY = 0.2;
-/// Living whitecaps of the FFT sea (FftDesc::foamMemory): the crest heights h+ = max(h, 0) of the tile are
-/// sampled every FFT_FOAM_STEP seconds of simulation time (on the fixed lattice t_j = j * FFT_FOAM_STEP, so
-/// the memory does not depend on the frame rate), and the memory is the largest of the last
-/// FFT_FOAM_WINDOW samples, each decayed by e^(-age / FOAM_DECAY_TIME). 0.2 s: a 20 m wave's crest
+/// Living whitecaps of the FFT and Gerstner seas (FftDesc/GerstnerDesc::foamMemory): the crest heights
+/// h+ = max(h, 0) at a grid point are
+/// sampled every FOAM_MEMORY_STEP seconds of simulation time (on the fixed lattice t_j = j *
+/// FOAM_MEMORY_STEP, so the memory does not depend on the frame rate), and the memory is the largest of the
+/// last FOAM_MEMORY_WINDOW samples, each decayed by e^(-age / FOAM_DECAY_TIME). 0.2 s: a 20 m wave's crest
 /// (5.6 m/s) moves ~1 m between samples, about half the 500 m / 256 tile's texel, so its trail has no gaps.
 /// 30 samples = 6 s: an older crest is decayed below e^(-1.5) = 0.22 of its height, so it would still show
 /// foam only if it stood 4.5 times the foam threshold high (a threshold is ~1.5-2.5 sigma, crests < 4 sigma).
 /// A fixed window, not a running recursion, makes the memory a function of the time alone: a seek, a pause
-/// or a different frame rate give the same foam (FftGpu recomputes the samples it lacks).
-inline constexpr double FFT_FOAM_STEP = 0.2;
-inline constexpr int FFT_FOAM_WINDOW = 30;
+/// or a different frame rate give the same foam (FftGpu recomputes the samples it lacks; gerstner.glsl
+/// evaluates the window's heights per pixel by rotating each wave's phase).
+inline constexpr double FOAM_MEMORY_STEP = 0.2;
+inline constexpr int FOAM_MEMORY_WINDOW = 30;
 inline constexpr int ENVIRONMENT_HORIZON_BINS = 64; ///< azimuth bins of environmentHorizonBand() (Lighting.h)
 
 /// How far the sea surface at horizontal distance d from the camera lies below the camera's tangent plane

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,12 @@ enum class SurfaceKind { Octaves, Gerstner, Fft };
 
 /// "octaves", "gerstner", "fft".
 const char* toString(SurfaceKind kind);
+
+/// The lattice of the FFT's and the Gerstner sum's living whitecaps (OceanConstants.h FOAM_MEMORY_STEP):
+/// j = floor(t / FOAM_MEMORY_STEP) and t_j = j FOAM_MEMORY_STEP, in double, shared by the CPU twins and the
+/// GPU sides so both sample the same times. foamStepIndex throws std::invalid_argument for a non-finite t.
+int64_t foamStepIndex(double t);
+double foamStepTime(int64_t j);
 
 class SurfaceModel {
 public:

@@ -72,11 +72,10 @@ FftGpu::FftGpu(std::shared_ptr<const FftOcean> ocean) : mOcean(std::move(ocean))
     mPassProgram = buildCompute("fft_pass.comp", defines);
     mFinalizeProgram = buildCompute("fft_finalize.comp", defines);
     if (mOcean->desc().foamMemory) {
-        const std::string foamDefines =
-            defines + "#define FFT_FOAM_WINDOW " + std::to_string(FFT_FOAM_WINDOW) + "\n";
-        mFoamSampleProgram = buildCompute("fft_foam.comp", foamDefines + "#define FFT_FOAM_SAMPLE\n");
-        mFoamMemoryProgram = buildCompute("fft_foam.comp", foamDefines);
-        mFoamSamples = gl::Texture::createArray2D(GL_R32F, n, n, FFT_FOAM_WINDOW, 1);
+        mFoamSampleProgram = buildCompute("fft_foam.comp", defines + "#define FFT_FOAM_SAMPLE\n");
+        mFoamMemoryProgram =
+            buildCompute("fft_foam.comp", defines); // FOAM_MEMORY_WINDOW: shaderConstantDefines
+        mFoamSamples = gl::Texture::createArray2D(GL_R32F, n, n, FOAM_MEMORY_WINDOW, 1);
         mFoamMemory = gl::Texture::create2D(GL_R32F, n, n, 1);
         mFoamMemory.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
     }
@@ -154,20 +153,20 @@ int FftGpu::updateFoamMemory(double time) {
     // The samples the window [j - W + 1, j] needs and the ring lacks: normally the one or two lattice times
     // since the last frame; all W after a seek, a step back in time or the first frame. The ring then holds
     // exactly the samples of the window whatever the frame times were, so the memory is a function of t.
-    const int64_t j = FftOcean::foamStepIndex(time);
+    const int64_t j = foamStepIndex(time);
     if (mHaveFoam && j == mFoamStep)
         return 0;
-    const int64_t first = mHaveFoam && j > mFoamStep && j - mFoamStep < FFT_FOAM_WINDOW
+    const int64_t first = mHaveFoam && j > mFoamStep && j - mFoamStep < FOAM_MEMORY_WINDOW
                               ? mFoamStep + 1
-                              : j - FFT_FOAM_WINDOW + 1;
+                              : j - FOAM_MEMORY_WINDOW + 1;
     const GLuint groups2d = static_cast<GLuint>(mSize) / TILE_GROUP;
     auto layerOf = [](int64_t step) {
-        return static_cast<int>(((step % FFT_FOAM_WINDOW) + FFT_FOAM_WINDOW) % FFT_FOAM_WINDOW);
+        return static_cast<int>(((step % FOAM_MEMORY_WINDOW) + FOAM_MEMORY_WINDOW) % FOAM_MEMORY_WINDOW);
     };
     int passes = 0;
     glBindImageTexture(2, mFoamSamples.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
     for (int64_t step = first; step <= j; ++step) {
-        transform(timeWord(FftOcean::foamStepTime(step), mOcean->desc().loopPeriod), 1, 1); // h: plane 1
+        transform(timeWord(foamStepTime(step), mOcean->desc().loopPeriod), 1, 1); // h: plane 1
         glUseProgram(mFoamSampleProgram.id());
         glUniform1i(location(mFoamSampleProgram.id(), "uLayer"), layerOf(step));
         glDispatchCompute(groups2d, groups2d, 1);
@@ -175,10 +174,10 @@ int FftGpu::updateFoamMemory(double time) {
         passes += 4;
     }
     glUseProgram(mFoamMemoryProgram.id());
-    float weights[FFT_FOAM_WINDOW];
-    for (int k = 0; k < FFT_FOAM_WINDOW; ++k)
-        weights[k] = static_cast<float>(std::exp(-k * FFT_FOAM_STEP / FOAM_DECAY_TIME));
-    glUniform1fv(location(mFoamMemoryProgram.id(), "uWeight"), FFT_FOAM_WINDOW, weights);
+    float weights[FOAM_MEMORY_WINDOW];
+    for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k)
+        weights[k] = static_cast<float>(std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME));
+    glUniform1fv(location(mFoamMemoryProgram.id(), "uWeight"), FOAM_MEMORY_WINDOW, weights);
     glUniform1i(location(mFoamMemoryProgram.id(), "uNewest"), layerOf(j));
     glBindImageTexture(3, mFoamMemory.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glDispatchCompute(groups2d, groups2d, 1);
@@ -191,8 +190,7 @@ int FftGpu::updateFoamMemory(double time) {
 SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
     SurfaceGpuStats stats;
     const uint32_t word = timeWord(time, mOcean->desc().loopPeriod);
-    const bool foamDue =
-        mOcean->desc().foamMemory && !(mHaveFoam && FftOcean::foamStepIndex(time) == mFoamStep);
+    const bool foamDue = mOcean->desc().foamMemory && !(mHaveFoam && foamStepIndex(time) == mFoamStep);
     if (mHaveMaps && word == mLastWord && !foamDue)
         return stats;     // same wrapped time: the maps are already exactly these
     gl::StateGuard guard; // restores the host's program
@@ -253,8 +251,7 @@ void FftGpu::bind(unsigned program, int firstUnit, double time, const glm::dvec3
     glProgramUniform1i(program, location(program, "uFftFoam"), firstUnit + 2);
     glProgramUniform1i(program, location(program, "uFftFoamMemory"), memory ? 1 : 0);
     const double decay =
-        memory ? std::exp(-(time - FftOcean::foamStepTime(FftOcean::foamStepIndex(time))) / FOAM_DECAY_TIME)
-               : 0.0;
+        memory ? std::exp(-(time - foamStepTime(foamStepIndex(time))) / FOAM_DECAY_TIME) : 0.0;
     glProgramUniform1f(program, location(program, "uFftFoamDecay"), static_cast<float>(decay));
     glBindTextureUnit(static_cast<GLuint>(firstUnit + 2), memory ? mFoamMemory.id() : 0);
 }

@@ -10,8 +10,8 @@
 //   4. fft_finalize.comp  unpack, apply lambda, the displaced-surface gradient, write both maps
 // then glGenerateTextureMipmap on the slope map.
 // Living whitecaps (FftDesc::foamMemory; FftOcean::foamHeightAt): for every lattice time t_j =
-// j FFT_FOAM_STEP that passed since the last update, passes 1-3 on the height plane alone and fft_foam.comp
-// store max(h(t_j), 0) into a ring of FFT_FOAM_WINDOW R32F layers; one more pass takes the decayed maximum
+// j FOAM_MEMORY_STEP that passed since the last update, passes 1-3 on the height plane alone and fft_foam.comp
+// store max(h(t_j), 0) into a ring of FOAM_MEMORY_WINDOW R32F layers; one more pass takes the decayed maximum
 // over the ring into the memory map (R32F, N x N) that fft.glsl reads. Normally 0 or 1 sample a frame (5 per
 // simulated second); a seek or the first frame samples the whole window (30).
 //
@@ -86,7 +86,7 @@ private:
     gl::Buffer mH0Pairs, mOmegaMultiples, mTwiddles, mData;
     gl::Texture mDisplacement, mSlope;
     gl::Program mFoamSampleProgram, mFoamMemoryProgram;
-    gl::Texture mFoamSamples, mFoamMemory; // the ring of FFT_FOAM_WINDOW crest samples; the memory map
+    gl::Texture mFoamSamples, mFoamMemory; // the ring of FOAM_MEMORY_WINDOW crest samples; the memory map
     bool mHaveFoam = false;
     int64_t mFoamStep = 0; // lattice index of the memory map
     bool mUploaded = false;

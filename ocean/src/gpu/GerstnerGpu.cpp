@@ -5,6 +5,10 @@
 
 #include "gpu/GerstnerGpu.h"
 
+#include "ocean/OceanConstants.h"
+
+#include <cmath>
+
 #include <stdexcept>
 
 namespace pacifica::ocean {
@@ -17,6 +21,10 @@ GerstnerGpu::GerstnerGpu(std::shared_ptr<const GerstnerWaves> waves) : mWaves(st
         mWave.insert(mWave.end(),
                      {static_cast<float>(d.x), static_cast<float>(d.y),
                       static_cast<float>(GerstnerWaves::wavenumber(w)), static_cast<float>(w.amplitude)});
+        // The living whitecaps step each wave's phase back by w_i FOAM_MEMORY_STEP per lattice time.
+        const double stepAngle = std::sqrt(GRAVITY * GerstnerWaves::wavenumber(w)) * FOAM_MEMORY_STEP;
+        mMemory.insert(mMemory.end(), {0.0f, static_cast<float>(std::cos(stepAngle)),
+                                       static_cast<float>(std::sin(stepAngle)), 0.0f});
         mExtra.insert(mExtra.end(),
                       {static_cast<float>(w.steepness), 0.0f,
                        static_cast<float>(GerstnerWaves::DISPLACEMENT_FADE_WAVELENGTHS * w.wavelength),
@@ -36,6 +44,18 @@ void GerstnerGpu::bind(unsigned prog, int /*firstUnit*/, double time, const glm:
     }
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uGerstnerMinJacobian"),
                        static_cast<float>(GerstnerWaves::MIN_LIGHTING_JACOBIAN));
+    // Living whitecaps: the phases at the last lattice time t_j <= t and the decay since, both in double.
+    const bool memory = mWaves->foamMemory();
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uGerstnerFoamMemory"), memory ? 1 : 0);
+    if (memory && n > 0) {
+        const int64_t j = foamStepIndex(time);
+        const std::vector<float> thetaJ = mWaves->phaseOffsets(glm::dvec2(cameraWorld), foamStepTime(j));
+        for (size_t i = 0; i < thetaJ.size(); ++i)
+            mMemory[i * 4] = thetaJ[i];
+        glProgramUniform4fv(prog, glGetUniformLocation(prog, "uGerstnerMemory"), n, mMemory.data());
+        glProgramUniform1f(prog, glGetUniformLocation(prog, "uGerstnerFoamDecay"),
+                           static_cast<float>(std::exp(-(time - foamStepTime(j)) / FOAM_DECAY_TIME)));
+    }
 }
 
 } // namespace pacifica::ocean

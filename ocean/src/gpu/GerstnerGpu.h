@@ -26,6 +26,8 @@ private:
     std::shared_ptr<const GerstnerWaves> mWaves;
     std::vector<float> mWave;  ///< 4 floats per wave: D.x, D.y, k, A (constant)
     std::vector<float> mExtra; ///< 4 floats per wave: Q, theta0 (set per bind), fade ends
+    std::vector<float>
+        mMemory; ///< 4 floats per wave: theta0 at the foam lattice time (per bind), cos, sin of w s
 };
 
 } // namespace pacifica::ocean
