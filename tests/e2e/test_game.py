@@ -41,20 +41,17 @@ def env():
     return e
 
 
-XVFB_CLEANUP_ERROR = "xvfb-run: error: problem while cleaning up temporary directory"
+def xvfb_run():
+    """xvfb-run with its X authority file in this test's directory (-f): without one it makes and removes a
+    temporary directory of its own, and that removal failed twice in a row under ctest -j2 ("problem while
+    cleaning up temporary directory", its exit 5 replacing the game's)."""
+    return [args.xvfb, "-a", "-f", os.path.join(tmp, "Xauthority"), "-s", "-screen 0 1280x720x24"]
 
 
 def game(*a, xvfb=True, timeout=600):
-    cmd = ([args.xvfb, "-a", "-s", "-screen 0 1280x720x24"] if xvfb else []) + [args.game, *a]
+    cmd = (xvfb_run() if xvfb else []) + [args.game, *a]
     print("  $ " + " ".join(cmd))
-    r = subprocess.run(cmd, cwd=tmp, env=env(), capture_output=True, text=True, timeout=timeout)
-    if xvfb and r.returncode == 5 and XVFB_CLEANUP_ERROR in r.stderr:
-        # xvfb-run itself failed to remove its temporary directory after the game had exited (its exit
-        # status 5 then replaces the game's; seen once under ctest -j2): the game's run says nothing, run
-        # it again.
-        print("  (xvfb-run's own cleanup failed; running again)")
-        r = subprocess.run(cmd, cwd=tmp, env=env(), capture_output=True, text=True, timeout=timeout)
-    return r
+    return subprocess.run(cmd, cwd=tmp, env=env(), capture_output=True, text=True, timeout=timeout)
 
 
 def region(png, x0, y0, x1, y1):
@@ -195,7 +192,7 @@ exit $status
 """)
     os.chmod(script, 0o755)
     print("  $ xvfb-run " + script)
-    r = subprocess.run([args.xvfb, "-a", "-s", "-screen 0 1280x720x24", script], cwd=tmp, env=env(),
+    r = subprocess.run(xvfb_run() + [script], cwd=tmp, env=env(),
                        capture_output=True, text=True, timeout=300)
     print(r.stdout[-600:])
     c.check(r.returncode == 0, "the game ran under typed keys and quit on Escape (exit 0)", r.stderr[-600:])
