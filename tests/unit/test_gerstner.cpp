@@ -526,5 +526,6 @@ TEST(GerstnerWaves, FoamMemoryRemembersCrestsThatPassed) {
     EXPECT_LT(remembered, 1.0);
     GerstnerDesc off = d;
     off.foamMemory = false;
-    EXPECT_EQ(GerstnerWaves(off).foamHeightAt({0.0, 0.0}, tTrough), sea.displacementAt({0.0, 0.0}, tTrough).z);
+    EXPECT_EQ(GerstnerWaves(off).foamHeightAt({0.0, 0.0}, tTrough),
+              sea.displacementAt({0.0, 0.0}, tTrough).z);
 }

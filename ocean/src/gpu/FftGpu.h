@@ -10,10 +10,10 @@
 //   4. fft_finalize.comp  unpack, apply lambda, the displaced-surface gradient, write both maps
 // then glGenerateTextureMipmap on the slope map.
 // Living whitecaps (FftDesc::foamMemory; FftOcean::foamHeightAt): for every lattice time t_j =
-// j FOAM_MEMORY_STEP that passed since the last update, passes 1-3 on the height plane alone and fft_foam.comp
-// store max(h(t_j), 0) into a ring of FOAM_MEMORY_WINDOW R32F layers; one more pass takes the decayed maximum
-// over the ring into the memory map (R32F, N x N) that fft.glsl reads. Normally 0 or 1 sample a frame (5 per
-// simulated second); a seek or the first frame samples the whole window (30).
+// j FOAM_MEMORY_STEP that passed since the last update, passes 1-3 on the height plane alone and
+// fft_foam.comp store max(h(t_j), 0) into a ring of FOAM_MEMORY_WINDOW R32F layers; one more pass takes the
+// decayed maximum over the ring into the memory map (R32F, N x N) that fft.glsl reads. Normally 0 or 1 sample
+// a frame (5 per simulated second); a seek or the first frame samples the whole window (30).
 //
 // Time: only w = q w0 (integer q) reaches the GPU, and the time as the 32-bit fixed-point fraction
 // word = round(wrap(t, T) / T * 2^32), formed in double here. The shader's phase q * word (mod 2^32, exact
