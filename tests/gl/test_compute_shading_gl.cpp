@@ -15,6 +15,8 @@
 #include "ocean/Ocean.h"
 #include "ocean/Presets.h"
 
+#include "OceanTestFrame.h"
+
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
@@ -23,7 +25,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -77,18 +78,7 @@ struct HostTarget {
 
 OceanFrame frameAt(const HostTarget& target, const glm::dvec3& camera, double headingDeg, double pitchDeg,
                    double t) {
-    Pose pose;
-    pose.position = camera;
-    pose.headingDeg = headingDeg;
-    pose.pitchDeg = pitchDeg;
-    OceanFrame f;
-    f.camera =
-        makeCameraFrame(pose, static_cast<float>(60.0 * std::numbers::pi / 180.0), float(W) / H, 0.05f);
-    f.time = t;
-    f.targetFramebuffer = target.fbo.id();
-    f.width = W;
-    f.height = H;
-    return f;
+    return gltest::oceanFrameAt(camera, headingDeg, pitchDeg, t, target.fbo.id(), W, H);
 }
 
 double luminance(const float* p) {

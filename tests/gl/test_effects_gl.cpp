@@ -16,6 +16,8 @@
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
 
+#include "OceanTestFrame.h"
+
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
@@ -49,18 +51,7 @@ protected:
     EffectsGl() { registry.emplace<OceanComponent>(oceanEntity, makeOcean({})); }
 
     OceanFrame frameAt(const glm::dvec3& camera, double headingDeg, double pitchDeg, double t) const {
-        Pose pose;
-        pose.position = camera;
-        pose.headingDeg = headingDeg;
-        pose.pitchDeg = pitchDeg;
-        OceanFrame f;
-        f.camera =
-            makeCameraFrame(pose, static_cast<float>(60.0 * std::numbers::pi / 180.0), float(W) / H, 0.05f);
-        f.time = t;
-        f.targetFramebuffer = targets.sceneFramebuffer().id();
-        f.width = W;
-        f.height = H;
-        return f;
+        return gltest::oceanFrameAt(camera, headingDeg, pitchDeg, t, targets.sceneFramebuffer().id(), W, H);
     }
 
     size_t nonFinitePixels() const {
