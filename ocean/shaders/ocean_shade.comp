@@ -26,11 +26,10 @@ vec3 pixelRay(ivec2 p) {
     return normalize(q.xyz / q.w);
 }
 
-// The camera-relative surface point drawn at pixel q (the depth unprojected), false where none was.
+// The camera-relative surface point drawn at pixel q (inside the viewport: main() checks) — the depth
+// unprojected — false where none was.
 bool seaAt(ivec2 q, out vec3 rel) {
     rel = vec3(0.0);
-    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, uShadeSize)))
-        return false;
     float depth = texelFetch(uDepth, q, uDepthLevel).r;
     if (depth <= 0.0)
         return false;

@@ -87,6 +87,23 @@ std::complex<double> cisTurns(double turns) {
     return {std::cos(kTwoPi * r), std::sin(kTwoPi * r)};
 }
 
+/// e^{i k x} per axis at a point: the coordinate wrapped to the tile in double (fmod is exact), then
+/// e^{i 2 pi n' x / L} from turns reduced mod 1 for lattice index i (n' = i - N/2), so x = 1e7 m loses
+/// nothing; the 2D exponential of lattice point (i, m) is ex[i] * ey[m].
+struct AxisPhases {
+    std::vector<std::complex<double>> ex, ey;
+};
+AxisPhases axisPhases(const glm::dvec2& xy, double tile, int n) {
+    const double u = wrapPhase(xy.x, tile) / tile, v = wrapPhase(xy.y, tile) / tile;
+    AxisPhases p{std::vector<std::complex<double>>(static_cast<size_t>(n)),
+                 std::vector<std::complex<double>>(static_cast<size_t>(n))};
+    for (int i = 0; i < n; ++i) {
+        p.ex[static_cast<size_t>(i)] = cisTurns((i - n / 2) * u);
+        p.ey[static_cast<size_t>(i)] = cisTurns((i - n / 2) * v);
+    }
+    return p;
+}
+
 } // namespace
 
 double jonswapFrequencySpectrum(double omega, double windSpeed, double fetch) {
@@ -189,15 +206,7 @@ FftOcean::FftOcean(const FftDesc& desc) : mDesc(desc) {
 FftOcean::Sums FftOcean::sumAt(const glm::dvec2& xy, double t, bool derivatives) const {
     const int n = mDesc.size;
     const double tile = mDesc.tileSize;
-    // Space: wrap to the tile in double (fmod is exact), then e^{i k x} = e^{i 2 pi n' x / L} per axis from
-    // turns reduced mod 1, so x = 1e7 m loses nothing; the 2D exponential is the product of the two.
-    const double u = wrapPhase(xy.x, tile) / tile;
-    const double v = wrapPhase(xy.y, tile) / tile;
-    std::vector<std::complex<double>> ex(static_cast<size_t>(n)), ey(static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i) {
-        ex[static_cast<size_t>(i)] = cisTurns((i - n / 2) * u);
-        ey[static_cast<size_t>(i)] = cisTurns((i - n / 2) * v);
-    }
+    const auto [ex, ey] = axisPhases(xy, tile, n); // space: e^{i k x} per axis
     // Time: e^{i w t} = e^{i 2 pi q s}, s = wrap(t, T) / T (Tessendorf: looping in time); one table entry per
     // q.
     const double s = wrapPhase(t, mDesc.loopPeriod) / mDesc.loopPeriod;
@@ -286,13 +295,7 @@ std::vector<double> FftOcean::foamHeightsAt(const glm::dvec2& xy, const std::vec
     // s = wrap(t, T) / T, with a_q = sum_{q(k) = q} h0(k) e^{i k.x} and b_q the same of conj(h0(-k)) (eq.
     // 26): one O(N^2) pass per point, then O(q_max) per time (the same terms sumAt() adds, grouped by q).
     const int n = mDesc.size;
-    const double tile = mDesc.tileSize;
-    const double u = wrapPhase(xy.x, tile) / tile, v = wrapPhase(xy.y, tile) / tile;
-    std::vector<std::complex<double>> ex(static_cast<size_t>(n)), ey(static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i) {
-        ex[static_cast<size_t>(i)] = cisTurns((i - n / 2) * u);
-        ey[static_cast<size_t>(i)] = cisTurns((i - n / 2) * v);
-    }
+    const auto [ex, ey] = axisPhases(xy, mDesc.tileSize, n);
     std::vector<std::complex<double>> a(static_cast<size_t>(mMaxQ) + 1), b(static_cast<size_t>(mMaxQ) + 1);
     for (int m = 1; m < n; ++m) {
         for (int i = 1; i < n; ++i) {
