@@ -178,7 +178,8 @@ int seaIndices(OceanRenderer::Gpu& gpu, const OceanComponent& ocean, const Ocean
             glVertexArrayElementBuffer(gpu.mesh.vao.id(), gpu.mesh.indices.id());
             gpu.thinBound = false;
         }
-        vertices = gpu.mesh.vertexCount;
+        vertices =
+            gpu.radial ? static_cast<long long>(gpu.radial->indexedVertexCount()) : gpu.mesh.vertexCount;
         return gpu.mesh.indexCount;
     }
     RingView view;

@@ -1,6 +1,8 @@
 // RadialGrid: vertex and index generation for the camera-centred radial grid (GPU Gems 2 §18.2.3).
 #include "ocean/RadialGrid.h"
 
+#include "GridOrder.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -40,7 +42,10 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
             "RadialGridDesc.minRingPixels must be in [0, 1000], got " + std::to_string(desc.minRingPixels));
     const int skirt = desc.skirtRadius > 0.0 ? desc.skirtRings : 0;
     const int ringsTotal = desc.rings + skirt;
-    mVertices.reserve(static_cast<size_t>(2 * (1 + ringsTotal * (m + 1))));
+    // Rings are padded to a stride for vertex reuse (GridOrder.h); the padding repeats the ring's last
+    // vertex.
+    mRingStride = gridorder::rowStride(m + 1);
+    mVertices.reserve(static_cast<size_t>(2 * (1 + ringsTotal * mRingStride)));
     mVertices.insert(mVertices.end(), {0.5f, 0.0f}); // centre
     for (int i = 0; i < ringsTotal; ++i) {
         // Skirt ring s = 1..K at rMax * (skirtRadius / rMax)^(s / K): geometric, ending exactly at
@@ -51,8 +56,8 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
                                                                       double(i - desc.rings + 1) / skirt);
         // M + 1 columns u = j / M: the sector's two edges are separate vertices (for a full circle they
         // coincide), so the same mesh serves any view sector.
-        for (int j = 0; j <= m; ++j) {
-            mVertices.push_back(static_cast<float>(double(j) / m));
+        for (int j = 0; j < mRingStride; ++j) {
+            mVertices.push_back(static_cast<float>(double(std::min(j, m)) / m));
             mVertices.push_back(static_cast<float>(r));
         }
     }
@@ -66,23 +71,24 @@ int RadialGrid::ringCount() const {
     return mDesc.rings + (mDesc.skirtRadius > 0.0 ? mDesc.skirtRings : 0);
 }
 
+uint32_t RadialGrid::vertexIndex(int ring, int column) const {
+    return static_cast<uint32_t>(1 + ring * mRingStride + column);
+}
+
+size_t RadialGrid::indexedVertexCount() const {
+    return 1 + static_cast<size_t>(ringCount()) * static_cast<size_t>(mDesc.segments + 1);
+}
+
 std::vector<uint32_t> RadialGrid::indicesFor(const std::vector<int>& rings) const {
     const int m = mDesc.segments;
-    auto ringVertex = [m](int ring, int col) { return static_cast<uint32_t>(1 + ring * (m + 1) + col); };
+    auto ringVertex = [this](int ring, int col) { return vertexIndex(ring, col); };
     std::vector<uint32_t> out;
     if (rings.empty())
         return out;
     out.reserve(static_cast<size_t>(3 * m) + (rings.size() - 1) * static_cast<size_t>(6 * m));
     for (int j = 0; j < m; ++j) // centre fan
         out.insert(out.end(), {0u, ringVertex(rings.front(), j), ringVertex(rings.front(), j + 1)});
-    for (size_t k = 0; k + 1 < rings.size(); ++k) {
-        const int i = rings[k], n = rings[k + 1];
-        for (int j = 0; j < m; ++j) {
-            const uint32_t a = ringVertex(i, j), b = ringVertex(i, j + 1);
-            const uint32_t c = ringVertex(n, j), d = ringVertex(n, j + 1);
-            out.insert(out.end(), {a, c, d, a, d, b});
-        }
-    }
+    gridorder::appendQuadsInBlocks(out, rings, m, ringVertex);
     return out;
 }
 

@@ -117,7 +117,7 @@ TEST_F(OctaveImagesGpu, GpuHeightsEqualTheCpuForLoadedMaps) {
         const auto& oc = registry.get<ocean::OceanComponent>(entity);
         const ocean::RadialGrid grid(oc.desc.grid);
         ASSERT_EQ(captured.size(), grid.vertexCount());
-        const size_t displacedEnd = 1 + static_cast<size_t>(grid.desc().rings) * (grid.desc().segments + 1);
+        const size_t displacedEnd = grid.vertexIndex(grid.desc().rings, 0); // the first skirt vertex
         double worst = 0.0, range = 0.0;
         for (size_t i = 0; i < displacedEnd; ++i) {
             const glm::vec3 p = captured[i].position;

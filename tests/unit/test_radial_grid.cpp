@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 using pacifica::ocean::RadialGrid;
@@ -17,8 +19,7 @@ TEST(RadialGrid, EndRadiiMatchTheSeedWithin1e6Relative) {
     EXPECT_NEAR(grid.radius(0), 0.1, 0.1 * 1e-6);
     EXPECT_NEAR(grid.radius(grid.desc().rings - 1), 40000.0, 40000.0 * 1e-6);
     const auto& v = grid.vertices();
-    const size_t cols = static_cast<size_t>(grid.desc().segments) + 1;
-    const size_t firstRing = 1, lastRing = 1 + static_cast<size_t>(grid.desc().rings - 1) * cols;
+    const size_t firstRing = grid.vertexIndex(0, 0), lastRing = grid.vertexIndex(grid.desc().rings - 1, 0);
     EXPECT_NEAR(v[firstRing * 2 + 1], 0.1, 0.1 * 1e-6);
     EXPECT_NEAR(v[lastRing * 2 + 1], 40000.0, 40000.0 * 1e-6);
 }
@@ -37,16 +38,30 @@ TEST(RadialGrid, TopologyHasCentreFanRingsAndSkirt) {
     const RadialGridDesc d{
         .rings = 10, .segments = 8, .rMin = 0.1, .rMax = 1000.0, .skirtRadius = 1e6, .skirtRings = 3};
     const RadialGrid grid(d);
-    // centre + (rings + skirt rings) * (segments + 1) vertices
-    EXPECT_EQ(grid.vertexCount(), 1u + 13u * 9u);
+    // centre + (rings + skirt rings) * (segments + 1) vertices are indexed; each ring is padded to the
+    // stride 16 (= 16 mod 256, GridOrder.h), the padding repeating the ring's last vertex.
+    EXPECT_EQ(grid.ringStride(), 16);
+    EXPECT_EQ(grid.indexedVertexCount(), 1u + 13u * 9u);
+    EXPECT_EQ(grid.vertexCount(), 1u + 13u * 16u);
+    EXPECT_EQ(grid.vertexIndex(2, 3), 1u + 2u * 16u + 3u);
     // centre fan (8 tris) + 12 ring gaps (incl. skirt) * 8 segments * 2 tris
     EXPECT_EQ(grid.indices().size(), 3u * (8u + 12u * 8u * 2u));
-    for (uint32_t idx : grid.indices())
-        EXPECT_LT(idx, grid.vertexCount());
+    std::vector<int> uses(grid.vertexCount(), 0);
+    for (uint32_t idx : grid.indices()) {
+        ASSERT_LT(idx, grid.vertexCount());
+        ++uses[idx];
+    }
+    for (int ring = 0; ring < 13; ++ring)
+        for (int col = 0; col < 16; ++col) {
+            const uint32_t i = grid.vertexIndex(ring, col);
+            EXPECT_EQ(uses[i] > 0, col <= 8) << "ring " << ring << " column " << col; // padding: never drawn
+            EXPECT_FLOAT_EQ(grid.vertices()[i * 2], std::min(col, 8) / 8.0f);
+            EXPECT_FLOAT_EQ(grid.vertices()[i * 2 + 1], grid.vertices()[grid.vertexIndex(ring, 0) * 2 + 1]);
+        }
     // Skirt rings are geometric from rMax to skirtRadius: 1e4, 1e5, 1e6.
-    EXPECT_FLOAT_EQ(grid.vertices()[(1 + 10 * 9) * 2 + 1], 1e4f);
-    EXPECT_FLOAT_EQ(grid.vertices()[(1 + 11 * 9) * 2 + 1], 1e5f);
-    EXPECT_FLOAT_EQ(grid.vertices()[(1 + 12 * 9) * 2 + 1], 1e6f);
+    EXPECT_FLOAT_EQ(grid.vertices()[grid.vertexIndex(10, 0) * 2 + 1], 1e4f);
+    EXPECT_FLOAT_EQ(grid.vertices()[grid.vertexIndex(11, 0) * 2 + 1], 1e5f);
+    EXPECT_FLOAT_EQ(grid.vertices()[grid.vertexIndex(12, 4) * 2 + 1], 1e6f);
     // Every triangle winds counter-clockwise seen from above (+z), for a full circle and for a sector.
     for (const pacifica::ocean::ViewSector sector :
          {pacifica::ocean::ViewSector{}, pacifica::ocean::ViewSector{1.0, 0.8}}) {
@@ -197,4 +212,82 @@ TEST(RadialGridThinning, KeptRingsAreAtLeastMinPixelsApartAndEndsAreKept) {
     EXPECT_LT(grid.ringsFor(view, 1.0).size(), grid.ringsFor(view, 0.5).size());
     // A non-finite height keeps every ring (never a hole).
     EXPECT_EQ(static_cast<int>(grid.ringsFor({NAN, ppr, R}, 1.0).size()), grid.ringCount());
+}
+
+namespace {
+// Vertex shadings per triangle of a triangle list under two post-transform reuse models (GridOrder.h):
+// Mesa's draw module (segments of 1024 indices, each shading its distinct vertices once, found through a
+// 256-entry table indexed by vertex index mod 256: gallium/auxiliary/draw/draw_pt_vsplit.c), and a FIFO
+// cache of `fifo` vertices (hardware-like).
+double mesaShadingsPerTriangle(const std::vector<uint32_t>& idx) {
+    size_t shaded = 0;
+    for (size_t s = 0; s < idx.size(); s += 1024) {
+        std::vector<int64_t> table(256, -1);
+        for (size_t k = s; k < std::min(idx.size(), s + 1024); ++k)
+            if (table[idx[k] % 256] != int64_t(idx[k])) {
+                table[idx[k] % 256] = idx[k];
+                ++shaded;
+            }
+    }
+    return double(shaded) / double(idx.size() / 3);
+}
+double fifoShadingsPerTriangle(const std::vector<uint32_t>& idx, size_t fifo) {
+    std::vector<uint32_t> cache;
+    size_t shaded = 0;
+    for (uint32_t i : idx)
+        if (std::find(cache.begin(), cache.end(), i) == cache.end()) {
+            ++shaded;
+            cache.push_back(i);
+            if (cache.size() > fifo)
+                cache.erase(cache.begin());
+        }
+    return double(shaded) / double(idx.size() / 3);
+}
+} // namespace
+
+TEST(RadialGrid, TriangleOrderReusesShadedVertices) {
+    // A triangle mesh has ~2 triangles per vertex, so 0.5 shadings per triangle is the floor. Row order (ring
+    // after ring, 513 = 1 mod 256 vertices a ring) gave 1.0 in both models: every vertex shaded twice.
+    for (const auto& [rings, segments] : {std::pair{256, 512}, {128, 256}, {64, 128}}) {
+        const RadialGrid grid(RadialGridDesc{.rings = rings, .segments = segments});
+        const double mesa = mesaShadingsPerTriangle(grid.indices());
+        const double fifo = fifoShadingsPerTriangle(grid.indices(), 32);
+        std::printf("grid %dx%d: %.3f shadings/triangle (Mesa draw), %.3f (FIFO 32)\n", rings, segments, mesa,
+                    fifo);
+        EXPECT_LT(mesa, 0.60) << rings << "x" << segments;
+        EXPECT_LT(fifo, 0.56) << rings << "x" << segments;
+        // Row order, modelled the same way, for the record: what the block order is measured against.
+        std::vector<uint32_t> rowOrder;
+        for (int i = 0; i + 1 < grid.ringCount(); ++i)
+            for (int j = 0; j < segments; ++j) {
+                const uint32_t a = grid.vertexIndex(i, j), b = grid.vertexIndex(i, j + 1);
+                const uint32_t c = grid.vertexIndex(i + 1, j), d = grid.vertexIndex(i + 1, j + 1);
+                rowOrder.insert(rowOrder.end(), {a, c, d, a, d, b});
+            }
+        EXPECT_GT(fifoShadingsPerTriangle(rowOrder, 32), 0.99);
+    }
+}
+
+TEST(RadialGrid, BlockOrderDrawsEveryQuadOnce) {
+    // The same triangles as row order (as sets), for the full grid and a thinned ring selection.
+    const RadialGrid grid(RadialGridDesc{.rings = 20, .segments = 30, .rMax = 1000.0});
+    for (const std::vector<int>& rings : {grid.ringsFor({}, 0.0), std::vector<int>{0, 3, 4, 9, 19, 20, 35}}) {
+        const std::vector<uint32_t> idx = grid.indicesFor(rings);
+        std::vector<std::array<uint32_t, 3>> got, want;
+        for (size_t t = 0; t < idx.size(); t += 3)
+            got.push_back({idx[t], idx[t + 1], idx[t + 2]});
+        for (int j = 0; j < 30; ++j)
+            want.push_back({0u, grid.vertexIndex(rings[0], j), grid.vertexIndex(rings[0], j + 1)});
+        for (size_t k = 0; k + 1 < rings.size(); ++k)
+            for (int j = 0; j < 30; ++j) {
+                const uint32_t a = grid.vertexIndex(rings[k], j), b = grid.vertexIndex(rings[k], j + 1);
+                const uint32_t c = grid.vertexIndex(rings[k + 1], j),
+                               d = grid.vertexIndex(rings[k + 1], j + 1);
+                want.push_back({a, c, d});
+                want.push_back({a, d, b});
+            }
+        std::sort(got.begin(), got.end());
+        std::sort(want.begin(), want.end());
+        EXPECT_EQ(got, want);
+    }
 }

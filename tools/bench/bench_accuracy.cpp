@@ -23,6 +23,7 @@
 #include "engine/gl/GpuTimer.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/RadialGrid.h"
 
 #include "BenchText.h"
 #include <CLI/CLI.hpp>
@@ -232,22 +233,24 @@ bool inFrustum(const glm::mat4& viewProj, const glm::vec3& rel) {
 // (row-major, resolutionX per row).
 std::vector<std::pair<uint32_t, uint32_t>> gridEdges(const ocean::OceanDesc& d, size_t count) {
     std::vector<std::pair<uint32_t, uint32_t>> e;
-    auto addRowMajor = [&](size_t first, size_t perRow, size_t rows) {
+    // perRow vertices a row, rows `stride` apart (the radial grid pads its rings: RadialGrid::ringStride).
+    auto addRowMajor = [&](size_t first, size_t perRow, size_t stride, size_t rows) {
         for (size_t r = 0; r < rows; ++r)
             for (size_t c = 0; c < perRow; ++c) {
-                const size_t i = first + r * perRow + c;
+                const size_t i = first + r * stride + c;
                 if (c + 1 < perRow && i + 1 < count)
                     e.emplace_back(uint32_t(i), uint32_t(i + 1));
-                if (r + 1 < rows && i + perRow < count)
-                    e.emplace_back(uint32_t(i), uint32_t(i + perRow));
+                if (r + 1 < rows && i + stride < count)
+                    e.emplace_back(uint32_t(i), uint32_t(i + stride));
             }
     };
     if (d.gridKind == ocean::GridKind::Radial) {
-        const size_t perRing = static_cast<size_t>(d.grid.segments) + 1;
-        addRowMajor(1, perRing, (count - 1) / perRing);
+        const ocean::RadialGrid grid(d.grid);
+        addRowMajor(1, static_cast<size_t>(d.grid.segments) + 1, size_t(grid.ringStride()),
+                    size_t(grid.ringCount()));
     } else {
         const size_t perRow = static_cast<size_t>(d.projectedGrid.resolutionX);
-        addRowMajor(0, perRow, count / perRow);
+        addRowMajor(0, perRow, perRow, count / perRow);
     }
     return e;
 }
@@ -312,21 +315,22 @@ VertexError vertexError(ocean::OceanRenderer& renderer, ecs::Registry& registry,
 // order of gridEdges(): along a ring/row (left, right) and across rings/rows (down, up).
 std::vector<std::array<uint32_t, 5>> gridStencils(const ocean::OceanDesc& d, size_t count) {
     std::vector<std::array<uint32_t, 5>> out;
-    auto rowMajor = [&](size_t first, size_t perRow, size_t rows) {
+    auto rowMajor = [&](size_t first, size_t perRow, size_t stride, size_t rows) {
         for (size_t r = 1; r + 1 < rows; ++r)
             for (size_t c = 1; c + 1 < perRow; ++c) {
-                const size_t i = first + r * perRow + c;
-                if (i + perRow < count)
-                    out.push_back({uint32_t(i), uint32_t(i - 1), uint32_t(i + 1), uint32_t(i - perRow),
-                                   uint32_t(i + perRow)});
+                const size_t i = first + r * stride + c;
+                if (i + stride < count)
+                    out.push_back({uint32_t(i), uint32_t(i - 1), uint32_t(i + 1), uint32_t(i - stride),
+                                   uint32_t(i + stride)});
             }
     };
     if (d.gridKind == ocean::GridKind::Radial) {
-        const size_t perRing = static_cast<size_t>(d.grid.segments) + 1;
-        rowMajor(1, perRing, (count - 1) / perRing);
+        const ocean::RadialGrid grid(d.grid);
+        rowMajor(1, static_cast<size_t>(d.grid.segments) + 1, size_t(grid.ringStride()),
+                 size_t(grid.ringCount()));
     } else {
         const size_t perRow = static_cast<size_t>(d.projectedGrid.resolutionX);
-        rowMajor(0, perRow, count / perRow);
+        rowMajor(0, perRow, perRow, count / perRow);
     }
     return out;
 }

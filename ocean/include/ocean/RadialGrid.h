@@ -71,9 +71,12 @@ public:
     double radius(int ring) const;
 
     /// Interleaved vertex data, 2 floats per vertex: u in [0, 1] across the view sector, r in metres.
-    /// Vertex 0 is the centre; ring i holds vertices 1 + i (M + 1) ... 1 + i (M + 1) + M.
+    /// Vertex 0 is the centre; ring i's column j (u = j / M, j = 0..M) is vertex vertexIndex(i, j) =
+    /// 1 + i S + j. The ring stride S >= M + 1 pads each ring for vertex reuse (ocean/src/GridOrder.h):
+    /// the padding repeats the ring's last vertex (u = 1) and is never indexed.
     const std::vector<float>& vertices() const { return mVertices; }
-    /// Triangle list indices (counter-clockwise seen from above, +z up).
+    /// Triangle list indices (counter-clockwise seen from above, +z up): the centre fan, then the quads
+    /// between rings in blocks of columns, each block ring by ring outward (GridOrder.h).
     const std::vector<uint32_t>& indices() const { return mIndices; }
 
     /// Ring thinning (RadialGridDesc::minRingPixels): the rings to draw for `view`, ascending. Ring 0 (the
@@ -87,11 +90,19 @@ public:
     std::vector<uint32_t> indicesFor(const std::vector<int>& rings) const;
     /// Rings including the skirt.
     int ringCount() const;
+    /// Index of ring `ring`'s vertex in column `column` (0..M) in vertices().
+    uint32_t vertexIndex(int ring, int column) const;
+    /// Vertices in vertices(), padding included.
     size_t vertexCount() const { return mVertices.size() / 2; }
+    /// Vertices the indices name (the centre and every ring's M + 1 columns): those a draw shades.
+    size_t indexedVertexCount() const;
+    /// S, the distance between consecutive rings' vertices.
+    int ringStride() const { return mRingStride; }
 
 private:
     RadialGridDesc mDesc;
     double mA0 = 0.0, mA1 = 0.0;
+    int mRingStride = 0;
     std::vector<float> mVertices;
     std::vector<uint32_t> mIndices;
 };

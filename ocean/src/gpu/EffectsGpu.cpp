@@ -1,6 +1,8 @@
 // EffectsGpu: packs the effects into the effects.glsl buffers and draws their secondary radial grids.
 #include "gpu/EffectsGpu.h"
 
+#include "GridOrder.h"
+
 #include "ocean/OceanConstants.h"
 
 #include <epoxy/gl.h>
@@ -82,40 +84,38 @@ void EffectsGpu::ensureMesh(Mesh& mesh, int rings, int segments, double exponent
     if (mesh.vao && mesh.rings == rings && mesh.segments == segments)
         return;
     // The unit disc: a centre vertex and rings at rho_i = (i / N)^p (GPU Gems 2 §18.2.3's radial grid with
-    // a gentler exponent than its i^4: an effect's waves fill its whole disc).
+    // a gentler exponent than its i^4: an effect's waves fill its whole disc). Rings are padded to a stride
+    // for vertex reuse (GridOrder.h: an effect vertex's shading is the dearest of all, a wake's walks its
+    // path); the padding repeats the ring's first vertex and is never indexed.
+    const int stride = gridorder::rowStride(segments);
     std::vector<float> v{0.0f, 0.0f};
-    for (int i = 1; i <= rings; ++i) {
-        const double rho = std::pow(static_cast<double>(i) / rings, exponent);
-        for (int j = 0; j < segments; ++j) {
-            const double a = 2.0 * std::numbers::pi * j / segments;
+    auto addRing = [&](double rho) {
+        for (int j = 0; j < stride; ++j) {
+            const double a = 2.0 * std::numbers::pi * (j < segments ? j : 0) / segments;
             v.push_back(static_cast<float>(rho * std::cos(a)));
             v.push_back(static_cast<float>(rho * std::sin(a)));
         }
-    }
-    std::vector<uint32_t> idx;
-    auto at = [segments](int ring, int j) {
-        return static_cast<uint32_t>(1 + (ring - 1) * segments + (j % segments));
     };
-    for (int j = 0; j < segments; ++j)
-        idx.insert(idx.end(), {0u, at(1, j), at(1, j + 1)});
-    for (int i = 1; i < rings; ++i)
-        for (int j = 0; j < segments; ++j)
-            idx.insert(idx.end(),
-                       {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    for (int i = 1; i <= rings; ++i)
+        addRing(std::pow(static_cast<double>(i) / rings, exponent));
     // The skirt: the rim again, marked by length 2 (effects.vert hangs it below the surface). The base grid
     // and the effect grid tessellate the base surface differently, so along the rim their heights differ by
     // the interpolation error; a grazing ray could slip through that sliver. The skirt closes it, the way
     // terrain LOD closes cracks between tiles.
-    for (int j = 0; j < segments; ++j) {
-        const double a = 2.0 * std::numbers::pi * j / segments;
-        v.push_back(static_cast<float>(2.0 * std::cos(a)));
-        v.push_back(static_cast<float>(2.0 * std::sin(a)));
-    }
+    addRing(2.0);
+    auto at = [segments, stride](int ring, int j) {
+        return static_cast<uint32_t>(1 + (ring - 1) * stride + (j % segments));
+    };
+    std::vector<uint32_t> idx;
     for (int j = 0; j < segments; ++j)
-        idx.insert(idx.end(), {at(rings, j), at(rings + 1, j), at(rings + 1, j + 1), at(rings, j),
-                               at(rings + 1, j + 1), at(rings, j + 1)});
+        idx.insert(idx.end(), {0u, at(1, j), at(1, j + 1)});
+    std::vector<int> rows(static_cast<size_t>(rings + 1));
+    for (int i = 1; i <= rings + 1; ++i)
+        rows[static_cast<size_t>(i - 1)] = i; // the disc's rings, then the skirt
+    gridorder::appendQuadsInBlocks(idx, rows, segments, at);
     static_cast<GridMesh&>(mesh) = GridMesh::upload(v, idx);
-    mesh.skirtCount = segments;
+    mesh.skirtCount = stride;
+    mesh.indexedVertices = 1 + (rings + 1) * segments;
     mesh.rings = rings;
     mesh.segments = segments;
     uploads += 2;
@@ -270,7 +270,8 @@ long long EffectsGpu::draw(unsigned program, EffectKind kind, unsigned mode) {
         glDrawArraysInstanced(GL_POINTS, 0, mesh.vertexCount - mesh.skirtCount, instances); // surface only
     else
         glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, instances);
-    return static_cast<long long>(mode == GL_POINTS ? mesh.vertexCount - mesh.skirtCount : mesh.vertexCount) *
+    return static_cast<long long>(mode == GL_POINTS ? mesh.vertexCount - mesh.skirtCount
+                                                    : mesh.indexedVertices) *
            instances;
 }
 
