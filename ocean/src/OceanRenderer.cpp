@@ -166,42 +166,65 @@ double ladderUp(double v) {
     return std::exp2(std::ceil(8.0 * std::log2(v)) / 8.0);
 }
 
-/// The sea's index range for this frame: every triangle of the grid, or with ring thinning only those
-/// joining the rings drawn (rebuilt and uploaded when the selection changes; counted in `stats`). Binds
-/// the matching element buffer to the grid's VAO. Returns the index count; `vertices` = vertices shaded.
-int seaIndices(OceanRenderer::Gpu& gpu, const OceanComponent& ocean, const OceanFrame& frame,
-               OceanStats& stats, long long& vertices) {
+/// Horizontal displacement bound of the model: 2 Hs for Gerstner and FFT, 0 for the octaves (vertical only).
+double horizontalGuard(const OceanComponent& ocean) {
+    return ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * ocean.surface->significantWaveHeight();
+}
+
+/// The sea's index ranges for this frame: every triangle of the grid, or with ring thinning only those
+/// joining the rings drawn (rebuilt and uploaded when the selection changes; counted in `stats`), less the
+/// inner rings no part of which can be in view (OceanDesc::skipHiddenRings: hiddenDiscRadius()). Binds the
+/// matching element buffer to the grid's VAO. `vertices` = vertices shaded.
+std::vector<RadialGrid::IndexRange> seaIndices(OceanRenderer::Gpu& gpu, const OceanComponent& ocean,
+                                               const OceanFrame& frame, OceanStats& stats,
+                                               long long& vertices) {
+    if (!gpu.radial) {
+        vertices = gpu.mesh.vertexCount;
+        return {{0, static_cast<size_t>(gpu.mesh.indexCount)}};
+    }
     const double minPixels = ocean.desc.grid.minRingPixels;
-    const bool thin = gpu.radial && minPixels > 0.0 && frame.height > 0;
+    const bool thin = minPixels > 0.0 && frame.height > 0;
+    size_t ringsDrawn = static_cast<size_t>(gpu.radial->ringCount());
+    auto ringAt = [&](size_t k) { return thin ? gpu.thinRings[k] : static_cast<int>(k); };
     if (!thin) {
         if (gpu.thinBound) {
             glVertexArrayElementBuffer(gpu.mesh.vao.id(), gpu.mesh.indices.id());
             gpu.thinBound = false;
         }
-        vertices =
-            gpu.radial ? static_cast<long long>(gpu.radial->indexedVertexCount()) : gpu.mesh.vertexCount;
-        return gpu.mesh.indexCount;
+    } else {
+        RingView view;
+        view.height = ladderUp(std::max(std::abs(frame.camera.origin.z), 0.01) +
+                               2.0 * ocean.surface->significantWaveHeight());
+        view.pixelsPerRadian = ladderUp(std::abs(frame.camera.proj[1][1]) * 0.5 * frame.height);
+        view.earthRadius = ocean.desc.earthCurvature ? EARTH_RADIUS : 0.0;
+        std::vector<int> rings = gpu.radial->ringsFor(view, minPixels);
+        if (rings != gpu.thinRings || !gpu.thinIndices) {
+            const std::vector<uint32_t> indices = gpu.radial->indicesFor(rings);
+            gpu.thinIndices = gl::Buffer::create(indices.size() * sizeof(uint32_t), indices.data());
+            gpu.thinIndexCount = static_cast<int>(indices.size());
+            gpu.thinRings = std::move(rings);
+            gpu.thinBound = false;
+            stats.uploads += 1;
+        }
+        if (!gpu.thinBound) {
+            glVertexArrayElementBuffer(gpu.mesh.vao.id(), gpu.thinIndices.id());
+            gpu.thinBound = true;
+        }
+        ringsDrawn = gpu.thinRings.size();
     }
-    RingView view;
-    view.height = ladderUp(std::max(std::abs(frame.camera.origin.z), 0.01) +
-                           2.0 * ocean.surface->significantWaveHeight());
-    view.pixelsPerRadian = ladderUp(std::abs(frame.camera.proj[1][1]) * 0.5 * frame.height);
-    view.earthRadius = ocean.desc.earthCurvature ? EARTH_RADIUS : 0.0;
-    std::vector<int> rings = gpu.radial->ringsFor(view, minPixels);
-    if (rings != gpu.thinRings || !gpu.thinIndices) {
-        const std::vector<uint32_t> indices = gpu.radial->indicesFor(rings);
-        gpu.thinIndices = gl::Buffer::create(indices.size() * sizeof(uint32_t), indices.data());
-        gpu.thinIndexCount = static_cast<int>(indices.size());
-        gpu.thinRings = std::move(rings);
-        gpu.thinBound = false;
-        stats.uploads += 1;
+    // Ring pair k (rings k, k + 1 of those drawn) is hidden when its outer ring, moved by the horizontal
+    // displacement bound, stays inside the hidden disc; the vertical reach is the cull test's (2 Hs).
+    size_t firstPair = 0;
+    if (ocean.desc.skipHiddenRings) {
+        const double hidden = hiddenDiscRadius(frame.camera, 2.0 * ocean.surface->significantWaveHeight()) -
+                              horizontalGuard(ocean);
+        while (firstPair + 1 < ringsDrawn && gpu.radial->ringRadius(ringAt(firstPair + 1)) < hidden)
+            ++firstPair;
     }
-    if (!gpu.thinBound) {
-        glVertexArrayElementBuffer(gpu.mesh.vao.id(), gpu.thinIndices.id());
-        gpu.thinBound = true;
-    }
-    vertices = 1 + static_cast<long long>(gpu.thinRings.size()) * (ocean.desc.grid.segments + 1);
-    return gpu.thinIndexCount;
+    const long long columns = ocean.desc.grid.segments + 1;
+    vertices = firstPair == 0 ? 1 + static_cast<long long>(ringsDrawn) * columns
+                              : static_cast<long long>(ringsDrawn - firstPair) * columns;
+    return gpu.radial->rangesFrom(ringsDrawn, firstPair);
 }
 
 /// The uniforms every displaced-grid vertex stage shares (ocean.vert, ocean_projected.vert, effects.vert):
@@ -221,11 +244,6 @@ void setSurfaceUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer:
                        static_cast<float>(0.5 * ocean.surface->significantWaveHeight()));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
                        ocean.desc.earthCurvature ? static_cast<float>(1.0 / (2.0 * EARTH_RADIUS)) : 0.0f);
-}
-
-/// Horizontal displacement bound of the model: 2 Hs for Gerstner and FFT, 0 for the octaves (vertical only).
-double horizontalGuard(const OceanComponent& ocean) {
-    return ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * ocean.surface->significantWaveHeight();
 }
 
 /// §18.2.5's per-vertex frustum test (uCull of ocean.vert and effects.vert): displace only if |clip.xy| <
@@ -530,9 +548,21 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
         glDepthFunc(GL_GREATER);
         glDepthMask(GL_TRUE);
         long long seaVertices = 0;
-        const int indexCount = seaIndices(gpu, ocean, frame, mStats, seaVertices);
+        const std::vector<RadialGrid::IndexRange> ranges = seaIndices(gpu, ocean, frame, mStats, seaVertices);
         glBindVertexArray(gpu.mesh.vao.id());
-        glDrawElements(GL_TRIANGLES, indexCount, GL_UNSIGNED_INT, nullptr);
+        if (ranges.size() == 1) {
+            glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(ranges[0].count), GL_UNSIGNED_INT,
+                           reinterpret_cast<const void*>(ranges[0].first * sizeof(uint32_t)));
+        } else if (!ranges.empty()) { // one call for the blocks of columns (RadialGrid::rangesFrom)
+            std::vector<GLsizei> counts;
+            std::vector<const void*> offsets;
+            for (const RadialGrid::IndexRange& r : ranges) {
+                counts.push_back(static_cast<GLsizei>(r.count));
+                offsets.push_back(reinterpret_cast<const void*>(r.first * sizeof(uint32_t)));
+            }
+            glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(),
+                                static_cast<GLsizei>(ranges.size()));
+        }
         mStats.passes += 1;
         mStats.draws += 1;
         mStats.vertices += seaVertices;

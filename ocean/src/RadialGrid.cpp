@@ -71,6 +71,10 @@ int RadialGrid::ringCount() const {
     return mDesc.rings + (mDesc.skirtRadius > 0.0 ? mDesc.skirtRings : 0);
 }
 
+double RadialGrid::ringRadius(int ring) const {
+    return mVertices[2 * static_cast<size_t>(vertexIndex(ring, 0)) + 1];
+}
+
 uint32_t RadialGrid::vertexIndex(int ring, int column) const {
     return static_cast<uint32_t>(1 + ring * mRingStride + column);
 }
@@ -89,6 +93,26 @@ std::vector<uint32_t> RadialGrid::indicesFor(const std::vector<int>& rings) cons
     for (int j = 0; j < m; ++j) // centre fan
         out.insert(out.end(), {0u, ringVertex(rings.front(), j), ringVertex(rings.front(), j + 1)});
     gridorder::appendQuadsInBlocks(out, rings, m, ringVertex);
+    return out;
+}
+
+std::vector<RadialGrid::IndexRange> RadialGrid::rangesFrom(size_t ringsDrawn, size_t firstPair) const {
+    // indicesFor()'s layout: the centre fan (3 M indices), then per block of columns every ring pair's quads
+    // (6 indices a quad), ring pair after ring pair outward (GridOrder.h).
+    const size_t m = static_cast<size_t>(mDesc.segments);
+    const size_t pairs = ringsDrawn > 0 ? ringsDrawn - 1 : 0;
+    const size_t total = ringsDrawn > 0 ? 3 * m + 6 * m * pairs : 0;
+    if (firstPair == 0 || total == 0)
+        return {{0, total}};
+    std::vector<IndexRange> out;
+    if (firstPair >= pairs)
+        return out;
+    size_t offset = 3 * m;
+    for (size_t j0 = 0; j0 < m; j0 += gridorder::BLOCK_COLUMNS) {
+        const size_t width = std::min<size_t>(gridorder::BLOCK_COLUMNS, m - j0);
+        out.push_back({offset + 6 * width * firstPair, 6 * width * (pairs - firstPair)});
+        offset += 6 * width * pairs;
+    }
     return out;
 }
 
@@ -157,6 +181,31 @@ ViewSector computeViewSector(const CameraFrame& camera, double guardRad) {
     if (half >= std::numbers::pi)
         return {0.0, std::numbers::pi};
     return {std::remainder(gapEnd + arc / 2.0, 2.0 * std::numbers::pi), half};
+}
+
+double hiddenDiscRadius(const CameraFrame& camera, double verticalReach) {
+    // The frustum's side planes from the rows of the camera-relative view-projection M (Gribb & Hartmann
+    // 2001): inside is n . x + d >= 0 for (n, d) = row3 +- row0 (left, right), row3 +- row1 (bottom, top).
+    // Over the solid disc |x.xy| <= R at a height z, n . x + d peaks at |n.xy| R + n.z z + d, so the disc
+    // lies outside the plane while that is < 0. The sea there is at z in [-h - a - drop, -h + a] below the
+    // camera (h its height above mean sea level, a the reach, drop = r^2 / 2R >= 0 only lowers it): for a
+    // plane with n.z > 0 the worst point is the highest, z = -h + a; a plane with n.z <= 0 cannot exclude
+    // the point under the camera and is skipped (safe: it only keeps rings).
+    const glm::dmat4 m(camera.viewProj);
+    const double z = -camera.origin.z + std::max(verticalReach, 0.0);
+    double best = 0.0;
+    for (int axis = 0; axis < 2; ++axis)
+        for (double sign : {1.0, -1.0}) {
+            const glm::dvec4 p(m[0][3] + sign * m[0][axis], m[1][3] + sign * m[1][axis],
+                               m[2][3] + sign * m[2][axis], m[3][3] + sign * m[3][axis]);
+            const double horizontal = std::hypot(p.x, p.y);
+            const double atCentre = p.z * z + p.w;
+            if (!(p.z > 0.0) || !(atCentre < 0.0) || !(horizontal > 0.0))
+                continue;
+            best = std::max(best, -atCentre / horizontal);
+        }
+    // Float: the GPU's vertices are float, rounded by ~6e-8 of their radius.
+    return std::isfinite(best) ? best * (1.0 - 1e-6) : 0.0;
 }
 
 glm::dvec2 sectorPosition(double u, double r, const ViewSector& sector, double guardDistance) {

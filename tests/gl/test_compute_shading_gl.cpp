@@ -8,6 +8,7 @@
 // explosion and a wake; without the sky the host's pixels stay untouched; a target it cannot use (a
 // renderbuffer colour, 24-bit depth) is shaded forward.
 #include "engine/Ecs.h"
+#include "engine/Pose.h"
 #include "engine/Space.h"
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GlObjects.h"
@@ -262,6 +263,104 @@ TEST_F(ComputeShadingGl, TargetsItCannotUseAreShadedForward) {
     // And back on a target it can use: compute shading again.
     renderer.render(registry, frameAt(target, {0.0, 0.0, 20.0}, 0.0, -5.0, 10.0));
     EXPECT_TRUE(renderer.lastStats().computeShaded);
+}
+
+// OceanDesc::skipHiddenRings: the inner rings whose whole disc lies outside the frustum (hiddenDiscRadius)
+// are not drawn. That must change no pixel and no depth, in views from 0.5 m (inside the waves' reach:
+// nothing skipped) to 15 km, banked, with ring thinning, and for the horizontally displaced models, while
+// fewer vertices are shaded from altitude.
+TEST_F(ComputeShadingGl, SkippingHiddenRingsChangesNoPixel) {
+    struct Case {
+        const char* name;
+        SurfaceKind model;
+        glm::dvec3 camera;
+        double heading, pitch, roll;
+        double minRingPixels;
+        double maxShare; // vertices shaded with the skip / without, at most
+    };
+    const Case cases[] = {
+        {"octaves, 20 m, the issue's view",
+         SurfaceKind::Octaves,
+         {2000.0, 0.0, 20.0},
+         70.0,
+         -3.0,
+         0.0,
+         0.0,
+         1.0},
+        {"octaves, 0.5 m (within the waves)",
+         SurfaceKind::Octaves,
+         {10.0, 20.0, 0.5},
+         10.0,
+         -20.0,
+         0.0,
+         0.0,
+         1.0},
+        {"octaves, 3 km, 10 deg down", SurfaceKind::Octaves, {0.0, 0.0, 3000.0}, 40.0, -10.0, 0.0, 0.0, 0.55},
+        {"octaves, 15 km, 35 deg down",
+         SurfaceKind::Octaves,
+         {1e4, 2e4, 15000.0},
+         250.0,
+         -35.0,
+         0.0,
+         0.0,
+         0.45},
+        {"octaves, 800 m banked 60 deg",
+         SurfaceKind::Octaves,
+         {-500.0, 0.0, 800.0},
+         120.0,
+         -15.0,
+         60.0,
+         0.0,
+         1.0},
+        {"octaves, 3 km, thinned rings",
+         SurfaceKind::Octaves,
+         {0.0, 0.0, 3000.0},
+         40.0,
+         -10.0,
+         0.0,
+         1.0,
+         0.9},
+        {"gerstner, 300 m, 25 deg down",
+         SurfaceKind::Gerstner,
+         {0.0, 0.0, 300.0},
+         200.0,
+         -25.0,
+         0.0,
+         0.0,
+         0.8},
+        {"fft, 1 km, 40 deg down", SurfaceKind::Fft, {3000.0, 0.0, 1000.0}, 300.0, -40.0, 0.0, 0.0, 0.75},
+    };
+    for (const Case& c : cases) {
+        Pose pose;
+        pose.position = c.camera;
+        pose.headingDeg = c.heading;
+        pose.pitchDeg = c.pitch;
+        pose.rollDeg = c.roll;
+        OceanFrame f = frameAt(target, c.camera, c.heading, c.pitch, 33.0);
+        f.camera = makeCameraFrame(pose, f.camera.fovY, f.camera.aspect, f.camera.zNear);
+        OceanDesc desc;
+        desc.model = c.model;
+        desc.grid.minRingPixels = c.minRingPixels;
+        long long vertices[2] = {0, 0};
+        std::vector<float> color[2], depth[2];
+        for (int skip = 0; skip < 2; ++skip) {
+            desc.skipHiddenRings = skip == 1;
+            setOcean(desc);
+            target.clear(0.0f);
+            renderer.render(registry, f);
+            vertices[skip] = renderer.lastStats().vertices;
+            color[skip] = target.readColor();
+            depth[skip] = target.readDepth();
+        }
+        const double share = double(vertices[1]) / double(vertices[0]);
+        std::printf("[%s] vertices shaded %lld -> %lld (%.3f)\n", c.name, vertices[0], vertices[1], share);
+        EXPECT_TRUE(color[0] == color[1]) << c.name << ": a pixel changed";
+        EXPECT_TRUE(depth[0] == depth[1]) << c.name << ": a depth changed";
+        EXPECT_LE(share, c.maxShare) << c.name;
+        if (c.maxShare == 1.0 && c.pitch > -5.0) {
+            EXPECT_GT(share, 0.7) << c.name << ": looking at the horizon most rings are in view";
+        }
+    }
 }
 
 } // namespace

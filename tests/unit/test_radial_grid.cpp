@@ -291,3 +291,106 @@ TEST(RadialGrid, BlockOrderDrawsEveryQuadOnce) {
         EXPECT_EQ(got, want);
     }
 }
+
+namespace {
+pacifica::CameraFrame cameraAt(double height, double headingDeg, double pitchDeg, double rollDeg) {
+    pacifica::Pose pose;
+    pose.position = {-3.0e6, 5.0e6, height};
+    pose.headingDeg = headingDeg;
+    pose.pitchDeg = pitchDeg;
+    pose.rollDeg = rollDeg;
+    return pacifica::makeCameraFrame(pose, static_cast<float>(60.0 * PI / 180.0), 16.0f / 9.0f, 0.05f);
+}
+bool inFrustum(const pacifica::CameraFrame& cam, const glm::dvec3& rel) {
+    const glm::dvec4 c = glm::dmat4(cam.viewProj) * glm::dvec4(rel, 1.0);
+    return c.w > 0.0 && std::abs(c.x) <= c.w && std::abs(c.y) <= c.w;
+}
+} // namespace
+
+TEST(HiddenDisc, LevelCameraHidesTheSeaBelowItsBottomEdge) {
+    // Pitched 3 deg down with a 60 deg vertical fov, the bottom edge looks 33 deg down: the sea's highest
+    // points (a above mean sea level) are hidden out to (h - a) / tan(33 deg).
+    for (double h : {20.0, 3000.0})
+        for (double a : {0.0, 1.5}) {
+            const double r = pacifica::ocean::hiddenDiscRadius(cameraAt(h, 70.0, -3.0, 0.0), a);
+            EXPECT_NEAR(r, (h - a) / std::tan(33.0 * PI / 180.0), 1e-5 * r) << h << " m, reach " << a;
+        }
+    // Within the waves' reach nothing is hidden.
+    EXPECT_EQ(pacifica::ocean::hiddenDiscRadius(cameraAt(1.0, 70.0, -3.0, 0.0), 1.5), 0.0);
+    // Looking 40 deg up, the bottom plane rises 10 deg ahead and falls 10 deg behind the camera: one plane
+    // alone hides the disc out to (h - a) / tan(10 deg) (the sea beyond, behind, is outside the others).
+    const double up = pacifica::ocean::hiddenDiscRadius(cameraAt(20.0, 70.0, 40.0, 0.0), 1.5);
+    EXPECT_NEAR(up, 18.5 / std::tan(10.0 * PI / 180.0), 1e-5 * up);
+    // Looking straight down the nadir is in view.
+    EXPECT_EQ(pacifica::ocean::hiddenDiscRadius(cameraAt(500.0, 0.0, -90.0, 0.0), 1.5), 0.0);
+}
+
+TEST(HiddenDisc, NoPointOfTheHiddenDiscIsInView) {
+    // Points of the disc at any radius <= R, any azimuth and any height within the reach (and lowered by a
+    // curvature drop) lie outside the frustum, over many attitudes; and the bound is tight for a level roll:
+    // just beyond R straight ahead at the top of the reach the sea is in view.
+    uint32_t state = 12345u;
+    auto uniform = [&state]() {
+        state = state * 1664525u + 1013904223u;
+        return double(state >> 8) / double(1u << 24);
+    };
+    int hiddenViews = 0;
+    for (double h : {0.8, 20.0, 500.0, 15000.0})
+        for (double pitch : {-89.0, -60.0, -35.0, -10.0, -3.0, 0.0, 20.0})
+            for (double roll : {0.0, 30.0, -75.0})
+                for (double heading : {0.0, 133.0}) {
+                    const pacifica::CameraFrame cam = cameraAt(h, heading, pitch, roll);
+                    const double reach = 0.5;
+                    const double r = pacifica::ocean::hiddenDiscRadius(cam, reach);
+                    ASSERT_TRUE(std::isfinite(r) && r >= 0.0);
+                    if (r == 0.0)
+                        continue;
+                    ++hiddenViews;
+                    for (int k = 0; k < 2000; ++k) {
+                        const double rho = r * std::sqrt(uniform()), az = 2.0 * PI * uniform();
+                        const double z = -h + reach * (2.0 * uniform() - 1.0) - 0.1 * uniform();
+                        const glm::dvec3 p(rho * std::cos(az), rho * std::sin(az), z);
+                        ASSERT_FALSE(inFrustum(cam, p)) << h << " m pitch " << pitch << " roll " << roll;
+                    }
+                    if (roll == 0.0 && pitch > -60.0) {
+                        const double az = (90.0 - heading) * PI / 180.0; // ahead
+                        const glm::dvec3 p(1.001 * r * std::cos(az), 1.001 * r * std::sin(az), -h + reach);
+                        EXPECT_TRUE(inFrustum(cam, p)) << h << " m pitch " << pitch;
+                    }
+                }
+    EXPECT_GT(hiddenViews, 20);
+}
+
+TEST(RadialGrid, RangesFromLeaveOutTheFanAndTheInnerRingPairs) {
+    const RadialGrid grid(RadialGridDesc{.rings = 20, .segments = 30, .rMax = 1000.0});
+    const std::vector<int> rings{0, 3, 4, 9, 19, 20, 35};
+    const std::vector<uint32_t> idx = grid.indicesFor(rings);
+    const auto all = grid.rangesFrom(rings.size(), 0);
+    ASSERT_EQ(all.size(), 1u);
+    EXPECT_EQ(all[0].first, 0u);
+    EXPECT_EQ(all[0].count, idx.size());
+    for (size_t firstPair : {size_t(1), size_t(3), size_t(5)}) {
+        std::vector<std::array<uint32_t, 3>> got, want;
+        for (const auto& range : grid.rangesFrom(rings.size(), firstPair)) {
+            ASSERT_EQ(range.count % 3, 0u);
+            ASSERT_LE(range.first + range.count, idx.size());
+            for (size_t t = range.first; t < range.first + range.count; t += 3)
+                got.push_back({idx[t], idx[t + 1], idx[t + 2]});
+        }
+        for (size_t k = firstPair; k + 1 < rings.size(); ++k)
+            for (int j = 0; j < 30; ++j) {
+                const uint32_t a = grid.vertexIndex(rings[k], j), b = grid.vertexIndex(rings[k], j + 1);
+                const uint32_t c = grid.vertexIndex(rings[k + 1], j),
+                               d = grid.vertexIndex(rings[k + 1], j + 1);
+                want.push_back({a, c, d});
+                want.push_back({a, d, b});
+            }
+        std::sort(got.begin(), got.end());
+        std::sort(want.begin(), want.end());
+        EXPECT_EQ(got, want) << "first pair " << firstPair;
+    }
+    EXPECT_TRUE(grid.rangesFrom(rings.size(), rings.size() - 1).empty()); // every pair hidden
+    // ringRadius() is the stored radius, skirt included.
+    EXPECT_FLOAT_EQ(static_cast<float>(grid.ringRadius(19)), 1000.0f);
+    EXPECT_FLOAT_EQ(static_cast<float>(grid.ringRadius(35)), 1e6f);
+}

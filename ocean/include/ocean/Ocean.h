@@ -69,6 +69,11 @@ struct OceanDesc {
     /// the half screen) plus the surface's displacement bound.
     bool cullVertices = true;
     double cullGuardNdc = 0.1;
+    /// Leave out the radial grid's inner rings when their whole disc is outside the frustum (from altitude
+    /// the sea under the camera is off screen): hiddenDiscRadius() with the cull test's reach (2 Hs), less
+    /// the horizontal displacement bound. Changes no pixel (test_compute_shading_gl); saves their vertices
+    /// and triangles (docs/PERFORMANCE.md).
+    bool skipHiddenRings = true;
     EffectGridDesc effectGrids;
     /// Light the sea and sky in one compute pass instead of in the grids' fragment stage: the grids write
     /// only depth and a thin G-buffer (the quad's derivatives of the grid point), and the same lighting code

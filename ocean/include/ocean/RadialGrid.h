@@ -56,6 +56,13 @@ struct ViewSector {
 /// camera".
 ViewSector computeViewSector(const CameraFrame& camera, double guardRad);
 
+/// The radius of the disc around the camera's nadir none of whose sea can be in view: every point within
+/// horizontal distance R of the camera, at any height from verticalReach above mean sea level down (the
+/// Earth's curvature only lowers the sea), lies outside one of the frustum's side planes. The rings inside
+/// it need not be drawn (OceanDesc::skipHiddenRings). 0 when there is none: the camera within the reach,
+/// looking up, or the nadir in view.
+double hiddenDiscRadius(const CameraFrame& camera, double verticalReach);
+
 /// Camera-relative position of grid vertex (u, r) in `sector`, exactly as ocean.vert computes it.
 glm::dvec2 sectorPosition(double u, double r, const ViewSector& sector, double guardDistance);
 
@@ -88,6 +95,16 @@ public:
     /// Triangle list indices joining consecutive rings of `rings` (from ringsFor), same winding as indices();
     /// ringsFor(view, 0) gives exactly indices().
     std::vector<uint32_t> indicesFor(const std::vector<int>& rings) const;
+    /// A range of indices (first, count) of indicesFor().
+    struct IndexRange {
+        size_t first = 0, count = 0;
+    };
+    /// The ranges of indicesFor(rings) (rings.size() == ringsDrawn) that draw the quads between rings
+    /// firstPair .. ringsDrawn - 1 of the selection, leaving out the centre fan and the ring pairs inside
+    /// (one range per block of columns); firstPair 0 gives the whole list. Empty when every pair is left out.
+    std::vector<IndexRange> rangesFrom(size_t ringsDrawn, size_t firstPair) const;
+    /// Ring i's radius as stored (the skirt's included), metres.
+    double ringRadius(int ring) const;
     /// Rings including the skirt.
     int ringCount() const;
     /// Index of ring `ring`'s vertex in column `column` (0..M) in vertices().
