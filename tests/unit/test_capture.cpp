@@ -154,6 +154,39 @@ TEST_F(CaptureTest, ExrHashIsStableAndChangesWithOnePixel) {
     EXPECT_TRUE(tempFiles().empty());
 }
 
+TEST_F(CaptureTest, FastCompressionIsLosslessAndOnlyLessCompressed) {
+    // A 256x128 smooth image with fine detail (as a rendered sea): Compression::Fast (zlib level 1) must give
+    // exactly the pixels of Small (level 6), as ZIP, in more bytes (it trades size for encoding time).
+    const int w = 256, h = 128;
+    std::vector<float> px(static_cast<size_t>(w * h * 4));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c)
+                px[(static_cast<size_t>(y) * w + x) * 4 + c] =
+                    c == 3 ? 1.0f
+                           : 0.4f +
+                                 0.3f * std::sin(0.05f * float(x) + 0.7f * float(c)) *
+                                     std::cos(0.08f * float(y)) +
+                                 0.02f * std::sin(1.7f * float(x * y % 97));
+    using pacifica::capture::Compression;
+    const uint64_t small = pacifica::capture::writeExrHalf(mDir / "small.exr", w, h, 4, px.data(), {});
+    const uint64_t fast =
+        pacifica::capture::writeExrHalf(mDir / "fast.exr", w, h, 4, px.data(), {}, Compression::Fast);
+    EXPECT_EQ(small, fast);
+    const Image a = pacifica::capture::readImage(mDir / "small.exr"),
+                b = pacifica::capture::readImage(mDir / "fast.exr");
+    EXPECT_EQ(a.pixels, b.pixels);
+    EXPECT_EQ(b.attributes.at("compression"), "zip");
+    EXPECT_GT(fs::file_size(mDir / "fast.exr"), fs::file_size(mDir / "small.exr"));
+
+    pacifica::capture::writePng8(mDir / "small.png", w, h, 4, px.data());
+    pacifica::capture::writePng8(mDir / "fast.png", w, h, 4, px.data(), Compression::Fast);
+    EXPECT_EQ(pacifica::capture::readImage(mDir / "small.png").pixels,
+              pacifica::capture::readImage(mDir / "fast.png").pixels);
+    EXPECT_GT(fs::file_size(mDir / "fast.png"), fs::file_size(mDir / "small.png"));
+    EXPECT_TRUE(tempFiles().empty());
+}
+
 TEST_F(CaptureTest, PngClampsAndQuantises) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     // 2x2 RGB, row 0 then row 1.

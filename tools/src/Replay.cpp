@@ -446,9 +446,11 @@ void runReplay(const ReplayOptions& o) {
                 pendingImages.push_back(
                     {vi, viewFrames[vi].size(),
                      encoder->submit([exr = out->staged(exrName), png = out->staged(pngName), w = view.width,
-                                      h = view.height, sceneCopy = scene, displayCopy = display, meta] {
-                         const uint64_t exrHash = capture::writeExrHalf(exr, w, h, 4, sceneCopy.data(), meta);
-                         capture::writePng8(png, w, h, 4, displayCopy.data());
+                                      h = view.height, sceneCopy = scene, displayCopy = display, meta,
+                                      compression = o.imageCompression] {
+                         const uint64_t exrHash =
+                             capture::writeExrHalf(exr, w, h, 4, sceneCopy.data(), meta, compression);
+                         capture::writePng8(png, w, h, 4, displayCopy.data(), compression);
                          return exrHash;
                      })});
             } else {
@@ -467,12 +469,13 @@ void runReplay(const ReplayOptions& o) {
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - e0).count();
                 if (writeImages) {
                     const std::string png = std::string(name) + "." + e.suffix + ".png";
-                    pendingImages.push_back({vi, std::string::npos,
-                                             encoder->submit([path = out->staged(png), w = view.width,
-                                                              h = view.height, displayCopy = display] {
-                                                 capture::writePng8(path, w, h, 4, displayCopy.data());
-                                                 return uint64_t{0};
-                                             })});
+                    pendingImages.push_back(
+                        {vi, std::string::npos,
+                         encoder->submit([path = out->staged(png), w = view.width, h = view.height,
+                                          displayCopy = display, compression = o.imageCompression] {
+                             capture::writePng8(path, w, h, 4, displayCopy.data(), compression);
+                             return uint64_t{0};
+                         })});
                     extraPngs.push_back({{"view", e.view}, {"png", png}});
                 }
             }

@@ -3,6 +3,7 @@
 // hash) with GL_RENDERER and timings. Used by `pacifica replay` and `./pacifica demo`.
 #pragma once
 
+#include "engine/capture/Capture.h"
 #include "ocean/Ocean.h"
 
 #include <filesystem>
@@ -42,7 +43,11 @@ struct ReplayOptions {
     std::vector<std::string> extraViews;
     std::optional<std::filesystem::path> ocioConfig;
     bool writeImages = true; ///< false: render, tonemap and read back, but write no images (benchmarks)
-    bool progress = true;    ///< progress line when stderr is a TTY
+    /// --image-compression: zlib level of the EXR (ZIP) and PNG files, both lossless. Fast (level 1, the
+    /// default) encodes a 640x360 frame in 35 instead of 80 ms for 1.11x / 1.26x the bytes: on a 2-core
+    /// software renderer the encoder's thread takes its core from the render (docs/PERFORMANCE.md).
+    capture::Compression imageCompression = capture::Compression::Fast;
+    bool progress = true; ///< progress line when stderr is a TTY
     /// --profile: per-pass times in every frame's "pass_ms" and their medians in timings.passes_ms_median
     /// (docs/PERFORMANCE.md): the ocean's passes (OceanRenderer::setPassTiming), objects, tonemap, readback
     /// and image encoding. On llvmpipe it puts a glFinish between passes, which costs a little overlap.

@@ -53,18 +53,24 @@ uint64_t hashHalfPixels(const uint16_t* halfBits, size_t count);
 /// +-infinity, NaN stays NaN.
 std::vector<uint16_t> toHalf(const float* data, size_t count);
 
+/// How hard the lossless writers compress: zlib's default level 6 (Small) or level 1 (Fast: a 640x360
+/// RGBA frame's EXR in 22 instead of 35 ms and 1.11x the bytes, its PNG in 13 instead of 45 ms and 1.26x;
+/// docs/PERFORMANCE.md). Pixels are identical either way.
+enum class Compression { Small, Fast };
+
 /// Writes a half-float OpenEXR (ZIP compression) of width x height pixels with 3 (RGB) or 4 (RGBA)
 /// interleaved channels, top row first. Metadata becomes header attributes named "pacifica:<name>".
 /// Returns hashHalfPixels() of exactly the half data written. Atomic: the file appears complete under
 /// `path` or not at all. Throws CaptureError (naming `path`) on bad arguments or any I/O failure.
 uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, int channels,
-                      const float* pixelsTopDown, const Metadata& metadata);
+                      const float* pixelsTopDown, const Metadata& metadata,
+                      Compression compression = Compression::Small);
 
 /// Writes an 8-bit PNG from display-encoded (already sRGB) values with 1 to 4 interleaved channels, top row
 /// first: each value is clamped to [0, 1] (NaN becomes 0) and quantised as round(v * 255); no transfer
 /// function is applied here. The file is tagged sRGB. Atomic like writeExrHalf(); throws CaptureError.
 void writePng8(const std::filesystem::path& path, int width, int height, int channels,
-               const float* displayTopDown);
+               const float* displayTopDown, Compression compression = Compression::Small);
 
 /// Writes a 16-bit PNG of code values in [0, 1] (clamped, NaN -> 0, round(v * 65535)), 1 to 4 channels, top
 /// row first, untagged (e.g. Rec.2100 PQ codes for an HDR display). Atomic like writeExrHalf(); throws
