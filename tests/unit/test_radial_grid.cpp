@@ -268,6 +268,20 @@ TEST(RadialGrid, TriangleOrderReusesShadedVertices) {
     }
 }
 
+namespace {
+// The quads between rings[k] and rings[k + 1] for k >= firstPair, as two triangles (a, c, d), (a, d, b) each.
+void appendRowOrderQuads(std::vector<std::array<uint32_t, 3>>& out, const RadialGrid& grid,
+                         const std::vector<int>& rings, size_t firstPair) {
+    for (size_t k = firstPair; k + 1 < rings.size(); ++k)
+        for (int j = 0; j < grid.desc().segments; ++j) {
+            const uint32_t a = grid.vertexIndex(rings[k], j), b = grid.vertexIndex(rings[k], j + 1);
+            const uint32_t c = grid.vertexIndex(rings[k + 1], j), d = grid.vertexIndex(rings[k + 1], j + 1);
+            out.push_back({a, c, d});
+            out.push_back({a, d, b});
+        }
+}
+} // namespace
+
 TEST(RadialGrid, BlockOrderDrawsEveryQuadOnce) {
     // The same triangles as row order (as sets), for the full grid and a thinned ring selection.
     const RadialGrid grid(RadialGridDesc{.rings = 20, .segments = 30, .rMax = 1000.0});
@@ -278,14 +292,7 @@ TEST(RadialGrid, BlockOrderDrawsEveryQuadOnce) {
             got.push_back({idx[t], idx[t + 1], idx[t + 2]});
         for (int j = 0; j < 30; ++j)
             want.push_back({0u, grid.vertexIndex(rings[0], j), grid.vertexIndex(rings[0], j + 1)});
-        for (size_t k = 0; k + 1 < rings.size(); ++k)
-            for (int j = 0; j < 30; ++j) {
-                const uint32_t a = grid.vertexIndex(rings[k], j), b = grid.vertexIndex(rings[k], j + 1);
-                const uint32_t c = grid.vertexIndex(rings[k + 1], j),
-                               d = grid.vertexIndex(rings[k + 1], j + 1);
-                want.push_back({a, c, d});
-                want.push_back({a, d, b});
-            }
+        appendRowOrderQuads(want, grid, rings, 0);
         std::sort(got.begin(), got.end());
         std::sort(want.begin(), want.end());
         EXPECT_EQ(got, want);
@@ -377,14 +384,7 @@ TEST(RadialGrid, RangesFromLeaveOutTheFanAndTheInnerRingPairs) {
             for (size_t t = range.first; t < range.first + range.count; t += 3)
                 got.push_back({idx[t], idx[t + 1], idx[t + 2]});
         }
-        for (size_t k = firstPair; k + 1 < rings.size(); ++k)
-            for (int j = 0; j < 30; ++j) {
-                const uint32_t a = grid.vertexIndex(rings[k], j), b = grid.vertexIndex(rings[k], j + 1);
-                const uint32_t c = grid.vertexIndex(rings[k + 1], j),
-                               d = grid.vertexIndex(rings[k + 1], j + 1);
-                want.push_back({a, c, d});
-                want.push_back({a, d, b});
-            }
+        appendRowOrderQuads(want, grid, rings, firstPair);
         std::sort(got.begin(), got.end());
         std::sort(want.begin(), want.end());
         EXPECT_EQ(got, want) << "first pair " << firstPair;
