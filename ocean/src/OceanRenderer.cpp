@@ -20,6 +20,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -171,6 +172,17 @@ double horizontalGuard(const OceanComponent& ocean) {
     return ocean.surface->kind() == SurfaceKind::Octaves ? 0.0 : 2.0 * ocean.surface->significantWaveHeight();
 }
 
+/// How far above mean sea level the displaced surface can reach, for leaving out hidden rings: 2 Hs (the cull
+/// test's bound), or the octaves' exact bound when larger (the displaced maps' peak texels times their
+/// amplitudes; with many displaced octaves it can exceed 2 Hs). Gerstner: sum A_i <= sqrt(N) |A| <= 2 Hs for
+/// N <= 32 waves; the FFT's peaks lie near 4.5 sigma, 1.1 Hs.
+double verticalReach(const OceanComponent& ocean) {
+    double reach = 2.0 * ocean.surface->significantWaveHeight();
+    if (const auto* octaves = dynamic_cast<const HeightOctaves*>(ocean.surface.get()))
+        reach = std::max(reach, octaves->maxDisplacement());
+    return reach;
+}
+
 /// The sea's index ranges for this frame: every triangle of the grid, or with ring thinning only those
 /// joining the rings drawn (rebuilt and uploaded when the selection changes; counted in `stats`), less the
 /// inner rings no part of which can be in view (OceanDesc::skipHiddenRings: hiddenDiscRadius()). Binds the
@@ -213,11 +225,10 @@ std::vector<RadialGrid::IndexRange> seaIndices(OceanRenderer::Gpu& gpu, const Oc
         ringsDrawn = gpu.thinRings.size();
     }
     // Ring pair k (rings k, k + 1 of those drawn) is hidden when its outer ring, moved by the horizontal
-    // displacement bound, stays inside the hidden disc; the vertical reach is the cull test's (2 Hs).
+    // displacement bound, stays inside the hidden disc.
     size_t firstPair = 0;
     if (ocean.desc.skipHiddenRings) {
-        const double hidden = hiddenDiscRadius(frame.camera, 2.0 * ocean.surface->significantWaveHeight()) -
-                              horizontalGuard(ocean);
+        const double hidden = hiddenDiscRadius(frame.camera, verticalReach(ocean)) - horizontalGuard(ocean);
         while (firstPair + 1 < ringsDrawn && gpu.radial->ringRadius(ringAt(firstPair + 1)) < hidden)
             ++firstPair;
     }

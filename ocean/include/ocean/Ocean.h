@@ -70,9 +70,9 @@ struct OceanDesc {
     bool cullVertices = true;
     double cullGuardNdc = 0.1;
     /// Leave out the radial grid's inner rings when their whole disc is outside the frustum (from altitude
-    /// the sea under the camera is off screen): hiddenDiscRadius() with the cull test's reach (2 Hs), less
-    /// the horizontal displacement bound. Changes no pixel (test_compute_shading_gl); saves their vertices
-    /// and triangles (docs/PERFORMANCE.md).
+    /// the sea under the camera is off screen): hiddenDiscRadius() with the waves' vertical reach (2 Hs, or
+    /// the octaves' exact bound when larger), less the horizontal displacement bound. Changes no pixel
+    /// (test_compute_shading_gl); saves their vertices and triangles (docs/PERFORMANCE.md).
     bool skipHiddenRings = true;
     EffectGridDesc effectGrids;
     /// Light the sea and sky in one compute pass instead of in the grids' fragment stage: the grids write
