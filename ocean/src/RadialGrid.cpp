@@ -44,7 +44,7 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
     const int ringsTotal = desc.rings + skirt;
     // Rings are padded to a stride for vertex reuse (GridOrder.h); the padding repeats the ring's last
     // vertex.
-    mRingStride = gridorder::rowStride(m + 1);
+    mRingStride = ringStrideFor(m);
     mVertices.reserve(static_cast<size_t>(2 * (1 + ringsTotal * mRingStride)));
     mVertices.insert(mVertices.end(), {0.5f, 0.0f}); // centre
     for (int i = 0; i < ringsTotal; ++i) {
@@ -69,6 +69,10 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
 
 int RadialGrid::ringCount() const {
     return mDesc.rings + (mDesc.skirtRadius > 0.0 ? mDesc.skirtRings : 0);
+}
+
+int RadialGrid::ringStrideFor(int segments) {
+    return gridorder::rowStride(segments + 1);
 }
 
 double RadialGrid::ringRadius(int ring) const {

@@ -245,9 +245,9 @@ std::vector<std::pair<uint32_t, uint32_t>> gridEdges(const ocean::OceanDesc& d, 
             }
     };
     if (d.gridKind == ocean::GridKind::Radial) {
-        const ocean::RadialGrid grid(d.grid);
-        addRowMajor(1, static_cast<size_t>(d.grid.segments) + 1, size_t(grid.ringStride()),
-                    size_t(grid.ringCount()));
+        // Rings of M + 1 vertices, padded to the grid's stride (RadialGrid::vertexIndex).
+        const size_t stride = static_cast<size_t>(ocean::RadialGrid::ringStrideFor(d.grid.segments));
+        addRowMajor(1, static_cast<size_t>(d.grid.segments) + 1, stride, (count - 1) / stride);
     } else {
         const size_t perRow = static_cast<size_t>(d.projectedGrid.resolutionX);
         addRowMajor(0, perRow, perRow, count / perRow);
@@ -325,9 +325,9 @@ std::vector<std::array<uint32_t, 5>> gridStencils(const ocean::OceanDesc& d, siz
             }
     };
     if (d.gridKind == ocean::GridKind::Radial) {
-        const ocean::RadialGrid grid(d.grid);
-        rowMajor(1, static_cast<size_t>(d.grid.segments) + 1, size_t(grid.ringStride()),
-                 size_t(grid.ringCount()));
+        // Rings of M + 1 vertices, padded to the grid's stride (RadialGrid::vertexIndex).
+        const size_t stride = static_cast<size_t>(ocean::RadialGrid::ringStrideFor(d.grid.segments));
+        rowMajor(1, static_cast<size_t>(d.grid.segments) + 1, stride, (count - 1) / stride);
     } else {
         const size_t perRow = static_cast<size_t>(d.projectedGrid.resolutionX);
         rowMajor(0, perRow, perRow, count / perRow);

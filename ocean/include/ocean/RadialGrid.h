@@ -115,6 +115,8 @@ public:
     size_t indexedVertexCount() const;
     /// S, the distance between consecutive rings' vertices.
     int ringStride() const { return mRingStride; }
+    /// The ring stride of a grid of `segments` segments, without building it.
+    static int ringStrideFor(int segments);
 
 private:
     RadialGridDesc mDesc;

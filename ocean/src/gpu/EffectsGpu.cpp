@@ -115,7 +115,6 @@ void EffectsGpu::ensureMesh(Mesh& mesh, int rings, int segments, double exponent
     gridorder::appendQuadsInBlocks(idx, rows, segments, at);
     static_cast<GridMesh&>(mesh) = GridMesh::upload(v, idx);
     mesh.skirtCount = stride;
-    mesh.indexedVertices = 1 + (rings + 1) * segments;
     mesh.rings = rings;
     mesh.segments = segments;
     uploads += 2;
@@ -270,8 +269,9 @@ long long EffectsGpu::draw(unsigned program, EffectKind kind, unsigned mode) {
         glDrawArraysInstanced(GL_POINTS, 0, mesh.vertexCount - mesh.skirtCount, instances); // surface only
     else
         glDrawElementsInstanced(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr, instances);
+    // Triangles shade the indexed vertices: the centre, the rings and the skirt (the rest is padding).
     return static_cast<long long>(mode == GL_POINTS ? mesh.vertexCount - mesh.skirtCount
-                                                    : mesh.indexedVertices) *
+                                                    : 1 + (mesh.rings + 1) * mesh.segments) *
            instances;
 }
 

@@ -45,8 +45,7 @@ public:
 
 private:
     struct Mesh : GridMesh {
-        int skirtCount = 0;      ///< the last vertices: the rim's skirt (not part of the surface)
-        int indexedVertices = 0; ///< vertices the indices name (the rest is padding, GridOrder.h)
+        int skirtCount = 0; ///< the last vertices: the rim's skirt (not part of the surface)
         int rings = 0, segments = 0;
     };
     void ensureMesh(Mesh& mesh, int rings, int segments, double exponent, int& uploads);
