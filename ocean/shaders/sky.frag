@@ -34,24 +34,34 @@ vec3 distantSea(vec3 dir) {
     return sea;
 }
 
+// The sky above the sea's horizon in direction dir (unit) from altitude z0: rays that miss the sea.
+vec3 openSkyColor(vec3 dir, float z0) {
+    // Below the horizontal (rays from altitude that pass over the curved sea) there is no sky to show -- a
+    // map has its ground there -- so the horizon's haze colour, blended in over half a degree.
+    vec3 sky = backgroundRadiance(dir.z < 0.0 ? normalize(vec3(dir.xy, 1e-4)) : dir);
+    sky = mix(sky, fogColor(dir), smoothstep(0.0, 0.009, -dir.z));
+    return mix(fogColor(dir), sky, skyTransmittance(z0, dir));
+}
+
+// The sea beyond the grid, hit at distance s along dir from altitude z0.
+vec3 beyondGridColor(vec3 dir, float z0, float s) {
+    // No noise factor: beyond the grid it has averaged out to 1 (its mipmaps), and the texture()
+    // derivatives would be undefined inside this branch.
+    float tau = fogOpticalDepth(z0, 0.0, s);
+    return mix(fogColor(dir), distantSea(dir), exp(-tau));
+}
+
+// The camera's altitude as the sky sees it (above the sea, so every ray upward misses it).
+float skyEyeHeight() { return max(uCameraHeight, 0.01); }
+
 // What a ray from the camera in direction dir (unit) sees beyond the grid: the sky, or the distant sea.
+// (Compute shading's tiles call the two parts alone where a tile holds only one: ocean_shade.comp.)
 vec3 skyColor(vec3 dir) {
-    float z0 = max(uCameraHeight, 0.01);
+    float z0 = skyEyeHeight();
     float s = seaHitDistance(dir, z0);
-    vec3 color;
-    if (s > 0.0) {
-        // No noise factor: beyond the grid it has averaged out to 1 (its mipmaps), and the texture()
-        // derivatives would be undefined inside this branch.
-        float tau = fogOpticalDepth(z0, 0.0, s);
-        color = mix(fogColor(dir), distantSea(dir), exp(-tau));
-    } else {
-        // The sky. Below the horizontal (rays from altitude that pass over the curved sea) there is no sky
-        // to show — a map has its ground there — so the horizon's haze colour, blended in over half a degree.
-        vec3 sky = backgroundRadiance(dir.z < 0.0 ? normalize(vec3(dir.xy, 1e-4)) : dir);
-        sky = mix(sky, fogColor(dir), smoothstep(0.0, 0.009, -dir.z));
-        color = mix(fogColor(dir), sky, skyTransmittance(z0, dir));
-    }
-    return color;
+    if (s > 0.0) // a branch, not a select: a GPU then runs one side per warp
+        return beyondGridColor(dir, z0, s);
+    return openSkyColor(dir, z0);
 }
 
 #ifndef SHADE_COMPUTE

@@ -70,7 +70,9 @@ struct OceanRenderer::Programs {
     std::map<std::string, gl::Program> effectsFeedback;
     std::map<std::string, gl::Program> seaGeometry; // compute shading: the grids into the G-buffer
     std::map<std::string, gl::Program> effectsGeometry;
-    std::map<std::string, gl::Program> shade; // compute shading: per model, effects, output format
+    std::map<std::string, gl::Program> shade; // compute shading: per model, effects, output format, tile kind
+    gl::Program shadeTileSort;                // compute shading's tile sorting (ocean_shade_tiles.comp)
+    int softwareRenderer = -1;                // GL_RENDERER names a software rasteriser (1), not (0), unknown
     gl::Program sky;                          // built on first use
     gl::VertexArray emptyVao;  // the sky's fullscreen triangle needs a bound VAO in core profile
     gl::Texture feedbackColor; // a 1x1 target: drawing needs a complete framebuffer even with discard
@@ -496,30 +498,84 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
             ocean.desc.computeShading &&
             mCompute->attach(frame.targetFramebuffer, frame.width, frame.height, displaced, holes);
         mStats.computeShaded = deferred;
+        // Tiles (OceanDesc::shadeTiles): Auto asks the renderer's name once.
+        if (mPrograms->softwareRenderer < 0) {
+            const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+            const std::string renderer = name ? name : "";
+            mPrograms->softwareRenderer = renderer.find("llvmpipe") != std::string::npos ||
+                                          renderer.find("softpipe") != std::string::npos;
+        }
+        const bool tiled =
+            deferred &&
+            (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::On ||
+             (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::Auto && mPrograms->softwareRenderer == 1));
+        mStats.shadeTiled = tiled;
         auto shadePixels = [&] {
             const std::string defines = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
                                         mCompute->outputFormat() + "\n" +
                                         (holes ? "#define EFFECT_GRID\n" : "") +
                                         (displaced ? "#define GBUFFER_DISPLACED\n" : "");
-            gl::Program& program = mPrograms->shade[gpu.programKey + defines];
-            if (!program) {
-                ++mStats.programsBuilt;
-                std::vector<std::string> files{"shade_compute.glsl"};
-                for (const std::string& f : gpu.model->glslFiles())
-                    files.push_back(f);
-                program = gl::buildProgram(
-                    {{gl::ShaderStage::Compute,
-                      sources(concat(files, {"sky.glsl", "sky.frag", "ocean.frag", "ocean_shade.comp"}),
-                              defines)}},
-                    "ocean compute shading (" + gpu.programKey + ")");
+            const std::string tileDefines =
+                "#define SHADE_TILE_BINDING " + std::to_string(ComputeShading::TILE_BINDING) + "\n";
+            // One lighting program: all of it (untiled), or one kind of tile's part. The sky's kinds need
+            // neither the surface model nor the sea's lighting: one program each for every model and effect.
+            auto shadeProgram = [&](int kind) {
+                const bool skyOnly = kind == 2 || kind == 3; // SHADE_TILE_SKY, SHADE_TILE_BEYOND
+                const std::string tileVariant =
+                    kind < 0 ? std::string()
+                             : tileDefines + "#define SHADE_TILES\n#define SHADE_TILE_ACCESS readonly\n" +
+                                   "#define SHADE_TILE_KIND " + std::to_string(kind) + "\n";
+                const std::string variant =
+                    skyOnly ? std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
+                                  mCompute->outputFormat() + "\n" + tileVariant
+                            : defines + tileVariant;
+                gl::Program& program =
+                    mPrograms->shade[(skyOnly ? std::string("sky") : gpu.programKey) + variant];
+                if (!program) {
+                    ++mStats.programsBuilt;
+                    std::vector<std::string> files{"shade_compute.glsl"};
+                    if (!skyOnly)
+                        for (const std::string& f : gpu.model->glslFiles())
+                            files.push_back(f);
+                    files.insert(files.end(), {"sky.glsl", "sky.frag", "shade_pixels.glsl"});
+                    if (!skyOnly)
+                        files.push_back("ocean.frag");
+                    files.push_back("ocean_shade.comp");
+                    program = gl::buildProgram(
+                        {{gl::ShaderStage::Compute, sources(files, variant)}},
+                        "ocean compute shading (" + (skyOnly ? std::string("sky") : gpu.programKey) +
+                            (kind < 0 ? std::string() : ", tile kind " + std::to_string(kind)) + ")");
+                }
+                const GLuint prog = program.id();
+                setSurfaceUniforms(prog, ocean, gpu, frame);
+                mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+                glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
+                                          glm::value_ptr(invViewProj));
+                return prog;
+            };
+            if (tiled) {
+                if (!mPrograms->shadeTileSort) {
+                    ++mStats.programsBuilt;
+                    mPrograms->shadeTileSort = gl::buildProgram(
+                        {{gl::ShaderStage::Compute,
+                          sources({"shade_compute.glsl", "sky.glsl", "sky.frag", "shade_pixels.glsl",
+                                   "ocean_shade_tiles.comp"},
+                                  tileDefines + "#define SHADE_COMPUTE\n#define SHADE_TILES\n"
+                                                "#define SHADE_TILE_ACCESS\n")}},
+                        "ocean compute shading tiles");
+                }
+                const GLuint sort = mPrograms->shadeTileSort.id();
+                glProgramUniformMatrix4fv(sort, glGetUniformLocation(sort, "uInvViewProj"), 1, GL_FALSE,
+                                          glm::value_ptr(invViewProj));
+                unsigned kinds[ComputeShading::TILE_KINDS];
+                for (int k = 0; k < ComputeShading::TILE_KINDS; ++k)
+                    kinds[k] = shadeProgram(k);
+                mCompute->shadeTiles(sort, kinds, ocean.desc.drawSky);
+                mStats.passes += 1 + ComputeShading::TILE_KINDS;
+            } else {
+                mCompute->shade(shadeProgram(-1), ocean.desc.drawSky);
+                mStats.passes += 1;
             }
-            const GLuint prog = program.id();
-            setSurfaceUniforms(prog, ocean, gpu, frame);
-            mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-            glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
-                                      glm::value_ptr(invViewProj));
-            mCompute->shade(prog, ocean.desc.drawSky);
-            mStats.passes += 1;
             marks.mark(PassShade);
         };
 
@@ -616,6 +672,10 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
             drawSky();
     });
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
+}
+
+std::array<int, 4> OceanRenderer::shadeTileCounts() const {
+    return mStats.shadeTiled && mCompute ? mCompute->tileCounts() : std::array<int, 4>{};
 }
 
 std::vector<OceanRenderer::DisplacedVertex>

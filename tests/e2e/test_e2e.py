@@ -513,6 +513,18 @@ def case_ocean_options(c, exe, source_dir, tmp):
     c.check(all(abs(a - b) <= 1e-3 * b for a, b in zip(mean_fw, mean_d)),
             "--forward-shading: mean RGB within 0.1% of the compute-shaded frame", f"{mean_fw} vs {mean_d}")
 
+    print("[shading] --shade-tiles on / off: compute shading by tiles, the same pixels")
+    _, frame_ton = run("tiles_on", ["--shade-tiles", "on"])
+    _, frame_toff = run("tiles_off", ["--shade-tiles", "off"])
+    tiled = (frame_ton.get("counters", {}).get("shade_tiled"), frame_toff.get("counters", {}).get("shade_tiled"))
+    c.check(tiled == (True, False), "--shade-tiles on / off (counters)", str(tiled))
+    c.check(frame_ton["exr_pixel_hash"] == frame_toff["exr_pixel_hash"] == frame_d["exr_pixel_hash"],
+            "by tiles or not, and by default: the same EXR pixels",
+            f'{frame_ton["exr_pixel_hash"]} {frame_toff["exr_pixel_hash"]} {frame_d["exr_pixel_hash"]}')
+    r = run_replay(exe, [flight, "--out", os.path.join(tmp, "tiles_bad"), *args, "--shade-tiles", "some"])
+    c.check(r.returncode != 0 and "--shade-tiles" in r.stderr and not os.path.exists(os.path.join(tmp, "tiles_bad")),
+            "--shade-tiles some: refused naming the option, nothing written", r.stderr)
+
     print("[octaves] --octaves 2 --displaced-octaves 1")
     _, frame_o = run("octaves", ["--octaves", "2", "--displaced-octaves", "1"])
     c.check(frame_o["exr_pixel_hash"] != frame_d["exr_pixel_hash"], "octave count options change the EXR pixels",

@@ -22,6 +22,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -80,6 +81,19 @@ struct HostTarget {
 OceanFrame frameAt(const HostTarget& target, const glm::dvec3& camera, double headingDeg, double pitchDeg,
                    double t) {
     return gltest::oceanFrameAt(camera, headingDeg, pitchDeg, t, target.fbo.id(), W, H);
+}
+
+/// The same, rolled by rollDeg.
+OceanFrame bankedFrameAt(const HostTarget& target, const glm::dvec3& camera, double headingDeg,
+                         double pitchDeg, double rollDeg, double t) {
+    Pose pose;
+    pose.position = camera;
+    pose.headingDeg = headingDeg;
+    pose.pitchDeg = pitchDeg;
+    pose.rollDeg = rollDeg;
+    OceanFrame f = frameAt(target, camera, headingDeg, pitchDeg, t);
+    f.camera = makeCameraFrame(pose, f.camera.fovY, f.camera.aspect, f.camera.zNear);
+    return f;
 }
 
 double luminance(const float* p) {
@@ -143,8 +157,10 @@ protected:
         target.clear(0.0f);
         renderer.render(registry, f);
         EXPECT_TRUE(renderer.lastStats().computeShaded) << what;
-        // The sky's draw becomes the shading dispatch: as many passes.
-        EXPECT_EQ(renderer.lastStats().passes, forwardPasses) << what;
+        // The sky's draw becomes the shading dispatch: as many passes, and by tiles (on llvmpipe, where
+        // OceanDesc::shadeTiles Auto sorts them) the sorting pass and one dispatch per kind instead of one.
+        EXPECT_EQ(renderer.lastStats().passes, forwardPasses + (renderer.lastStats().shadeTiled ? 4 : 0))
+            << what;
         const std::vector<float> compute = target.readColor();
         const std::vector<float> computeDepth = target.readDepth();
         EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << what;
@@ -331,13 +347,7 @@ TEST_F(ComputeShadingGl, SkippingHiddenRingsChangesNoPixel) {
         {"fft, 1 km, 40 deg down", SurfaceKind::Fft, {3000.0, 0.0, 1000.0}, 300.0, -40.0, 0.0, 0.0, 0.75},
     };
     for (const Case& c : cases) {
-        Pose pose;
-        pose.position = c.camera;
-        pose.headingDeg = c.heading;
-        pose.pitchDeg = c.pitch;
-        pose.rollDeg = c.roll;
-        OceanFrame f = frameAt(target, c.camera, c.heading, c.pitch, 33.0);
-        f.camera = makeCameraFrame(pose, f.camera.fovY, f.camera.aspect, f.camera.zNear);
+        const OceanFrame f = bankedFrameAt(target, c.camera, c.heading, c.pitch, c.roll, 33.0);
         OceanDesc desc;
         desc.model = c.model;
         desc.grid.minRingPixels = c.minRingPixels;
@@ -359,6 +369,156 @@ TEST_F(ComputeShadingGl, SkippingHiddenRingsChangesNoPixel) {
         EXPECT_LE(share, c.maxShare) << c.name;
         if (c.maxShare == 1.0 && c.pitch > -5.0) {
             EXPECT_GT(share, 0.7) << c.name << ": looking at the horizon most rings are in view";
+        }
+    }
+}
+
+// OceanDesc::shadeTiles: sorted into 8x8 tiles by what they hold, each kind lit by a program with only its
+// part of the lighting, the frame is the one program's. The kinds' counts are checked against the tiles
+// of the host's depth; views with every kind: the sea to the horizon (20 m), sky above the sea beyond the
+// grid (15 km), banked, an explosion and a wake, a displaced model, and without the sky (the host's pixels
+// stay, its sky tiles are not lit at all).
+TEST_F(ComputeShadingGl, ShadingByTilesChangesNoPixel) {
+    struct Case {
+        const char* name;
+        SurfaceKind model;
+        glm::dvec3 camera;
+        double heading, pitch, roll;
+        bool sky, effects;
+        bool beyond; // tiles of sky and the sea beyond the grid are in view
+    };
+    const Case cases[] = {
+        {"octaves, 20 m, the issue's view",
+         SurfaceKind::Octaves,
+         {2000.0, 0.0, 20.0},
+         70.0,
+         -3.0,
+         0.0,
+         true,
+         false,
+         false},
+        {"octaves, 15 km, 20 deg down",
+         SurfaceKind::Octaves,
+         {1e4, 2e4, 15000.0},
+         250.0,
+         -20.0,
+         0.0,
+         true,
+         false,
+         true},
+        {"octaves, 800 m banked 60 deg",
+         SurfaceKind::Octaves,
+         {-500.0, 0.0, 800.0},
+         120.0,
+         -5.0,
+         60.0,
+         true,
+         false,
+         false},
+        {"gerstner, 0.5 m", SurfaceKind::Gerstner, {10.0, 20.0, 0.5}, 10.0, -2.0, 0.0, true, false, false},
+        {"octaves, an explosion and a wake, 200 m",
+         SurfaceKind::Octaves,
+         {300.0, -400.0, 200.0},
+         0.0,
+         -12.0,
+         0.0,
+         true,
+         true,
+         false},
+        {"octaves, 15 km, no sky",
+         SurfaceKind::Octaves,
+         {1e4, 2e4, 15000.0},
+         250.0,
+         -20.0,
+         0.0,
+         false,
+         false,
+         true},
+    };
+    ecs::EventQueue events;
+    EffectsSystem fx(registry, events);
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        if (c.effects) {
+            const ecs::Entity ship = registry.create();
+            registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 60.0});
+            events.enqueue(AttachShipTrail{ship, WakeParams{}});
+            events.enqueue(SpawnExplosion{{350.0, 150.0}, 55.0, 2.0});
+            for (int i = 0; i <= 600; ++i) {
+                registry.get<Ship>(ship).position = {i * 1.0, 0.0};
+                events.dispatch();
+                fx.update(i * 0.1, c.camera);
+            }
+        }
+        const OceanFrame f = bankedFrameAt(target, c.camera, c.heading, c.pitch, c.roll, 60.0);
+        OceanDesc desc = oceanPreset(Quality::High);
+        desc.model = c.model;
+        desc.drawSky = c.sky;
+        std::vector<float> color[2], depth[2];
+        std::array<int, 4> counts{};
+        for (int tiles = 0; tiles < 2; ++tiles) {
+            desc.shadeTiles = tiles ? OceanDesc::ShadeTiles::On : OceanDesc::ShadeTiles::Off;
+            setOcean(desc);
+            target.clear(7.0f);
+            renderer.render(registry, f);
+            ASSERT_TRUE(renderer.lastStats().computeShaded);
+            EXPECT_EQ(renderer.lastStats().shadeTiled, tiles == 1);
+            if (tiles)
+                counts = renderer.shadeTileCounts();
+            color[tiles] = target.readColor();
+            depth[tiles] = target.readDepth();
+            EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+        }
+        if (c.effects) {
+            EXPECT_EQ(renderer.lastStats().wakes.draws, 1);
+            EXPECT_EQ(renderer.lastStats().explosions.draws, 1);
+        }
+        EXPECT_TRUE(depth[0] == depth[1]);
+        // The same code in another program: equal pixels, up to the rounding LLVM may choose differently.
+        size_t differing = 0;
+        double maxRel = 0.0;
+        for (size_t i = 0; i < color[0].size(); ++i)
+            if (color[0][i] != color[1][i]) {
+                ++differing;
+                maxRel = std::max(maxRel, std::abs(double(color[0][i]) - color[1][i]) /
+                                              std::max(std::abs(double(color[0][i])), 1e-3));
+            }
+        // The host's tiles: what each holds, from its depth (rows bottom-up, as the depth texture).
+        constexpr int T = 8;
+        const int tilesX = (W + T - 1) / T, tilesY = (H + T - 1) / T;
+        int mixed = 0, sea = 0, open = 0, hostKept = 0;
+        for (int ty = 0; ty < tilesY; ++ty)
+            for (int tx = 0; tx < tilesX; ++tx) {
+                bool anySea = false, anyOther = false;
+                for (int y = ty * T; y < std::min(H, ty * T + T); ++y)
+                    for (int x = tx * T; x < std::min(W, tx * T + T); ++x)
+                        (depth[1][static_cast<size_t>(y) * W + x] > 0.0f ? anySea : anyOther) = true;
+                mixed += anySea && anyOther;
+                sea += anySea && !anyOther;
+                open += !anySea;
+            }
+        for (size_t i = 0; i < depth[1].size(); ++i)
+            hostKept += depth[1][i] == 0.0f && color[1][i * 4] == 7.0f;
+        std::printf("[%s] tiles mixed %d, sea %d, sky %d, beyond %d of %d; pixels differing %zu (max %.2e)\n",
+                    c.name, counts[0], counts[1], counts[2], counts[3], tilesX * tilesY, differing, maxRel);
+        EXPECT_LE(maxRel, 1e-5);
+        if (context->info().software) {
+            EXPECT_EQ(differing, 0u) << "llvmpipe compiles the same lighting to the same bits";
+        }
+        EXPECT_EQ(counts[0], mixed);
+        EXPECT_EQ(counts[1], sea);
+        EXPECT_GT(sea, 0);
+        EXPECT_LE(mixed, tilesX * tilesY / 4) << "the edge tiles are a band, not the screen";
+        if (c.sky) {
+            EXPECT_EQ(counts[2] + counts[3], open);
+            EXPECT_EQ(hostKept, 0) << "every sky pixel is lit";
+            EXPECT_GT(counts[2], 0) << "tiles of open sky";
+            if (c.beyond) {
+                EXPECT_GT(counts[3], 0) << "tiles of the sea beyond the grid";
+            }
+        } else {
+            EXPECT_EQ(counts[2] + counts[3], 0) << "no sky drawn: its tiles are not lit";
+            EXPECT_GT(hostKept, W * H / 10) << "the host's sky stays";
         }
     }
 }

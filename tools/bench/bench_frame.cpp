@@ -145,6 +145,20 @@ std::vector<Setting> settings(bool quick) {
                               : "lit in the grids' fragment stage",
              d});
     }
+    // Compute shading by tiles (OceanDesc::shadeTiles): the other side of Auto on this renderer, each preset,
+    // and from 3 km up (more sky, and sea beyond the grid).
+    for (Quality q : {Quality::Low, Quality::Medium, Quality::High}) {
+        for (auto tiles : {ocean::OceanDesc::ShadeTiles::Off, ocean::OceanDesc::ShadeTiles::On}) {
+            Setting s{std::string(ocean::toString(q)) +
+                          (tiles == ocean::OceanDesc::ShadeTiles::On ? "/shade-tiles" : "/shade-untiled"),
+                      tiles == ocean::OceanDesc::ShadeTiles::On
+                          ? "compute shading sorted into tiles (OceanDesc::shadeTiles On)"
+                          : "compute shading in one program (OceanDesc::shadeTiles Off)",
+                      ocean::oceanPreset(q)};
+            s.desc.shadeTiles = tiles;
+            out.push_back(s);
+        }
+    }
     return out;
 }
 
@@ -207,6 +221,7 @@ struct Row {
     double ms = 0, p90 = 0, compute = 0, sky = 0, sea = 0, effects = 0, shade = 0;
     long long vertices = 0;
     int passes = 0, draws = 0, samples = 0;
+    bool shadeTiled = false; // lit by tiles (OceanDesc::shadeTiles)
 };
 
 int usage(const char* argv0, int code) {
@@ -345,6 +360,7 @@ int main(int argc, char** argv) {
                 r.vertices = scene->stats.vertices;
                 r.passes = scene->stats.passes;
                 r.draws = scene->stats.draws;
+                r.shadeTiled = scene->stats.shadeTiled;
                 r.samples = static_cast<int>(ms.size());
                 if (r.samples == 0 || !(r.ms > 0.0))
                     throw std::runtime_error("setting " + r.setting + ": no frame time measured");
@@ -359,13 +375,14 @@ int main(int argc, char** argv) {
         const std::string date = utcNow();
         std::ofstream csv(std::filesystem::path(outDir) / "frame.csv");
         csv << "setting,knob,width,height,ms_median,ms_p90,samples,compute_ms,sky_ms,sea_ms,effects_ms,"
-               "shade_ms,vertices,passes,draws,clock,pass_clock,renderer\n";
+               "shade_ms,vertices,passes,draws,shade_tiled,clock,pass_clock,renderer\n";
         for (const Row& r : rows)
             csv << r.setting << "," << csvQuote(r.knob) << "," << r.width << "," << r.height << ","
                 << num(r.ms) << "," << num(r.p90) << "," << r.samples << "," << num(r.compute) << ","
                 << num(r.sky) << "," << num(r.sea) << "," << num(r.effects) << "," << num(r.shade) << ","
-                << r.vertices << "," << r.passes << "," << r.draws << "," << csvQuote(timer.clockName())
-                << "," << csvQuote(passClock) << "," << csvQuote(info.renderer) << "\n";
+                << r.vertices << "," << r.passes << "," << r.draws << "," << (r.shadeTiled ? 1 : 0) << ","
+                << csvQuote(timer.clockName()) << "," << csvQuote(passClock) << "," << csvQuote(info.renderer)
+                << "\n";
         std::ofstream md(std::filesystem::path(outDir) / "frame.md");
         md << "# Ocean frame cost per preset (pacifica-bench-frame)\n\n"
            << "- GL_RENDERER: " << info.renderer << "\n- frame clock: " << timer.clockName()
@@ -407,7 +424,8 @@ int main(int argc, char** argv) {
                                   {"shade_ms", r.shade},
                                   {"vertices", r.vertices},
                                   {"passes", r.passes},
-                                  {"draws", r.draws}});
+                                  {"draws", r.draws},
+                                  {"shade_tiled", r.shadeTiled}});
         std::ofstream(std::filesystem::path(outDir) / "frame.json") << js.dump(2) << "\n";
         return 0;
     } catch (const gl::ContextError& e) {

@@ -184,6 +184,10 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_flag(
         "--forward-shading", o.forwardShading,
         "light the sea in the grids' fragment stage instead of one compute pass (docs/PERFORMANCE.md)");
+    app.add_option("--shade-tiles", o.shadeTiles,
+                   "compute shading by 8x8 tiles sorted by what they hold: auto (on for software renderers "
+                   "such as llvmpipe), on, off; the same pixels (docs/PERFORMANCE.md)")
+        ->default_val("auto");
     app.add_flag("--no-view-sector", o.noViewSector, "tessellate the full circle, not just the view sector");
     app.add_option(
         "--octaves", o.octaveCount,
@@ -305,6 +309,14 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     d.cullVertices = !o.noCull;
     if (o.forwardShading)
         d.computeShading = false;
+    if (o.shadeTiles == "auto")
+        d.shadeTiles = ocean::OceanDesc::ShadeTiles::Auto;
+    else if (o.shadeTiles == "on")
+        d.shadeTiles = ocean::OceanDesc::ShadeTiles::On;
+    else if (o.shadeTiles == "off")
+        d.shadeTiles = ocean::OceanDesc::ShadeTiles::Off;
+    else
+        throw UsageError("--shade-tiles must be auto, on or off; got '" + o.shadeTiles + "'");
     d.viewSector = !o.noViewSector;
     if (o.octaveCount != 0) {
         const int available = static_cast<int>(d.octaves.octaves.size());

@@ -26,11 +26,12 @@ struct OceanOptions {
         "bilinear";        ///< octaves: nearest | bilinear | hardware-bilinear | packed-4tap | trilinear
     bool combined = false; ///< octaves: sum the displaced octaves in a compute pass first (§18.2.5)
     bool noCull = false;   ///< disable the per-vertex frustum test (§18.2.5)
-    bool forwardShading = false; ///< light in the grids' fragment stage (OceanDesc::computeShading off)
-    bool noViewSector = false;   ///< tessellate the full circle instead of the view sector
-    int fftSize = 0;             ///< 0 = default N
-    int octaveCount = 0;         ///< octaves: how many of the preset's octaves to use (1..count); 0 = all
-    int displacedOctaves = -1;   ///< octaves: how many leading octaves displace vertices; < 0 = the preset's
+    bool forwardShading = false;     ///< light in the grids' fragment stage (OceanDesc::computeShading off)
+    std::string shadeTiles = "auto"; ///< auto | on | off: compute shading by tiles (OceanDesc::shadeTiles)
+    bool noViewSector = false;       ///< tessellate the full circle instead of the view sector
+    int fftSize = 0;                 ///< 0 = default N
+    int octaveCount = 0;             ///< octaves: how many of the preset's octaves to use (1..count); 0 = all
+    int displacedOctaves = -1; ///< octaves: how many leading octaves displace vertices; < 0 = the preset's
     // FFT spectrum (ocean::FftDesc); unset = the FftDesc default.
     std::string fftSpectrum;                ///< phillips | jonswap; empty = default (JONSWAP)
     std::optional<double> seaState;         ///< --sea-state U10, m/s: every model's sea (ocean/SeaState.h)
@@ -58,7 +59,7 @@ struct OceanOptions {
 };
 
 /// Adds --model, --grid, --grid-rings, --grid-segments, --vertex-filter, --combined, --no-cull,
-/// --forward-shading,
+/// --forward-shading, --shade-tiles,
 /// --no-view-sector, --gerstner-steepness, --octaves, --displaced-octaves, --sea-state, --beaufort,
 /// --fft-size, --fft-spectrum,
 /// --wind-speed, --wind-direction,

@@ -510,6 +510,7 @@ void runReplay(const ReplayOptions& o) {
                               {"vertices", st.vertices},
                               {"programs_built", st.programsBuilt},
                               {"compute_shaded", st.computeShaded},
+                              {"shade_tiled", st.shadeTiled},
                               {"explosions", kindJson(st.explosions)},
                               {"wakes", kindJson(st.wakes)},
                               {"explosions_spawned", fx.spawned},

@@ -29,6 +29,7 @@
 #include "ocean/RadialGrid.h"
 #include "ocean/SurfaceModel.h"
 
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
@@ -86,6 +87,15 @@ struct OceanDesc {
     /// which ran). Same depth, same image to within ~1e-5 of mean luminance (the fog noise's footprint
     /// lacks its vertical part; test_compute_shading_gl). On by default; the reference preset shades forward.
     bool computeShading = true;
+    /// Compute shading by tiles (ComputeShading.h): a first pass sorts the screen's 8x8 tiles by what they
+    /// hold (sea, open sky, sky with the sea beyond the grid, an edge) and each kind is lit by a program with
+    /// only its own lighting code. For renderers that run both sides of every branch of a shader for all
+    /// pixels of a SIMD vector (Mesa's llvmpipe): there one program lighting sea and sky paid for both at
+    /// every pixel. A GPU already skips the side no thread of a warp takes, and pays for the extra passes.
+    /// Auto: on where GL_RENDERER names a software rasteriser (llvmpipe, softpipe). Same pixels as untiled
+    /// (test_compute_shading_gl); cost in docs/PERFORMANCE.md.
+    enum class ShadeTiles { Auto, On, Off };
+    ShadeTiles shadeTiles = ShadeTiles::Auto;
 };
 
 /// The component: a description plus the CPU surface model built from it (shared, immutable). CPU queries
@@ -136,6 +146,7 @@ struct OceanStats {
     long long vertices = 0;
     int programsBuilt = 0; ///< shader programs compiled this frame (a variant is built on first use only)
     bool computeShaded = false; ///< the frame was lit by the compute pass (OceanDesc::computeShading)
+    bool shadeTiled = false;    ///< ... sorted into tiles (OceanDesc::shadeTiles)
     EffectKindStats explosions, wakes;
     OceanPassTimes passTimes; ///< only with OceanRenderer::setPassTiming()
 };
@@ -165,6 +176,10 @@ public:
     std::vector<DisplacedVertex> displacedVertices(ecs::Registry& registry, ecs::Entity ocean,
                                                    const OceanFrame& frame);
     const OceanStats& lastStats() const { return mStats; }
+    /// The tiles of each kind the last tiled compute shading lit (OceanDesc::shadeTiles): edge between sea
+    /// and sky, sea only, open sky only, sky with the sea beyond the grid. Reads the GPU's counts back, so it
+    /// waits for the frame: for tests and reports. All 0 when no frame was shaded by tiles.
+    std::array<int, 4> shadeTileCounts() const;
 
     /// Per-pass GPU timing into lastStats().passTimes (docs/PERFORMANCE.md). Off by default: then no query
     /// is issued and nothing waits. On llvmpipe use GpuTimer::Clock::WallAroundFinish (a glFinish between

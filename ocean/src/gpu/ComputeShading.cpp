@@ -116,7 +116,7 @@ void ComputeShading::beginGeometry() {
     drawEffects(false);
 }
 
-void ComputeShading::shade(unsigned program, bool drawSky) {
+void ComputeShading::bindInputs(unsigned program, bool drawSky) {
     glBindTextureUnit(DEPTH_UNIT, mKey.depth);
     glBindSampler(DEPTH_UNIT, mDepthSampler);
     glBindTextureUnit(GEOMETRY_UNIT, mGeometry.id());
@@ -129,17 +129,83 @@ void ComputeShading::shade(unsigned program, bool drawSky) {
     glProgramUniform1i(program, glGetUniformLocation(program, "uEffectGeometry"), EFFECT_UNIT);
     glProgramUniform2i(program, glGetUniformLocation(program, "uShadeSize"), mKey.width, mKey.height);
     glProgramUniform1i(program, glGetUniformLocation(program, "uShadeSky"), drawSky ? 1 : 0);
-    glBindImageTexture(OUTPUT_IMAGE_UNIT, mKey.color, mKey.colorLevel, GL_FALSE, 0, GL_WRITE_ONLY,
-                       static_cast<GLenum>(mKey.format));
-    glUseProgram(program);
-    glDispatchCompute(static_cast<GLuint>((mKey.width + 7) / 8), static_cast<GLuint>((mKey.height + 7) / 8),
-                      1);
+}
+
+void ComputeShading::barrierAfterShading() {
     // The host reads or draws over its colour next, by any path.
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                     GL_TEXTURE_UPDATE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_PIXEL_BUFFER_BARRIER_BIT);
     glBindImageTexture(OUTPUT_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     glBindSampler(DEPTH_UNIT, 0);
+}
+
+void ComputeShading::shade(unsigned program, bool drawSky) {
+    bindInputs(program, drawSky);
+    glBindImageTexture(OUTPUT_IMAGE_UNIT, mKey.color, mKey.colorLevel, GL_FALSE, 0, GL_WRITE_ONLY,
+                       static_cast<GLenum>(mKey.format));
+    glUseProgram(program);
+    glDispatchCompute(static_cast<GLuint>((mKey.width + TILE_SIZE - 1) / TILE_SIZE),
+                      static_cast<GLuint>((mKey.height + TILE_SIZE - 1) / TILE_SIZE), 1);
+    barrierAfterShading();
+}
+
+void ComputeShading::shadeTiles(unsigned sortProgram, const unsigned (&kindPrograms)[TILE_KINDS],
+                                bool drawSky) {
+    const int tilesX = (mKey.width + TILE_SIZE - 1) / TILE_SIZE;
+    const int tileCount = tilesX * ((mKey.height + TILE_SIZE - 1) / TILE_SIZE);
+    constexpr std::size_t headerBytes = 3 * TILE_KINDS * sizeof(GLuint);
+    if (!mTiles || mTileCapacity != tileCount) {
+        mTileCapacity = tileCount;
+        mTiles =
+            gl::Buffer::create(headerBytes + sizeof(GLuint) * TILE_KINDS * std::size_t(tileCount), nullptr);
+    }
+    if (!mTileReset) { // every kind's dispatch starts at (0 tiles, 1, 1): copied on the GPU, no upload a
+                       // frame
+        GLuint header[3 * TILE_KINDS];
+        for (int k = 0; k < TILE_KINDS; ++k) {
+            header[3 * k] = 0;
+            header[3 * k + 1] = header[3 * k + 2] = 1;
+        }
+        mTileReset = gl::Buffer::create(headerBytes, header);
+    }
+    glCopyNamedBufferSubData(mTileReset.id(), mTiles.id(), 0, 0, headerBytes);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TILE_BINDING, mTiles.id());
+    auto setTileUniforms = [&](unsigned program) {
+        bindInputs(program, drawSky);
+        glProgramUniform1i(program, glGetUniformLocation(program, "uTilesX"), tilesX);
+        glProgramUniform1ui(program, glGetUniformLocation(program, "uTileCapacity"),
+                            static_cast<GLuint>(tileCount));
+    };
+    setTileUniforms(sortProgram);
+    glProgramUniform1i(sortProgram, glGetUniformLocation(sortProgram, "uTileCount"), tileCount);
+    glUseProgram(sortProgram);
+    glDispatchCompute(static_cast<GLuint>((tileCount + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+
+    glBindImageTexture(OUTPUT_IMAGE_UNIT, mKey.color, mKey.colorLevel, GL_FALSE, 0, GL_WRITE_ONLY,
+                       static_cast<GLenum>(mKey.format));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, mTiles.id());
+    for (int k = 0; k < TILE_KINDS; ++k) {
+        setTileUniforms(kindPrograms[k]);
+        glUseProgram(kindPrograms[k]);
+        glDispatchComputeIndirect(static_cast<GLintptr>(3 * k * sizeof(GLuint)));
+    }
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TILE_BINDING, 0);
+    barrierAfterShading();
+}
+
+std::array<int, ComputeShading::TILE_KINDS> ComputeShading::tileCounts() const {
+    std::array<int, TILE_KINDS> counts{};
+    if (!mTiles)
+        return counts;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint header[3 * TILE_KINDS] = {};
+    glGetNamedBufferSubData(mTiles.id(), 0, sizeof header, header);
+    for (int k = 0; k < TILE_KINDS; ++k)
+        counts[static_cast<std::size_t>(k)] = static_cast<int>(header[3 * k]);
+    return counts;
 }
 
 } // namespace pacifica::ocean

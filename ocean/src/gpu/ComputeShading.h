@@ -13,16 +13,24 @@
 // 32-bit float depth (GL_DEPTH_COMPONENT32F or GL_DEPTH32F_STENCIL8: the surface point is rebuilt from it,
 // to 6e-8 of its distance); with anything else (the default framebuffer, renderbuffers, 24-bit depth,
 // sRGB, multisampling) attach() says no and the renderer shades forward, as without the option.
+//
+// Tiles (OceanDesc::shadeTiles): a first pass (ocean_shade_tiles.comp) sorts the viewport's 8x8 tiles by
+// what they hold -- sea only, open sky only, sky and the sea beyond the grid, or an edge between sea and
+// sky -- into lists in a storage buffer (binding TILE_BINDING), and each kind is lit by a program compiled
+// for it alone, one glDispatchComputeIndirect per kind. For renderers that run both sides of every branch
+// (llvmpipe); a GPU skips the side no thread of a warp takes anyway.
 #pragma once
 
 #include "engine/gl/GlObjects.h"
+
+#include <array>
 
 namespace pacifica::ocean {
 
 class ComputeShading {
 public:
     static constexpr int DEPTH_UNIT = 15, GEOMETRY_UNIT = 16, OFFSET_UNIT = 17, EFFECT_UNIT = 18,
-                         OUTPUT_IMAGE_UNIT = 1;
+                         OUTPUT_IMAGE_UNIT = 1, TILE_BINDING = 3, TILE_SIZE = 8, TILE_KINDS = 4;
 
     ComputeShading() = default;
     ~ComputeShading();
@@ -42,8 +50,16 @@ public:
     /// Lights every pixel with `program` (ocean_shade.comp, uniforms other than the G-buffer's set by the
     /// caller) into the host's colour texture; a barrier makes the result visible to what the host does next.
     void shade(unsigned program, bool drawSky);
+    /// The same with tiles: `sortProgram` (ocean_shade_tiles.comp) fills the lists, then kindPrograms[k]
+    /// (ocean_shade.comp with SHADE_TILE_KIND k, uniforms set by the caller) lights the tiles of kind k.
+    void shadeTiles(unsigned sortProgram, const unsigned (&kindPrograms)[TILE_KINDS], bool drawSky);
+    /// The tiles of each kind the last shadeTiles() lit (mixed, sea, sky, beyond: shade_pixels.glsl); reads
+    /// the GPU's counts back, so it waits for the frame. For tests and reports.
+    std::array<int, TILE_KINDS> tileCounts() const;
 
 private:
+    void bindInputs(unsigned program, bool drawSky);
+    void barrierAfterShading();
     struct Key {
         unsigned color = 0, depth = 0;
         int colorLevel = 0, depthLevel = 0, format = 0, width = 0, height = 0;
@@ -52,6 +68,9 @@ private:
     Key mKey;
     const char* mFormatName = "";
     gl::Texture mGeometry, mOffset, mEffect;
+    gl::Buffer mTiles;     // per kind (tiles, 1, 1) for glDispatchComputeIndirect, then the kinds' tile lists
+    gl::Buffer mTileReset; // the header a frame starts from
+    int mTileCapacity = 0;
     gl::Framebuffer mFbo;
     unsigned mDepthSampler = 0;
 };
