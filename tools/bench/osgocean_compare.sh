@@ -15,6 +15,8 @@
 #   --out DIR     results (default out/osgocean-compare): osgocean-RUN.txt (ms per frame), pacifica-RUN/,
 #                 compare.md (medians per round and the ratios)
 #   --frames N    timed frames per run (default 30, after 10 warm-up frames); --rounds N (default 3)
+#   --bench EXE   a built pacifica-bench-frame (default: `./pacifica build`, then build/tools/...)
+#   --skip-install  do not check or install the Debian packages (they are there, or the source needs none)
 #
 # The example's window is fixed at 1024x768 and its camera at (0, 0, 20) looking along +y with OSG's
 # default 30 deg vertical field of view; Pacifica's bench views the sea from 20 m, 3 deg down, 60 deg, at
@@ -28,6 +30,8 @@ SOURCE=${OSGOCEAN_SOURCE:-}
 OUT="$ROOT/out/osgocean-compare"
 FRAMES=30
 ROUNDS=3
+BENCH=""
+INSTALL=1
 PACKAGES="libopenscenegraph-dev libfftw3-dev cmake g++ xvfb xauth"
 
 say() { printf '%s\n' "osgocean_compare: $*" >&2; }
@@ -44,7 +48,9 @@ while [ $# -gt 0 ]; do
     --out) [ $# -ge 2 ] || fail "--out needs a directory"; OUT=$2; shift 2 ;;
     --frames) [ $# -ge 2 ] || fail "--frames needs a number"; count --frames "$2"; FRAMES=$2; shift 2 ;;
     --rounds) [ $# -ge 2 ] || fail "--rounds needs a number"; count --rounds "$2"; ROUNDS=$2; shift 2 ;;
-    -h | --help) sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --bench) [ $# -ge 2 ] && [ -x "$2" ] || fail "--bench needs an executable pacifica-bench-frame"; BENCH=$2; shift 2 ;;
+    --skip-install) INSTALL=0; shift ;;
+    -h | --help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) fail "unknown argument '$1' (see --help)" ;;
     esac
 done
@@ -85,6 +91,7 @@ SOURCE=$(CDPATH= cd -- "$SOURCE" && pwd)
 
 # 2. Packages.
 missing=""
+[ "$INSTALL" -eq 1 ] || PACKAGES=""
 for p in $PACKAGES; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
 done
@@ -105,8 +112,10 @@ EXAMPLE=$(find "$OUT/osgocean-build" -type f -name oceanExample -perm -u+x | hea
 [ -n "$EXAMPLE" ] || fail "the build made no oceanExample: see $OUT/osgocean-build.log"
 cc -O2 -shared -fPIC "$HERE/osgocean/swap_timer.c" -o "$OUT/swap_timer.so" -ldl ||
     fail "building swap_timer.so failed"
-"$ROOT/pacifica" build >"$OUT/pacifica-build.log" 2>&1 || fail "building Pacifica failed: see $OUT/pacifica-build.log"
-BENCH="${PACIFICA_BUILD_DIR:-$ROOT/build}/tools/pacifica-bench-frame"
+if [ -z "$BENCH" ]; then
+    "$ROOT/pacifica" build >"$OUT/pacifica-build.log" 2>&1 || fail "building Pacifica failed: see $OUT/pacifica-build.log"
+    BENCH="${PACIFICA_BUILD_DIR:-$ROOT/build}/tools/pacifica-bench-frame"
+fi
 
 # 4. Alternating runs in one session.
 rm -f "$OUT/compare.md.part"
@@ -121,7 +130,7 @@ rm -f "$OUT/compare.md.part"
 round=1
 while [ "$round" -le "$ROUNDS" ]; do
     rm -f "$OUT/osgocean-$round.txt"
-    (cd "$SOURCE" && xvfb-run -a -s "-screen 0 1280x1024x24" env LIBGL_ALWAYS_SOFTWARE=1 \
+    (cd "$SOURCE" && xvfb-run -a -f "$OUT/Xauthority" -s "-screen 0 1280x1024x24" env LIBGL_ALWAYS_SOFTWARE=1 \
         LD_PRELOAD="$OUT/swap_timer.so" SWAP_TIMER_OUT="$OUT/osgocean-$round.txt" SWAP_TIMER_WARMUP=10 \
         SWAP_TIMER_FRAMES="$FRAMES" "$EXAMPLE" >"$OUT/osgocean-$round.log" 2>&1) ||
         fail "oceanExample failed: see $OUT/osgocean-$round.log"
