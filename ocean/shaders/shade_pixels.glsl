@@ -9,12 +9,8 @@ uniform ivec2 uShadeSize; // the viewport, pixels
 // SIMD vector of pixels, so one program lighting sea and sky pays for both at every pixel. Sorted by what
 // their pixels hold, tiles of one kind run a program with only their part: the sea, the open sky above the
 // sea's horizon, the sky and the sea beyond the grid (sky.frag's skyColor), or all of it (tiles on an edge).
-#define SHADE_TILE_MIXED 0
-#define SHADE_TILE_SEA 1
-#define SHADE_TILE_SKY 2
-#define SHADE_TILE_BEYOND 3
-#define SHADE_TILE_KINDS 4
-#define SHADE_TILE_SIZE 8
+// The kinds' numbers SHADE_TILE_MIXED, _SEA, _SKY, _BEYOND, their count SHADE_TILE_KINDS, the tile size
+// SHADE_TILE_SIZE and the buffer's SHADE_TILE_BINDING are #defined by ComputeShading::tileDefines().
 // A tile is open sky when every pixel's ray rises above this (its z, unit ray): a ray of z >= 0 misses the
 // sea (seaHitDistance), and the margin keeps rounding between the two programs on the same side.
 #define SHADE_TILE_SKY_MIN_Z 1e-4

@@ -5,6 +5,7 @@
 #include "ocean/Ocean.h"
 
 #include "engine/Log.h"
+#include "engine/gl/GlContext.h"
 #include "engine/gl/GlObjects.h"
 #include "engine/gl/Shader.h"
 #include "gpu/ComputeShading.h"
@@ -501,9 +502,7 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
         // Tiles (OceanDesc::shadeTiles): Auto asks the renderer's name once.
         if (mPrograms->softwareRenderer < 0) {
             const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-            const std::string renderer = name ? name : "";
-            mPrograms->softwareRenderer = renderer.find("llvmpipe") != std::string::npos ||
-                                          renderer.find("softpipe") != std::string::npos;
+            mPrograms->softwareRenderer = gl::isSoftwareRenderer(name ? name : "");
         }
         const bool tiled =
             deferred &&
@@ -511,26 +510,23 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
              (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::Auto && mPrograms->softwareRenderer == 1));
         mStats.shadeTiled = tiled;
         auto shadePixels = [&] {
-            const std::string defines = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
-                                        mCompute->outputFormat() + "\n" +
-                                        (holes ? "#define EFFECT_GRID\n" : "") +
-                                        (displaced ? "#define GBUFFER_DISPLACED\n" : "");
-            const std::string tileDefines =
-                "#define SHADE_TILE_BINDING " + std::to_string(ComputeShading::TILE_BINDING) + "\n";
-            // One lighting program: all of it (untiled), or one kind of tile's part. The sky's kinds need
-            // neither the surface model nor the sea's lighting: one program each for every model and effect.
+            // Every shading program's defines; the sea's add the model's G-buffer layers.
+            const std::string base = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
+                                     mCompute->outputFormat() + "\n" + ComputeShading::tileDefines();
+            const std::string seaDefines = base + (holes ? "#define EFFECT_GRID\n" : "") +
+                                           (displaced ? "#define GBUFFER_DISPLACED\n" : "");
+            // One lighting program: all of it (untiled, kind < 0), or one kind of tile's part. The sky's
+            // kinds need neither the surface model nor the sea's lighting: one program each for every model
+            // and effect.
             auto shadeProgram = [&](int kind) {
-                const bool skyOnly = kind == 2 || kind == 3; // SHADE_TILE_SKY, SHADE_TILE_BEYOND
-                const std::string tileVariant =
-                    kind < 0 ? std::string()
-                             : tileDefines + "#define SHADE_TILES\n#define SHADE_TILE_ACCESS readonly\n" +
-                                   "#define SHADE_TILE_KIND " + std::to_string(kind) + "\n";
-                const std::string variant =
-                    skyOnly ? std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
-                                  mCompute->outputFormat() + "\n" + tileVariant
-                            : defines + tileVariant;
-                gl::Program& program =
-                    mPrograms->shade[(skyOnly ? std::string("sky") : gpu.programKey) + variant];
+                const bool skyOnly = ComputeShading::skyOnly(kind);
+                const std::string variant = (skyOnly ? base : seaDefines) +
+                                            (kind < 0 ? std::string()
+                                                      : "#define SHADE_TILES\n#define SHADE_TILE_ACCESS "
+                                                        "readonly\n#define SHADE_TILE_KIND " +
+                                                            std::to_string(kind) + "\n");
+                const std::string owner = skyOnly ? std::string("sky") : gpu.programKey;
+                gl::Program& program = mPrograms->shade[owner + variant];
                 if (!program) {
                     ++mStats.programsBuilt;
                     std::vector<std::string> files{"shade_compute.glsl"};
@@ -543,7 +539,7 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
                     files.push_back("ocean_shade.comp");
                     program = gl::buildProgram(
                         {{gl::ShaderStage::Compute, sources(files, variant)}},
-                        "ocean compute shading (" + (skyOnly ? std::string("sky") : gpu.programKey) +
+                        "ocean compute shading (" + owner +
                             (kind < 0 ? std::string() : ", tile kind " + std::to_string(kind)) + ")");
                 }
                 const GLuint prog = program.id();
@@ -557,11 +553,11 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
                 if (!mPrograms->shadeTileSort) {
                     ++mStats.programsBuilt;
                     mPrograms->shadeTileSort = gl::buildProgram(
-                        {{gl::ShaderStage::Compute,
-                          sources({"shade_compute.glsl", "sky.glsl", "sky.frag", "shade_pixels.glsl",
-                                   "ocean_shade_tiles.comp"},
-                                  tileDefines + "#define SHADE_COMPUTE\n#define SHADE_TILES\n"
-                                                "#define SHADE_TILE_ACCESS\n")}},
+                        {{gl::ShaderStage::Compute, sources({"shade_compute.glsl", "sky.glsl", "sky.frag",
+                                                             "shade_pixels.glsl", "ocean_shade_tiles.comp"},
+                                                            ComputeShading::tileDefines() +
+                                                                "#define SHADE_COMPUTE\n#define SHADE_TILES\n"
+                                                                "#define SHADE_TILE_ACCESS\n")}},
                         "ocean compute shading tiles");
                 }
                 const GLuint sort = mPrograms->shadeTileSort.id();

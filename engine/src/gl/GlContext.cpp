@@ -28,13 +28,17 @@ void GLAPIENTRY debugCallback(GLenum /*source*/, GLenum type, GLuint id, GLenum 
 
 } // namespace
 
+bool isSoftwareRenderer(std::string_view renderer) {
+    return renderer.find("llvmpipe") != std::string_view::npos ||
+           renderer.find("softpipe") != std::string_view::npos;
+}
+
 void GlContext::initialiseInfo(const std::string& platform, bool debug) {
     mInfo.vendor = str(GL_VENDOR);
     mInfo.renderer = str(GL_RENDERER);
     mInfo.version = str(GL_VERSION);
     mInfo.platform = platform;
-    mInfo.software = mInfo.renderer.find("llvmpipe") != std::string::npos ||
-                     mInfo.renderer.find("softpipe") != std::string::npos;
+    mInfo.software = isSoftwareRenderer(mInfo.renderer);
     logInfo("GL context (" + platform + "): GL_VENDOR=" + mInfo.vendor + ", GL_RENDERER=" + mInfo.renderer +
             ", GL_VERSION=" + mInfo.version);
     if (debug && epoxy_has_gl_extension("GL_KHR_debug")) {

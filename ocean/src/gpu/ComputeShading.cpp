@@ -116,12 +116,25 @@ void ComputeShading::beginGeometry() {
     drawEffects(false);
 }
 
-void ComputeShading::bindInputs(unsigned program, bool drawSky) {
+std::string ComputeShading::tileDefines() {
+    std::string d = "#define SHADE_TILE_SIZE " + std::to_string(TILE_SIZE) + "\n#define SHADE_TILE_BINDING " +
+                    std::to_string(TILE_BINDING) + "\n#define SHADE_TILE_KINDS " +
+                    std::to_string(TILE_KINDS) + "\n";
+    const char* names[TILE_KINDS] = {"MIXED", "SEA", "SKY", "BEYOND"};
+    for (int k = 0; k < TILE_KINDS; ++k)
+        d += std::string("#define SHADE_TILE_") + names[k] + " " + std::to_string(k) + "\n";
+    return d;
+}
+
+void ComputeShading::bindTextures() {
     glBindTextureUnit(DEPTH_UNIT, mKey.depth);
     glBindSampler(DEPTH_UNIT, mDepthSampler);
     glBindTextureUnit(GEOMETRY_UNIT, mGeometry.id());
     glBindTextureUnit(OFFSET_UNIT, mOffset ? mOffset.id() : 0);
     glBindTextureUnit(EFFECT_UNIT, mEffect ? mEffect.id() : 0);
+}
+
+void ComputeShading::setInputUniforms(unsigned program, bool drawSky) {
     glProgramUniform1i(program, glGetUniformLocation(program, "uDepth"), DEPTH_UNIT);
     glProgramUniform1i(program, glGetUniformLocation(program, "uDepthLevel"), mKey.depthLevel);
     glProgramUniform1i(program, glGetUniformLocation(program, "uGeometry"), GEOMETRY_UNIT);
@@ -141,7 +154,8 @@ void ComputeShading::barrierAfterShading() {
 }
 
 void ComputeShading::shade(unsigned program, bool drawSky) {
-    bindInputs(program, drawSky);
+    bindTextures();
+    setInputUniforms(program, drawSky);
     glBindImageTexture(OUTPUT_IMAGE_UNIT, mKey.color, mKey.colorLevel, GL_FALSE, 0, GL_WRITE_ONLY,
                        static_cast<GLenum>(mKey.format));
     glUseProgram(program);
@@ -171,8 +185,9 @@ void ComputeShading::shadeTiles(unsigned sortProgram, const unsigned (&kindProgr
     }
     glCopyNamedBufferSubData(mTileReset.id(), mTiles.id(), 0, 0, headerBytes);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TILE_BINDING, mTiles.id());
+    bindTextures();
     auto setTileUniforms = [&](unsigned program) {
-        bindInputs(program, drawSky);
+        setInputUniforms(program, drawSky);
         glProgramUniform1i(program, glGetUniformLocation(program, "uTilesX"), tilesX);
         glProgramUniform1ui(program, glGetUniformLocation(program, "uTileCapacity"),
                             static_cast<GLuint>(tileCount));

@@ -24,13 +24,20 @@
 #include "engine/gl/GlObjects.h"
 
 #include <array>
+#include <string>
 
 namespace pacifica::ocean {
 
 class ComputeShading {
 public:
     static constexpr int DEPTH_UNIT = 15, GEOMETRY_UNIT = 16, OFFSET_UNIT = 17, EFFECT_UNIT = 18,
-                         OUTPUT_IMAGE_UNIT = 1, TILE_BINDING = 3, TILE_SIZE = 8, TILE_KINDS = 4;
+                         OUTPUT_IMAGE_UNIT = 1, TILE_BINDING = 3, TILE_SIZE = 8;
+    /// Kinds of tile (shade_pixels.glsl): an edge between sea and sky (the whole program), sea only, open sky
+    /// only, sky with the sea beyond the grid.
+    enum TileKind { TILE_MIXED, TILE_SEA, TILE_SKY, TILE_BEYOND, TILE_KINDS };
+    /// The #defines the shading programs take these from (SHADE_TILE_SIZE, SHADE_TILE_BINDING, the kinds).
+    static std::string tileDefines();
+    static bool skyOnly(int kind) { return kind == TILE_SKY || kind == TILE_BEYOND; }
 
     ComputeShading() = default;
     ~ComputeShading();
@@ -58,7 +65,8 @@ public:
     std::array<int, TILE_KINDS> tileCounts() const;
 
 private:
-    void bindInputs(unsigned program, bool drawSky);
+    void bindTextures();
+    void setInputUniforms(unsigned program, bool drawSky);
     void barrierAfterShading();
     struct Key {
         unsigned color = 0, depth = 0;

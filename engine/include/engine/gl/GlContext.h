@@ -12,6 +12,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace pacifica::gl {
 
@@ -19,6 +20,10 @@ class ContextError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };
+
+/// True when a GL_RENDERER string names a software rasteriser (Mesa's llvmpipe or softpipe): timer
+/// queries are wrong there (NOTES-platform.md), and it runs both sides of every shader branch.
+bool isSoftwareRenderer(std::string_view renderer);
 
 struct ContextInfo {
     std::string vendor;
