@@ -36,6 +36,12 @@ vec3 distantSea(vec3 dir) {
 
 // The sky above the sea's horizon in direction dir (unit) from altitude z0: rays that miss the sea.
 vec3 openSkyColor(vec3 dir, float z0) {
+    // The physical sky's map holds every ray that misses the sea, those that pass below the horizontal over
+    // the curved sea included (ClearSky::skyMap integrates from the sea's dipped horizon up), and the haze.
+    if (uSkyHoldsFog)
+        return backgroundRadiance(dir);
+    if (uPhysicalSky)
+        return mix(fogColor(dir), backgroundRadiance(dir), skyTransmittance(z0, dir));
     // Below the horizontal (rays from altitude that pass over the curved sea) there is no sky to show -- a
     // map has its ground there -- so the horizon's haze colour, blended in over half a degree.
     vec3 sky = backgroundRadiance(dir.z < 0.0 ? normalize(vec3(dir.xy, 1e-4)) : dir);

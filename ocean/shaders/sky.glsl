@@ -8,6 +8,17 @@ uniform vec3 uSunDir; // towards the sun, world ENU, normalised
 uniform vec3 uWaterColor; // LightingDesc::waterColor: the water body straight down under the default sky
 uniform float uSkyIntensity;
 uniform float uSunIntensity;
+// The sunlight's colour at the sea: reddened through the air for the physical sky (ClearSky::sunlight),
+// SUN_COLOR (OceanConstants.h) above the haze for the gradient sky and environment maps.
+uniform vec3 uSunColor;
+// The environment map is the physical clear sky (ClearSky::skyMap): it holds no sun, so the sky pass draws
+// the sun's disc on it, and it holds every ray that misses the sea (below the horizontal too).
+uniform bool uPhysicalSky;
+// ... and it holds the fog's haze layer (scattered by the sunlight and the sky, the Mie phase function's
+// bright aureole included), and so does uSunColor: neither is fogged again. Not for a uniform fog or one
+// of a given colour (LightingGpu.cpp skyHoldsFog), which are mixed over the sky as for the other skies.
+uniform bool uSkyHoldsFog;
+uniform float uWaterLightReference; // see waterBody()
 
 // Environment map (LightingDesc::environment): lat-long, rows top-down, u = heading clockwise from north
 // with north at u = 0.5 (south on the seam u = 0), v = elevation from +90 deg (top) to -90 deg.
@@ -33,16 +44,21 @@ uniform float uFogHeightFalloff; // H, metres; 0 = uniform fog on the sea, clear
 uniform float uFogNoise;
 uniform sampler3D uFogNoiseMap;
 uniform vec3 uFogNoiseOffset; // fract((camera - wind t) / tile), wrapped in double on the CPU
+uniform vec3 uFogNoiseOffset2; // the same for FOG_NOISE_TILE_2 / FOG_NOISE_TILE_VERTICAL_2
 uniform bool uHasFogColor;
 uniform vec3 uFogColor;
 
 const float PI = 3.14159265;
-const vec3 SUN_COLOR = vec3(1.0, 0.92, 0.80);
 const vec3 SKY_ZENITH = vec3(0.036, 0.115, 0.400);
 const vec3 SKY_HORIZON = vec3(0.480, 0.580, 0.720);
 const vec3 SKY_BELOW = vec3(0.090, 0.120, 0.160);
 
 // ---- sky radiance --------------------------------------------------------------------------------------
+
+// The sun's disc (~0.5 degree: cos(0.27 deg) = 0.999989), in the sunlight's colour.
+vec3 sunDiscRadiance(vec3 dir) {
+    return uSunColor * uSunIntensity * 25.0 * smoothstep(0.99997, 0.99999, dot(dir, uSunDir));
+}
 
 // A zenith-to-horizon gradient (Rayleigh-like blue overhead, brighter toward the horizon), a darker
 // hemisphere below the horizon, a sun glow and (optionally) the sun disk. This is the sky above the haze:
@@ -65,10 +81,9 @@ vec3 proceduralSky(vec3 dir, bool sunDisk) {
     float c = max(dot(dir, uSunDir), 0.0);
     float c4 = (c * c) * (c * c);
     float c16 = (c4 * c4) * (c4 * c4);
-    sky += SUN_COLOR * (0.35 * c16 * c16 + 0.12 * c4); // c^32 and c^4
-    // Sun disk (~0.5 degree): cos(0.27 deg) = 0.999989
+    sky += uSunColor * (0.35 * c16 * c16 + 0.12 * c4); // c^32 and c^4
     if (sunDisk)
-        sky += SUN_COLOR * uSunIntensity * 25.0 * smoothstep(0.99997, 0.99999, c);
+        sky += sunDiscRadiance(dir);
     return sky * uSkyIntensity;
 }
 
@@ -87,7 +102,10 @@ vec3 environmentRadiance(vec3 dir, float lod) {
 
 // The sky seen in direction dir (sharp): the environment map when there is one, else the procedural sky.
 vec3 skyRadiance(vec3 dir) {
-    return uHasEnvironment ? environmentRadiance(dir, 0.0) : proceduralSky(dir, true);
+    if (!uHasEnvironment)
+        return proceduralSky(dir, true);
+    vec3 sky = environmentRadiance(dir, 0.0);
+    return uPhysicalSky ? sky + sunDiscRadiance(dir) : sky;
 }
 
 // The sky averaged over a reflection lobe of mean-square slope m2 (Beckmann): the reflected directions
@@ -106,8 +124,7 @@ vec3 skyRadianceLobe(vec3 dir, float m2) {
 
 // What the sky pass draws above the horizon (the procedural sky when the map lights the sea only).
 vec3 backgroundRadiance(vec3 dir) {
-    return uHasEnvironment && uEnvironmentBackground ? environmentRadiance(dir, 0.0)
-                                                     : proceduralSky(dir, true);
+    return uHasEnvironment && uEnvironmentBackground ? skyRadiance(dir) : proceduralSky(dir, true);
 }
 
 // Irradiance of a horizontal surface from the sky (no sun), for diffuse foam and the water body's light.
@@ -178,18 +195,31 @@ float fogOpticalDepthToSky(float z0, vec3 dir) {
     return uFogDensity * H * (2.0 * exp(-zmin / H) - exp(-z0 / H)) / grazing;
 }
 
+// The tileable noise (mean 0.5) at a camera-relative point, read at one pair of tiles (scale = 1 / tile),
+// shifted by `shift` tiles. The footprint is the unshifted point's in both stages (the warp's own
+// derivatives are left out), so compute and forward shading filter alike.
+float fogNoiseSample(vec3 rel, float along, vec3 scale, vec3 offset, vec3 shift) {
+    vec3 p = rel * scale + offset;
+#ifdef SHADE_COMPUTE
+    return textureGrad(uFogNoiseMap, p + shift, gRelDx * scale * along, gRelDy * scale * along).r;
+#else
+    return textureGrad(uFogNoiseMap, p + shift, dFdx(p), dFdy(p)).r;
+#endif
+}
+
 // Seed 003's noise factor n at a camera-relative point: 1 + uFogNoise (2 N - 1), N the tileable noise
-// (mean 0.5) scrolled with the wind. Mipmapped, so far away it averages to n = 1.
+// (mean 0.5) scrolled with the wind. N is read at FOG_NOISE_TILE with its domain warped (Perlin's domain
+// distortion) by a second read at the incommensurate FOG_NOISE_TILE_2: moved FOG_NOISE_WARP tiles per unit
+// of that read, so neither tile repeats in the result (at a lag of one tile the other read differs, and
+// with it the pattern). Mipmapped, so far away it averages to n = 1.
 // `along` scales the pixel's footprint: the point is rel * along of the way from the eye (compute shading
 // takes the texture's screen derivatives from the G-buffer's, gRelDx/gRelDy; the fragment stage from the quad).
 float fogNoiseFactor(vec3 rel, float along) {
-    vec3 p = vec3(rel.xy / FOG_NOISE_TILE, rel.z / FOG_NOISE_TILE_VERTICAL) + uFogNoiseOffset;
-#ifdef SHADE_COMPUTE
-    const vec3 scale = vec3(1.0 / FOG_NOISE_TILE, 1.0 / FOG_NOISE_TILE, 1.0 / FOG_NOISE_TILE_VERTICAL);
-    float n = textureGrad(uFogNoiseMap, p, gRelDx * scale * along, gRelDy * scale * along).r;
-#else
-    float n = texture(uFogNoiseMap, p).r;
-#endif
+    const vec3 scale1 = vec3(1.0 / FOG_NOISE_TILE, 1.0 / FOG_NOISE_TILE, 1.0 / FOG_NOISE_TILE_VERTICAL);
+    const vec3 scale2 = vec3(1.0 / FOG_NOISE_TILE_2, 1.0 / FOG_NOISE_TILE_2, 1.0 / FOG_NOISE_TILE_VERTICAL_2);
+    float w = fogNoiseSample(rel, along, scale2, uFogNoiseOffset2, vec3(0.0));
+    vec3 warp = vec3(FOG_NOISE_WARP * (w - 0.5), FOG_NOISE_WARP * (0.5 - w), 0.0);
+    float n = fogNoiseSample(rel, along, scale1, uFogNoiseOffset, warp);
     return 1.0 + uFogNoise * (2.0 * n - 1.0);
 }
 
@@ -232,7 +262,11 @@ float fresnelSchlick(float ndv) {
 
 // Sunlight reaching altitude z through the fog.
 vec3 sunLightAt(float z) {
-    return SUN_COLOR * uSunIntensity * skyTransmittance(z, uSunDir) * step(0.0, uSunDir.z);
+    if (uSkyHoldsFog) // ClearSky::sunlight at the sea: through the air and the haze, the disc's share above
+        return uSunColor * uSunIntensity; // the horizon included
+    if (uPhysicalSky) // through the air (uSunColor, the horizon included) and the fog
+        return uSunColor * uSunIntensity * skyTransmittance(z, uSunDir);
+    return uSunColor * uSunIntensity * skyTransmittance(z, uSunDir) * step(0.0, uSunDir.z);
 }
 
 // Light scattered up out of the water body toward the eye (seed 004's "dull colour", made view dependent):
@@ -246,9 +280,12 @@ vec3 waterBody(vec3 v, vec3 n) {
     vec3 sigma = vec3(WATER_EXT_R, WATER_EXT_G, WATER_EXT_B);
     vec3 nadir = 1.0 - exp(-sigma * WATER_SCATTER_DEPTH);
     vec3 along = 1.0 - exp(-sigma * (WATER_SCATTER_DEPTH / cosT));
-    vec3 reference = PI * mix(SKY_ZENITH, SKY_HORIZON, SKY_HORIZON_WEIGHT); // skyIrradiance(), default sky
-    float light =
-        dot(skyIrradiance(), vec3(0.2126, 0.7152, 0.0722)) / dot(reference, vec3(0.2126, 0.7152, 0.0722));
+    // The luminance of the default sky's irradiance (skyIrradiance() of a default LightingDesc): the
+    // gradient's, or for the physical sky the default physical sky's (uWaterLightReference, computed once).
+    vec3 reference = PI * mix(SKY_ZENITH, SKY_HORIZON, SKY_HORIZON_WEIGHT);
+    float referenceLuminance =
+        uPhysicalSky ? uWaterLightReference : dot(reference, vec3(0.2126, 0.7152, 0.0722));
+    float light = dot(skyIrradiance(), vec3(0.2126, 0.7152, 0.0722)) / referenceLuminance;
     return uWaterColor * (along / nadir) * light *
            (0.6 + 0.4 * max(uSunDir.z, 0.0)) * 4.0;
 }
@@ -285,5 +322,8 @@ vec3 sunSpecular(vec3 n, vec3 v, float m2, vec3 sunLight) {
 // The sky reflected at a surface point of altitude z: the sky over the reflection lobe, seen through the
 // fog between the surface and the sky (so grazing reflections turn to the fog colour, like the horizon).
 vec3 reflectedSky(vec3 r, float m2, float z) {
-    return mix(fogColor(r), skyRadianceLobe(r, m2), skyTransmittance(z, r));
+    float t = skyTransmittance(z, r);
+    if (uSkyHoldsFog) // the map holds the haze above the camera: only the layer between is added
+        t = min(t / max(skyTransmittance(max(uCameraHeight, z), r), 1e-6), 1.0);
+    return mix(fogColor(r), skyRadianceLobe(r, m2), t);
 }

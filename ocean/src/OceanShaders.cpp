@@ -39,14 +39,16 @@ std::string shaderConstantDefines() {
         "#define FOAM_FADE_START %.9g\n#define FOAM_FADE_END %.9g\n#define FOG_NOISE_TILE %.9g\n"
         "#define FOG_NOISE_TILE_VERTICAL %.9g\n#define ENVIRONMENT_HORIZON_BINS %d\n"
         "#define WATER_SCATTERING %.9g\n#define CREST_SCATTER_G %.9g\n#define CREST_SCATTER_PATH %.9g\n"
-        "#define FOAM_EDGE %.9g\n#define FOAM_PATTERN_SIZE %d\n",
+        "#define FOAM_EDGE %.9g\n#define FOAM_PATTERN_SIZE %d\n#define FOG_NOISE_TILE_2 %.9g\n"
+        "#define FOG_NOISE_TILE_VERTICAL_2 %.9g\n#define FOG_NOISE_WARP %.9g\n",
         WATER_IOR, static_cast<double>(WATER_EXTINCTION[0]), static_cast<double>(WATER_EXTINCTION[1]),
         static_cast<double>(WATER_EXTINCTION[2]), static_cast<double>(WATER_SCATTER_DEPTH),
         static_cast<double>(FOAM_ALBEDO), static_cast<double>(SUN_DIFFUSE_SCALE), FOAM_TILE_NEAR,
         FOAM_TILE_FAR, static_cast<double>(FOAM_FADE_START), static_cast<double>(FOAM_FADE_END),
         FOG_NOISE_TILE, FOG_NOISE_TILE_VERTICAL, ENVIRONMENT_HORIZON_BINS,
         static_cast<double>(WATER_SCATTERING), static_cast<double>(CREST_SCATTER_G),
-        static_cast<double>(CREST_SCATTER_PATH), FOAM_EDGE, FOAM_PATTERN_SIZE);
+        static_cast<double>(CREST_SCATTER_PATH), FOAM_EDGE, FOAM_PATTERN_SIZE, FOG_NOISE_TILE_2,
+        FOG_NOISE_TILE_VERTICAL_2, FOG_NOISE_WARP);
     // Living whitecaps of the FFT and Gerstner seas (fft_foam.comp, gerstner.glsl).
     char memory[256];
     std::snprintf(

@@ -226,6 +226,64 @@ TEST_F(LightingGl, EnvironmentLightsTheSeaAndStaysFiniteFromEveryAltitude) {
     }
 }
 
+// The default sky is the physical clear sky (ocean/Atmosphere.h), as rendered: with the sun 30 degrees up,
+// the zenith's hue is blue (b > g > r), and the band 2-5 degrees above the horizon, looking away from the
+// sun, is brighter than the zenith. The sunlit side is brighter than the side opposite at 20 degrees up
+// (the aureole), and from 12 km the zenith is darker and bluer than from the sea.
+TEST_F(LightingGl, PhysicalSkyHasABlueZenithAndABrighterHorizonBand) {
+    Scene scene({});
+    ocean::LightingDesc l; // defaults: the physical sky with the fog's haze in it
+    ASSERT_EQ(l.sky, ocean::LightingDesc::Sky::Physical);
+    l.sunDirection = glm::dvec3(std::cos(M_PI / 6.0), 0.0, std::sin(M_PI / 6.0)); // east, 30 degrees up
+    // Mean radiance of the pixels whose view direction lies in the given elevation band and within
+    // `maxFromHeading` degrees of `heading` (any heading when 180).
+    auto band = [&](const std::vector<float>& rgba, double lo, double hi, double heading,
+                    double maxFromHeading) {
+        const CameraFrame cam = scene.lastCamera();
+        glm::dvec3 sum(0.0);
+        int n = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const glm::dvec3 d = pixelDirection(cam, x, y);
+                const double e = std::asin(std::clamp(d.z, -1.0, 1.0)) * 180.0 / M_PI;
+                double dh = std::abs(std::atan2(d.x, d.y) * 180.0 / M_PI - heading);
+                dh = std::min(dh, 360.0 - dh);
+                if (e < lo || e > hi || (maxFromHeading < 180.0 && dh > maxFromHeading))
+                    continue;
+                const float* px = &rgba[(static_cast<size_t>(y) * W + x) * 4];
+                sum += glm::dvec3(px[0], px[1], px[2]);
+                ++n;
+            }
+        EXPECT_GT(n, 20) << lo << ".." << hi;
+        return n ? sum / static_cast<double>(n) : sum;
+    };
+    const std::vector<float> up = scene.render(l, pose(20.0, 0.0, 89.0), "physical_zenith");
+    const glm::dvec3 zenith = band(up, 80.0, 90.0, 0.0, 180.0);
+    const std::vector<float> away = scene.render(l, pose(20.0, 270.0, 5.0), "physical_away");
+    const glm::dvec3 horizon = band(away, 2.0, 5.0, 270.0, 20.0);
+    const glm::dvec3 awayHigh = band(away, 18.0, 22.0, 270.0, 20.0);
+    const std::vector<float> toward = scene.render(l, pose(20.0, 90.0, 5.0), "physical_toward");
+    const glm::dvec3 towardHigh = band(toward, 18.0, 22.0, 90.0, 20.0);
+    std::printf("physical sky, sun 30 deg: zenith %.3f %.3f %.3f, horizon band %.3f %.3f %.3f, 20 deg up "
+                "toward the sun %.3f / away %.3f\n",
+                zenith.r, zenith.g, zenith.b, horizon.r, horizon.g, horizon.b, luminance(towardHigh),
+                luminance(awayHigh));
+    EXPECT_GT(zenith.b, 1.5 * zenith.g);
+    EXPECT_GT(zenith.g, 1.5 * zenith.r);
+    EXPECT_GT(luminance(horizon), 2.0 * luminance(zenith));
+    EXPECT_GT(luminance(towardHigh), 2.0 * luminance(awayHigh));
+    const std::vector<float> high = scene.render(l, pose(12000.0, 0.0, 89.0), "physical_zenith_12km");
+    const glm::dvec3 zenithHigh = band(high, 80.0, 90.0, 0.0, 180.0);
+    EXPECT_LT(luminance(zenithHigh), 0.5 * luminance(zenith));
+    EXPECT_GT(zenithHigh.b / zenithHigh.r, zenith.b / zenith.r);
+    // The gradient sky (the knob) is another sky: its zenith differs by more than 10 %.
+    ocean::LightingDesc g = l;
+    g.sky = ocean::LightingDesc::Sky::Gradient;
+    const glm::dvec3 gradient =
+        band(scene.render(g, pose(20.0, 0.0, 89.0), "gradient_zenith"), 80.0, 90.0, 0.0, 180.0);
+    EXPECT_GT(std::abs(luminance(gradient) - luminance(zenith)), 0.1 * luminance(zenith));
+}
+
 TEST_F(LightingGl, HeightFalloffFogThinsWithAltitude) {
     // A calm sea (2 % of the default octave heights) so that from 0.5 m the horizon is water kilometres
     // away, not the crest of the next wave; a dense, shallow sea fog: 1/20 m at sea level (80 m visibility)
@@ -301,9 +359,28 @@ TEST_F(LightingGl, LightingTexturesAreUploadedOnceAndCounted) {
     ocean::OceanDesc desc;
     ocean::OceanFrame frame;
     lighting.bind(program.id(), 12, desc, frame);
-    EXPECT_EQ(lighting.uploadsSinceLastCall(), 2); // foam pattern + fog noise, once
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 3); // foam pattern + fog noise + the physical sky, once
     lighting.bind(program.id(), 12, desc, frame);
     EXPECT_EQ(lighting.uploadsSinceLastCall(), 0); // nothing new
+    // The physical sky is computed per altitude level (OceanConstants.h): 10 m shares the sea-level sky,
+    // 3 km needs its own, and going back to the sea finds the kept one.
+    frame.camera.origin.z = 10.0;
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 0);
+    frame.camera.origin.z = 3000.0;
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 1);
+    frame.camera.origin.z = 0.0;
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 0);
+    desc.lighting.sunDirection = {0.0, 1.0, 1.0}; // another sun: another sky
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 1);
+    // The gradient sky computes and uploads nothing.
+    desc.lighting.sky = ocean::LightingDesc::Sky::Gradient;
+    desc.lighting.sunDirection = {1.0, 0.0, 1.0};
+    lighting.bind(program.id(), 12, desc, frame);
+    EXPECT_EQ(lighting.uploadsSinceLastCall(), 0);
     desc.lighting.environment = kerner();
     lighting.bind(program.id(), 12, desc, frame);
     lighting.bind(program.id(), 12, desc, frame);

@@ -185,6 +185,10 @@ std::vector<Setting> sweep(bool quick) {
         add(m, "fog_noise", "off", [](ocean::OceanDesc& d) { d.lighting.fogNoise = 0.0f; });
         add(m, "glitter", "blinn-phong",
             [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
+        // The sky: the older gradient instead of the physical clear sky (nothing to compute or
+        // upload; its image error is the look the physical sky changed).
+        add(m, "sky", "gradient",
+            [](ocean::OceanDesc& d) { d.lighting.sky = ocean::LightingDesc::Sky::Gradient; });
         for (double px : {0.5, 1.0, 2.0}) // screen-space ring thinning (0 = baseline: every ring)
             add(m, "min_ring_pixels", bench::num(px),
                 [px](ocean::OceanDesc& d) { d.grid.minRingPixels = px; });

@@ -122,6 +122,8 @@ std::vector<Setting> settings(bool quick) {
     high("high/glitter-blinn-phong",
          "the Blinn-Phong lobe instead of Cox-Munk glitter (LightingDesc::glitter)",
          [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
+    high("high/sky-gradient", "the gradient sky instead of the physical clear sky (LightingDesc::sky)",
+         [](ocean::OceanDesc& d) { d.lighting.sky = ocean::LightingDesc::Sky::Gradient; });
     high("high/fft", "FFT sea (N = 256) with its living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Fft; });
     high("high/gerstner", "Gerstner sum (8 waves) with its living whitecaps",

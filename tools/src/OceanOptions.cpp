@@ -63,7 +63,7 @@ glm::vec3 parseColor(const std::string& value, const char* option = "--fog-color
     return c;
 }
 
-/// --sun-*, --sky-intensity, --fog-*, --foam-*, --normal-tilt onto LightingDesc.
+/// --sky, --sun-*, --sky-intensity, --fog-*, --foam-*, --normal-tilt onto LightingDesc.
 void applyLighting(const OceanOptions& o, ocean::LightingDesc& l) {
     constexpr double INF = std::numeric_limits<double>::infinity();
     if (o.sunElevationDeg || o.sunAzimuthDeg) {
@@ -80,6 +80,14 @@ void applyLighting(const OceanOptions& o, ocean::LightingDesc& l) {
                                  text(az));
         }
         l.sunDirection = sunDirectionFromAngles(el, az);
+    }
+    if (!o.sky.empty()) {
+        if (o.sky == "physical")
+            l.sky = ocean::LightingDesc::Sky::Physical;
+        else if (o.sky == "gradient")
+            l.sky = ocean::LightingDesc::Sky::Gradient;
+        else
+            throw UsageError("--sky must be physical or gradient; got '" + o.sky + "'");
     }
     if (o.sunIntensity)
         l.sunIntensity = checked(o.sunIntensity, "--sun-intensity", 0.0, INF);
@@ -214,9 +222,13 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
         ->allow_extra_args(false);
     app.add_option("--sun-elevation", o.sunElevationDeg, "sun elevation above the horizon, degrees");
     app.add_option("--sun-azimuth", o.sunAzimuthDeg, "sun azimuth, degrees clockwise from north");
-    app.add_option("--sun-intensity", o.sunIntensity, "scale of the sun's highlight (default 40)");
+    app.add_option("--sky", o.sky,
+                   "sky without --env: physical (precomputed scattering, sunlight reddened by the air; the "
+                   "default) or gradient (the older zenith-to-horizon gradient)");
+    app.add_option("--sun-intensity", o.sunIntensity,
+                   "the sun's irradiance, scene-linear; scales the physical sky too (default 20)");
     app.add_option("--sky-intensity", o.skyIntensity, "scale of the procedural sky (default 1)");
-    app.add_option("--fog-density", o.fogDensity, "fog extinction at sea level, 1/m (default 1e-4)");
+    app.add_option("--fog-density", o.fogDensity, "fog extinction at sea level, 1/m (default 3e-5)");
     app.add_option("--fog-height-falloff", o.fogHeightFalloff,
                    "fog scale height, m; 0 = uniform (default 600)");
     app.add_option("--fog-noise", o.fogNoise, "fog density noise amplitude, 0..1 (default 0.2)");

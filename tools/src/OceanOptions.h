@@ -33,6 +33,7 @@ struct OceanOptions {
     int octaveCount = 0;             ///< octaves: how many of the preset's octaves to use (1..count); 0 = all
     int displacedOctaves = -1; ///< octaves: how many leading octaves displace vertices; < 0 = the preset's
     // FFT spectrum (ocean::FftDesc); unset = the FftDesc default.
+    std::string sky;                        ///< physical | gradient; empty = default (physical)
     std::string fftSpectrum;                ///< phillips | jonswap; empty = default (JONSWAP)
     std::optional<double> seaState;         ///< --sea-state U10, m/s: every model's sea (ocean/SeaState.h)
     std::optional<int> beaufort;            ///< --beaufort N: the same from a Beaufort force

@@ -92,17 +92,25 @@ std::vector<glm::vec3> environmentHorizonBand(const EnvironmentMap& map);
 
 struct LightingDesc {
     glm::dvec3 sunDirection{0.35, -0.55, 0.30}; ///< towards the sun, world ENU (normalised on use)
-    float sunIntensity = 40.0f; ///< scene-linear radiance scale of the sun's specular highlight
+    float sunIntensity = 20.0f; ///< scene-linear radiance scale of the sun's specular highlight
     float skyIntensity = 1.0f;  ///< scale of the procedural sky radiance
-    /// Fog extinction at sea level, 1/m (seed 003: f = e^(-rho d n)). 1/10000 m ~ 39 km meteorological
-    /// visibility (Koschmieder: V = 3.912 / rho) at sea level: a light marine haze. The procedural sky is
-    /// the sky above it (sky.glsl); a photographed sky already holds some haze, to which this adds.
-    float fogDensity = 1.0f / 10000.0f;
+    /// Fog extinction at sea level, 1/m (GPU Gems 2 ch. 18's fog: f = e^(-rho d n)). 3e-5 ~ 130 km
+    /// meteorological visibility (Koschmieder: V = 3.912 / rho) at sea level: a very clear day. With a
+    /// height falloff it is also the physical sky's haze layer (Atmosphere.h), so sky and sea hold one haze;
+    /// the gradient sky is the sky above it; a photographed sky already holds some haze, to which this adds.
+    float fogDensity = 3.0e-5f;
     float normalTilt = 0.15f; ///< §18.2.6: tilt of the lighting normal toward the viewer
     /// Beckmann mean-square slope of the waves no surface model resolves (short gravity and capillary
     /// waves), added to the model's unresolved slope variance for the sun's lobe and the sky's blur
     /// (ocean.frag). applySeaState() sets it so the total is Cox & Munk's (SeaState.h).
     float microSlopeVariance = 0.0012f;
+
+    /// The sky when there is no `environment`: the physically based clear sky (Atmosphere.h: precomputed
+    /// scattering by air and haze over a spherical Earth, seen from the camera's altitude, with the sunlight
+    /// reddened through it; the default), or the zenith-to-horizon gradient it replaced (cheaper: no table
+    /// to compute or upload; a knob of `pacifica bench accuracy`).
+    enum class Sky { Physical, Gradient };
+    Sky sky = Sky::Physical;
 
     /// HDR lat-long sky for the background and the sea's reflections; null = the procedural sky. Shared
     /// and immutable: the renderer uploads each map once (mipmapped) and keeps it while it is in use.

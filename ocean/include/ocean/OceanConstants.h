@@ -44,6 +44,13 @@ inline constexpr double FOAM_EDGE = 0.3;
 inline constexpr int FOG_NOISE_SIZE = 32;                 ///< texels per side of the 3D fog noise (mipmapped)
 inline constexpr double FOG_NOISE_TILE = 12000.0;         ///< metres per horizontal repeat of the fog noise
 inline constexpr double FOG_NOISE_TILE_VERTICAL = 1500.0; ///< metres per vertical repeat of the fog noise
+/// The fog noise's domain is warped by a second read of the same texture at these tiles (the first ones over
+/// the golden ratio, incommensurate), FOG_NOISE_WARP tiles per unit of that read (sky.glsl fogNoiseFactor),
+/// so the noise repeats at no distance a view spans. One tile alone showed from 10-15 km as a 12 km
+/// repetition of the fogged sea once the physical sky made the fog brighter than the sea beneath.
+inline constexpr double FOG_NOISE_TILE_2 = 7416.4;
+inline constexpr double FOG_NOISE_TILE_VERTICAL_2 = 927.05;
+inline constexpr double FOG_NOISE_WARP = 2.0;
 /// Height foam fades out between these distances (metres): beyond them the radial grid's vertices are too
 /// far apart to resolve wave crests, so a single high vertex would paint a triangle-sized white patch.
 inline constexpr float FOAM_FADE_START = 1500.0f;
@@ -68,6 +75,21 @@ inline constexpr double FOAM_SPREAD_DIFFUSIVITY = 0.2;
 /// evaluates the window's heights per pixel by rotating each wave's phase).
 inline constexpr double FOAM_MEMORY_STEP = 0.2;
 inline constexpr int FOAM_MEMORY_WINDOW = 30;
+/// The colour of the sunlight above the haze for the gradient sky and environment maps (the physical sky
+/// reddens it through the air instead: ClearSky::sunlight); the shaders' uSunColor.
+inline constexpr float SUN_COLOR[3] = {1.0f, 0.92f, 0.80f};
+/// The physical sky is computed for the camera's altitude rounded to the level k nearest to
+/// log(1 + h / H0) / log(1 + step): altitudes H0 ((1 + step)^k - 1) = 0, 25, 50.6, 76.9 m, ..., so a
+/// camera below ~12 m sees the sea-level sky, levels are 2.5 % of (h + 1 km) apart, and 0-15 km holds 112
+/// levels. Levels, not the last altitude drawn, so a frame's sky does not depend on the frames before it
+/// (sharded replay, seeking). The error this costs is in docs/LOOK.md ("The clear sky").
+inline constexpr double SKY_ALTITUDE_H0 = 1000.0;
+inline constexpr double SKY_ALTITUDE_STEP = 0.025;
+/// The luminance of the irradiance of a horizontal surface at the sea from the default physical sky (a
+/// default LightingDesc: its sun direction and haze), per unit solar irradiance: the sky under which
+/// LightingDesc::waterColor is the upwelling radiance straight down (sky.glsl waterBody). test_atmosphere
+/// recomputes it from ClearSky.
+inline constexpr float PHYSICAL_SKY_WATER_REFERENCE = 0.05622f;
 inline constexpr int ENVIRONMENT_HORIZON_BINS = 64; ///< azimuth bins of environmentHorizonBand() (Lighting.h)
 
 /// How far the sea surface at horizontal distance d from the camera lies below the camera's tangent plane

@@ -90,6 +90,59 @@ LightingGpu::environmentFor(const std::shared_ptr<const EnvironmentMap>& map) {
     return &mEnvironments.back();
 }
 
+namespace {
+int skyAltitudeLevel(double altitude) {
+    const double h = std::isfinite(altitude) ? std::max(altitude, 0.0) : 0.0;
+    return static_cast<int>(std::lround(std::log1p(h / SKY_ALTITUDE_H0) / std::log1p(SKY_ALTITUDE_STEP)));
+}
+
+double skyLevelAltitude(int level) {
+    return SKY_ALTITUDE_H0 * std::expm1(level * std::log1p(SKY_ALTITUDE_STEP));
+}
+
+/// Whether the physical sky holds the fog as its haze layer: for a layered fog of the sky's own colour. A
+/// uniform fog (H = 0) fogs the sea only; a fog of a given colour (LightingDesc::fogColor) is mixed over
+/// the sky as before, since the air would scatter the sunlight's colour instead.
+bool skyHoldsFog(const LightingDesc& l) {
+    return l.fogHeightFalloff > 0.0f && !l.fogColor;
+}
+
+/// The atmosphere of a lighting: Earth's, with the fog's layer as its haze when the sky holds it.
+AtmosphereDesc atmosphereOf(const LightingDesc& l) {
+    AtmosphereDesc a;
+    a.hazeExtinction = skyHoldsFog(l) ? l.fogDensity : 0.0;
+    a.hazeScaleHeight = skyHoldsFog(l) ? l.fogHeightFalloff : a.hazeScaleHeight;
+    return a;
+}
+} // namespace
+
+const LightingGpu::GeneratedSky& LightingGpu::generatedSky(const LightingDesc& l, double cameraAltitude) {
+    constexpr size_t KEPT = 4; // a few cameras at different altitudes, or a climb, without recomputing
+    const glm::dvec3 sun = glm::normalize(l.sunDirection);
+    const AtmosphereDesc air = atmosphereOf(l);
+    if (mClearSky && (mClearSky->desc().hazeExtinction != air.hazeExtinction ||
+                      mClearSky->desc().hazeScaleHeight != air.hazeScaleHeight)) {
+        mClearSky.reset(); // another haze: new tables and skies
+        mGeneratedSkies.clear();
+    }
+    const int level = skyAltitudeLevel(cameraAltitude);
+    for (GeneratedSky& g : mGeneratedSkies)
+        if (g.level == level && g.sun == sun)
+            return g;
+    if (!mClearSky)
+        mClearSky = std::make_unique<ClearSky>(air);
+    GeneratedSky g;
+    g.level = level;
+    g.sun = sun;
+    g.map = std::make_shared<const EnvironmentMap>(mClearSky->skyMap(skyLevelAltitude(level), sun));
+    g.sunColor = glm::vec3(mClearSky->sunlight(0.0, sun));
+    g.horizonBand = mClearSky->horizonBand(skyLevelAltitude(level), sun, ENVIRONMENT_HORIZON_BINS);
+    if (mGeneratedSkies.size() >= KEPT)
+        mGeneratedSkies.erase(mGeneratedSkies.begin()); // the oldest; its texture goes with its map
+    mGeneratedSkies.push_back(std::move(g));
+    return mGeneratedSkies.back();
+}
+
 void LightingGpu::ensureNoiseTextures() {
     if (!mFoam) {
         const int n = FOAM_PATTERN_SIZE;
@@ -118,7 +171,7 @@ void LightingGpu::ensureNoiseTextures() {
 }
 
 void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& l, double time,
-                              const glm::dvec3& cam) {
+                              const glm::dvec3& cam, double cameraAltitude) {
     auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
     const glm::vec3 sun = glm::vec3(glm::normalize(l.sunDirection));
     glProgramUniform3f(prog, loc("uSunDir"), sun.x, sun.y, sun.z);
@@ -130,22 +183,36 @@ void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& 
     glProgramUniform1i(prog, loc("uGlitterBlinnPhong"),
                        l.glitter == LightingDesc::Glitter::BlinnPhong ? 1 : 0);
 
-    // Environment map on firstUnit (the sampler always names its unit: see LightingGpu.h).
-    const Environment* env = environmentFor(l.environment);
+    // Environment map on firstUnit (the sampler always names its unit: see LightingGpu.h): the host's, or
+    // the physical sky's (per unit solar irradiance: scaled by the sun and sky intensities).
+    const bool physical = !l.environment && l.sky == LightingDesc::Sky::Physical;
+    const GeneratedSky* generated = physical ? &generatedSky(l, cameraAltitude) : nullptr;
+    const Environment* env = environmentFor(generated ? generated->map : l.environment);
+    const glm::vec3 sunColor =
+        generated ? generated->sunColor : glm::vec3(SUN_COLOR[0], SUN_COLOR[1], SUN_COLOR[2]);
+    glProgramUniform3f(prog, loc("uSunColor"), sunColor.r, sunColor.g, sunColor.b);
+    glProgramUniform1i(prog, loc("uPhysicalSky"), generated ? 1 : 0);
+    glProgramUniform1i(prog, loc("uSkyHoldsFog"), generated && skyHoldsFog(l) ? 1 : 0);
+    const LightingDesc defaults;
+    glProgramUniform1f(prog, loc("uWaterLightReference"),
+                       PHYSICAL_SKY_WATER_REFERENCE * defaults.sunIntensity * defaults.skyIntensity);
     glBindTextureUnit(static_cast<GLuint>(firstUnit), env ? env->texture.id() : 0);
     glProgramUniform1i(prog, loc("uEnvironment"), firstUnit);
     glProgramUniform1i(prog, loc("uHasEnvironment"), env ? 1 : 0);
-    glProgramUniform1i(prog, loc("uEnvironmentBackground"), l.environmentBackground ? 1 : 0);
-    glProgramUniform1f(prog, loc("uEnvironmentIntensity"), env ? l.environment->intensity : 0.0f);
+    glProgramUniform1i(prog, loc("uEnvironmentBackground"), generated || l.environmentBackground ? 1 : 0);
+    glProgramUniform1f(prog, loc("uEnvironmentIntensity"),
+                       generated ? l.sunIntensity * l.skyIntensity
+                       : env     ? l.environment->intensity
+                                 : 0.0f);
     glProgramUniform1f(prog, loc("uEnvironmentMaxLod"), env ? static_cast<float>(env->levels - 1) : 0.0f);
     const glm::vec3 irr = env ? env->irradiance : glm::vec3(0.0f);
     glProgramUniform3f(prog, loc("uEnvironmentIrradiance"), irr.x, irr.y, irr.z);
     if (env) {
-        glProgramUniform3fv(prog, loc("uEnvironmentHorizon"), ENVIRONMENT_HORIZON_BINS,
-                            &env->horizonBand[0].x);
+        const std::vector<glm::vec3>& band = generated ? generated->horizonBand : env->horizonBand;
+        glProgramUniform3fv(prog, loc("uEnvironmentHorizon"), ENVIRONMENT_HORIZON_BINS, &band[0].x);
         glm::vec3 mean(0.0f);
-        for (const glm::vec3& c : env->horizonBand)
-            mean += c / static_cast<float>(env->horizonBand.size());
+        for (const glm::vec3& c : band)
+            mean += c / static_cast<float>(band.size());
         glProgramUniform3f(prog, loc("uEnvironmentHorizonMean"), mean.r, mean.g, mean.b);
     }
 
@@ -175,13 +242,17 @@ void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& 
     glProgramUniform3f(prog, loc("uFogNoiseOffset"), static_cast<float>(wrap01(fogXY.x)),
                        static_cast<float>(wrap01(fogXY.y)),
                        static_cast<float>(wrap01(cam.z / FOG_NOISE_TILE_VERTICAL)));
+    const glm::dvec2 fogXY2 = (glm::dvec2(cam) - l.fogWind * time) / FOG_NOISE_TILE_2;
+    glProgramUniform3f(prog, loc("uFogNoiseOffset2"), static_cast<float>(wrap01(fogXY2.x)),
+                       static_cast<float>(wrap01(fogXY2.y)),
+                       static_cast<float>(wrap01(cam.z / FOG_NOISE_TILE_VERTICAL_2)));
     glProgramUniform1i(prog, loc("uHasFogColor"), l.fogColor ? 1 : 0);
     const glm::vec3 fog = l.fogColor.value_or(glm::vec3(0.0f));
     glProgramUniform3f(prog, loc("uFogColor"), fog.r, fog.g, fog.b);
 }
 
 void LightingGpu::bind(unsigned prog, int firstUnit, const OceanDesc& desc, const OceanFrame& frame) {
-    setUniforms(prog, firstUnit, desc.lighting, frame.time, frame.camera.origin);
+    setUniforms(prog, firstUnit, desc.lighting, frame.time, frame.camera.origin, frame.camera.origin.z);
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uCameraHeight"),
                        static_cast<float>(frame.camera.origin.z));
     glProgramUniform1f(prog, glGetUniformLocation(prog, "uCurvature"),
@@ -189,7 +260,7 @@ void LightingGpu::bind(unsigned prog, int firstUnit, const OceanDesc& desc, cons
 }
 
 void LightingGpu::bind(unsigned prog, int firstUnit, const LightingDesc& lighting) {
-    setUniforms(prog, firstUnit, lighting, 0.0, glm::dvec3(0.0));
+    setUniforms(prog, firstUnit, lighting, 0.0, glm::dvec3(0.0), 0.0);
 }
 
 } // namespace pacifica::ocean

@@ -2,7 +2,9 @@
 // uniforms (sky.glsl, ocean.frag) and owns the lighting textures, each uploaded once and bound from a given
 // unit on:
 //   firstUnit + 0: the environment map (LightingDesc::environment), RGB16F lat-long with a full mip chain,
-//                  uploaded once per map (cached by identity while the map is alive)
+//                  uploaded once per map (cached by identity while the map is alive); without one, the
+//                  physical clear sky's map (ClearSky::skyMap) for the camera's altitude level and the sun,
+//                  computed and uploaded once per level and sun (the last few kept)
 //   firstUnit + 1: the foam pattern (makeFoamPattern), R16F, mipmapped, repeating
 //   firstUnit + 2: the fog noise (makeFogNoise), R16F 3D, mipmapped, repeating
 // Sampler uniforms are always pointed at these units, even when unused, because GL forbids samplers of
@@ -10,6 +12,7 @@
 #pragma once
 
 #include "engine/gl/GlObjects.h"
+#include "ocean/Atmosphere.h"
 #include "ocean/Lighting.h"
 #include "ocean/Ocean.h"
 
@@ -54,12 +57,23 @@ private:
         glm::vec3 irradiance{0.0f};         ///< environmentIrradiance(), before intensity
         std::vector<glm::vec3> horizonBand; ///< environmentHorizonBand(): the fog colour per azimuth
     };
+    /// A physical sky computed for one altitude level and sun direction (kept while it is recent).
+    struct GeneratedSky {
+        int level = 0;
+        glm::dvec3 sun{0.0};
+        std::shared_ptr<const EnvironmentMap> map;
+        glm::vec3 sunColor{1.0f};           ///< ClearSky::sunlight at the sea
+        std::vector<glm::vec3> horizonBand; ///< ClearSky::horizonBand: the fog colour per azimuth
+    };
     const Environment* environmentFor(const std::shared_ptr<const EnvironmentMap>& map);
+    const GeneratedSky& generatedSky(const LightingDesc& lighting, double cameraAltitude);
     void ensureNoiseTextures();
     void setUniforms(unsigned program, int firstUnit, const LightingDesc& lighting, double time,
-                     const glm::dvec3& cameraWorld);
+                     const glm::dvec3& cameraWorld, double cameraAltitude);
 
     std::vector<Environment> mEnvironments;
+    std::unique_ptr<ClearSky> mClearSky; ///< its tables, built on the first physical sky and per haze
+    std::vector<GeneratedSky> mGeneratedSkies;
     gl::Texture mFoam, mFogNoise;
     int mUploads = 0;
 };
