@@ -93,8 +93,8 @@ void validate(const AtmosphereDesc& d) {
     require(std::isfinite(d.mieG) && std::abs(d.mieG) < 1.0, "mieG must lie in (-1, 1)");
     require(std::isfinite(d.ozoneCenter) && std::isfinite(d.ozoneHalfWidth) && d.ozoneHalfWidth > 0.0,
             "ozoneCenter/ozoneHalfWidth must be finite, the half width > 0");
-    require(std::isfinite(d.hazeExtinction) && d.hazeExtinction >= 0.0 && d.hazeExtinction < 1.0,
-            "hazeExtinction must lie in [0, 1) per metre");
+    require(std::isfinite(d.hazeExtinction) && d.hazeExtinction >= 0.0,
+            "hazeExtinction must be finite and >= 0");
     require(std::isfinite(d.hazeScaleHeight) && d.hazeScaleHeight > 0.0,
             "hazeScaleHeight must be finite and > 0");
     require(std::isfinite(d.hazeAlbedo) && d.hazeAlbedo >= 0.0 && d.hazeAlbedo <= 1.0,

@@ -284,6 +284,26 @@ TEST_F(LightingGl, PhysicalSkyHasABlueZenithAndABrighterHorizonBand) {
     EXPECT_GT(std::abs(luminance(gradient) - luminance(zenith)), 0.1 * luminance(zenith));
 }
 
+// A frame's physical sky depends on its own camera only: the sky a renderer prefetched on a worker thread
+// while the camera climbed (the levels next to the camera's, LightingGpu) gives the same pixels as a fresh
+// renderer drawing that altitude first.
+TEST_F(LightingGl, PhysicalSkyDoesNotDependOnTheFramesBefore) {
+    ocean::LightingDesc l;
+    l.sunDirection = glm::dvec3(0.3, 0.8, 0.4);
+    const Pose last = pose(1240.0, 30.0, 10.0);
+    Scene fresh({});
+    const std::vector<float> direct = fresh.render(l, last, "physical_direct");
+    Scene climbing({});
+    for (double z : {1000.0, 1100.0, 1150.0, 1200.0})
+        climbing.render(l, pose(z, 30.0, 10.0), "physical_climb");
+    const std::vector<float> climbed = climbing.render(l, last, "physical_climbed");
+    ASSERT_EQ(direct.size(), climbed.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < direct.size(); ++i)
+        differing += direct[i] != climbed[i];
+    EXPECT_EQ(differing, 0u);
+}
+
 TEST_F(LightingGl, HeightFalloffFogThinsWithAltitude) {
     // A calm sea (2 % of the default octave heights) so that from 0.5 m the horizon is water kilometres
     // away, not the crest of the next wave; a dense, shallow sea fog: 1/20 m at sea level (80 m visibility)

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numbers>
 #include <utility>
 
@@ -116,31 +117,57 @@ AtmosphereDesc atmosphereOf(const LightingDesc& l) {
 }
 } // namespace
 
+LightingGpu::GeneratedSky LightingGpu::computeSky(const ClearSky& air, int level, const glm::dvec3& sun) {
+    GeneratedSky g;
+    g.level = level;
+    g.sun = sun;
+    g.map = std::make_shared<const EnvironmentMap>(air.skyMap(skyLevelAltitude(level), sun));
+    g.sunColor = glm::vec3(air.sunlight(0.0, sun));
+    g.horizonBand = air.horizonBand(skyLevelAltitude(level), sun, ENVIRONMENT_HORIZON_BINS);
+    return g;
+}
+
 const LightingGpu::GeneratedSky& LightingGpu::generatedSky(const LightingDesc& l, double cameraAltitude) {
     constexpr size_t KEPT = 4; // a few cameras at different altitudes, or a climb, without recomputing
     const glm::dvec3 sun = glm::normalize(l.sunDirection);
     const AtmosphereDesc air = atmosphereOf(l);
     if (mClearSky && (mClearSky->desc().hazeExtinction != air.hazeExtinction ||
                       mClearSky->desc().hazeScaleHeight != air.hazeScaleHeight)) {
-        mClearSky.reset(); // another haze: new tables and skies
+        mPendingSkies.clear(); // another haze: new tables and skies (waits for the workers)
         mGeneratedSkies.clear();
+        mClearSky.reset();
     }
-    const int level = skyAltitudeLevel(cameraAltitude);
-    for (GeneratedSky& g : mGeneratedSkies)
-        if (g.level == level && g.sun == sun)
-            return g;
     if (!mClearSky)
-        mClearSky = std::make_unique<ClearSky>(air);
-    GeneratedSky g;
-    g.level = level;
-    g.sun = sun;
-    g.map = std::make_shared<const EnvironmentMap>(mClearSky->skyMap(skyLevelAltitude(level), sun));
-    g.sunColor = glm::vec3(mClearSky->sunlight(0.0, sun));
-    g.horizonBand = mClearSky->horizonBand(skyLevelAltitude(level), sun, ENVIRONMENT_HORIZON_BINS);
-    if (mGeneratedSkies.size() >= KEPT)
-        mGeneratedSkies.erase(mGeneratedSkies.begin()); // the oldest; its texture goes with its map
-    mGeneratedSkies.push_back(std::move(g));
-    return mGeneratedSkies.back();
+        mClearSky = std::make_shared<const ClearSky>(air);
+    const int level = skyAltitudeLevel(cameraAltitude);
+    auto kept = [&](int lv) {
+        return std::find_if(mGeneratedSkies.begin(), mGeneratedSkies.end(),
+                            [&](const GeneratedSky& g) { return g.level == lv && g.sun == sun; });
+    };
+    auto pending = [&](int lv) {
+        return std::find_if(mPendingSkies.begin(), mPendingSkies.end(),
+                            [&](const PendingSky& p) { return p.level == lv && p.sun == sun; });
+    };
+    if (kept(level) == mGeneratedSkies.end()) {
+        GeneratedSky g;
+        if (auto p = pending(level); p != mPendingSkies.end()) {
+            g = p->result.get();
+            mPendingSkies.erase(p);
+        } else {
+            g = computeSky(*mClearSky, level, sun);
+        }
+        if (mGeneratedSkies.size() >= KEPT)
+            mGeneratedSkies.erase(mGeneratedSkies.begin()); // the oldest; its texture goes with its map
+        mGeneratedSkies.push_back(std::move(g));
+    }
+    // Prefetch the levels above and below; drop work for another sun (its futures wait for the workers).
+    std::erase_if(mPendingSkies, [&](const PendingSky& p) { return p.sun != sun; });
+    for (int next : {level + 1, level - 1})
+        if (next >= 0 && kept(next) == mGeneratedSkies.end() && pending(next) == mPendingSkies.end())
+            mPendingSkies.push_back({next, sun, std::async(std::launch::async, [air = mClearSky, next, sun] {
+                                         return computeSky(*air, next, sun);
+                                     })});
+    return *kept(level);
 }
 
 void LightingGpu::ensureNoiseTextures() {

@@ -4,7 +4,8 @@
 //   firstUnit + 0: the environment map (LightingDesc::environment), RGB16F lat-long with a full mip chain,
 //                  uploaded once per map (cached by identity while the map is alive); without one, the
 //                  physical clear sky's map (ClearSky::skyMap) for the camera's altitude level and the sun,
-//                  computed and uploaded once per level and sun (the last few kept)
+//                  computed once per level and sun (the levels next to the camera's ahead of time, on
+//                  a worker thread) and uploaded when first used (the last few kept)
 //   firstUnit + 1: the foam pattern (makeFoamPattern), R16F, mipmapped, repeating
 //   firstUnit + 2: the fog noise (makeFogNoise), R16F 3D, mipmapped, repeating
 // Sampler uniforms are always pointed at these units, even when unused, because GL forbids samplers of
@@ -18,6 +19,7 @@
 
 #include <glm/glm.hpp>
 
+#include <future>
 #include <memory>
 #include <vector>
 
@@ -67,13 +69,25 @@ private:
     };
     const Environment* environmentFor(const std::shared_ptr<const EnvironmentMap>& map);
     const GeneratedSky& generatedSky(const LightingDesc& lighting, double cameraAltitude);
+    /// The sky of one altitude level and sun (run on a worker thread too: ClearSky's queries are const).
+    static GeneratedSky computeSky(const ClearSky& air, int level, const glm::dvec3& sun);
     void ensureNoiseTextures();
     void setUniforms(unsigned program, int firstUnit, const LightingDesc& lighting, double time,
                      const glm::dvec3& cameraWorld, double cameraAltitude);
 
     std::vector<Environment> mEnvironments;
-    std::unique_ptr<ClearSky> mClearSky; ///< its tables, built on the first physical sky and per haze
+    /// A sky being computed on a worker thread: the levels next to the camera's, so that a climb or a descent
+    /// finds its next sky ready instead of waiting ~20 ms for it (a frame's hitch). The content depends on
+    /// the level and the sun only, so a frame's sky is the same whether it was prefetched or not.
+    struct PendingSky {
+        int level = 0;
+        glm::dvec3 sun{0.0};
+        std::future<GeneratedSky> result;
+    };
+    /// Its tables, built on the first physical sky and per haze; shared with the workers computing skies.
+    std::shared_ptr<const ClearSky> mClearSky;
     std::vector<GeneratedSky> mGeneratedSkies;
+    std::vector<PendingSky> mPendingSkies;
     gl::Texture mFoam, mFogNoise;
     int mUploads = 0;
 };
