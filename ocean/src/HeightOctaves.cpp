@@ -471,6 +471,22 @@ glm::dvec3 HeightOctaves::heightAndGradient(const glm::dvec2& worldXY, double ti
     return sum;
 }
 
+double HeightOctaves::octaveSlopeVariance(int octave) const {
+    const OctaveMap& map = mMaps[static_cast<size_t>(octave)];
+    const OctaveDesc& o = mDesc.octaves[static_cast<size_t>(octave)];
+    double sx = 0.0, sy = 0.0, ss = 0.0;
+    const size_t n = map.texels.size() / 4;
+    for (size_t k = 0; k < n; ++k) {
+        const double gx = map.texels[k * 4 + 1], gy = map.texels[k * 4 + 2];
+        sx += gx;
+        sy += gy;
+        ss += gx * gx + gy * gy;
+    }
+    const double count = static_cast<double>(std::max<size_t>(n, 1));
+    const double scale = o.amplitude / o.tileSize;
+    return scale * scale * std::max(ss / count - (sx * sx + sy * sy) / (count * count), 0.0);
+}
+
 double HeightOctaves::foamHeightAt(const glm::dvec2& worldXY, double time) const {
     double sum = 0.0;
     for (int i = 0; i < mDesc.displacedOctaves; ++i) {

@@ -2,6 +2,7 @@
 #include "ocean/SeaState.h"
 
 #include "ocean/GerstnerWaves.h"
+#include "ocean/HeightOctaves.h"
 #include "ocean/Lighting.h"
 
 #include <algorithm>
@@ -67,6 +68,20 @@ OceanDesc applySeaState(OceanDesc d, const SeaState& sea) {
         throw std::invalid_argument("SeaState.windDirectionDeg must be finite");
     const double u = sea.windSpeed;
     const double scale = pmSignificantWaveHeight(u) / pmSignificantWaveHeight(SEA_STATE_REFERENCE_WIND);
+    // The octave sea's short waves: detail octaves continue the tile ratio down to ~16 cm (amplitude in
+    // proportion to the tile, the saturation range's equal slope per octave: Phillips 1958), so that near
+    // the camera the sun meets resolved facets (glints) and only far away the BRDF (below).
+    if (d.model == SurfaceKind::Octaves) {
+        auto& oct = d.octaves.octaves;
+        while (!oct.empty() && static_cast<int>(oct.size()) < SEA_STATE_OCTAVES &&
+               oct.back().tileSize / SEA_STATE_DETAIL_RATIO >= SEA_STATE_FINEST_TILE) {
+            OctaveDesc o = oct.back();
+            o.tileSize /= SEA_STATE_DETAIL_RATIO;
+            o.amplitude /= SEA_STATE_DETAIL_RATIO;
+            o.loopPeriod = std::max(1.0, o.loopPeriod / 2.0);
+            oct.push_back(o);
+        }
+    }
     d.fft.windSpeed = u;
     d.fft.windDirectionDeg = sea.windDirectionDeg;
     d.octaves.windDirectionDeg = sea.windDirectionDeg;
@@ -126,7 +141,29 @@ OceanDesc applySeaState(OceanDesc d, const SeaState& sea) {
         sy += gy;
         sxx += gx * gx + gy * gy;
     }
-    const double modelSlopes = sxx / slopeCount - (sx * sx + sy * sy) / (double(slopeCount) * slopeCount);
+    double modelSlopes = sxx / slopeCount - (sx * sx + sy * sy) / (double(slopeCount) * slopeCount);
+    // The octave sea: its lighting-only octaves carry SEA_STATE_RESOLVED_SLOPES of Cox & Munk's total (the
+    // geometry-to-BRDF split of Bruneton, Neyret & Holzschuch 2010, sec. 4: what a pixel resolves is facets,
+    // the rest its BRDF, here through the octaves' LEAN moments). Each octave's slope variance is taken as
+    // the GPU lights it (HeightOctaves::octaveSlopeVariance: over its texels); octaves are uncorrelated, so
+    // the model's variance is the displaced octaves' D plus the lighting octaves' L, and L scales with the
+    // square of a common amplitude factor c: D + c^2 L = the resolved share of the total.
+    if (d.model == SurfaceKind::Octaves) {
+        if (const auto* octaves = dynamic_cast<const HeightOctaves*>(built.surface.get())) {
+            const int octaveCount = static_cast<int>(d.octaves.octaves.size());
+            double displaced = 0.0, lighting = 0.0;
+            for (int i = 0; i < octaveCount; ++i)
+                (i < d.octaves.displacedOctaves ? displaced : lighting) += octaves->octaveSlopeVariance(i);
+            double c = 1.0;
+            if (lighting > 0.0) {
+                const double resolved = SEA_STATE_RESOLVED_SLOPES * coxMunkSlopeVariance(u);
+                c = std::sqrt(std::max(resolved - displaced, 0.0) / lighting);
+                for (int i = d.octaves.displacedOctaves; i < octaveCount; ++i)
+                    d.octaves.octaves[static_cast<size_t>(i)].amplitude *= c;
+            }
+            modelSlopes = displaced + c * c * lighting;
+        }
+    }
     d.lighting.microSlopeVariance =
         static_cast<float>(std::max(MIN_MICRO_SLOPE_VARIANCE, coxMunkSlopeVariance(u) - modelSlopes));
     d.lighting.foamHeightStart = static_cast<float>(0.5 * (lo + hi));

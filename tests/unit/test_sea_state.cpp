@@ -1,6 +1,7 @@
 // SeaState (ocean/SeaState.h): the published anchors, the Gaussian foam coverage against numerical
 // integration, and applySeaState() giving every surface model the wind's wave height and the octave sea the
 // whitecap coverage of Monahan & O'Muircheartaigh (1980), checked by sampling the CPU surface.
+#include "ocean/HeightOctaves.h"
 #include "ocean/Lighting.h"
 #include "ocean/Ocean.h"
 #include "ocean/SeaState.h"
@@ -47,11 +48,19 @@ TEST(SeaState, EveryModelGetsTheWindsWaveHeight) {
         EXPECT_EQ(d.fft.windSpeed, u);
         EXPECT_EQ(d.fft.windDirectionDeg, 45.0);
         EXPECT_EQ(d.octaves.windDirectionDeg, 45.0);
-        // Heights scale as Hs ~ U^2 from the reference wind (the default seas).
+        // Heights scale as Hs ~ U^2 from the reference wind (the default seas): the displaced octaves'
+        // amplitudes. The octave sea gains detail octaves down to SEA_STATE_FINEST_TILE, each
+        // SEA_STATE_DETAIL_RATIO finer than the last (their amplitudes set by the slope budget, below).
         const double scale = (u * u) / (SEA_STATE_REFERENCE_WIND * SEA_STATE_REFERENCE_WIND);
         const OceanDesc base;
-        for (size_t i = 0; i < d.octaves.octaves.size(); ++i)
+        ASSERT_EQ(d.octaves.octaves.size(), static_cast<size_t>(SEA_STATE_OCTAVES));
+        for (int i = 0; i < base.octaves.displacedOctaves; ++i)
             EXPECT_NEAR(d.octaves.octaves[i].amplitude, base.octaves.octaves[i].amplitude * scale, 1e-12);
+        for (size_t i = base.octaves.octaves.size(); i < d.octaves.octaves.size(); ++i) {
+            EXPECT_NEAR(d.octaves.octaves[i].tileSize * SEA_STATE_DETAIL_RATIO,
+                        d.octaves.octaves[i - 1].tileSize, 1e-9);
+            EXPECT_GE(d.octaves.octaves[i].tileSize, SEA_STATE_FINEST_TILE);
+        }
         OceanDesc octaves = d, gerstner = d, reference = applySeaState({}, {SEA_STATE_REFERENCE_WIND, 45.0});
         gerstner.model = SurfaceKind::Gerstner;
         reference.model = SurfaceKind::Gerstner;
@@ -104,6 +113,9 @@ TEST(SeaState, ModelSlopesPlusMicroSlopesAreCoxAndMunks) {
             base.model = kind;
             const OceanDesc d = applySeaState(base, {u, 60.0});
             const OceanComponent c = makeOcean(d);
+            // The octave sea's slopes as the GPU lights them: per octave over its texels (LEAN's total);
+            // bilinear sampling at random points would smooth them (checked below against texel centres).
+            const auto* octaves = dynamic_cast<const HeightOctaves*>(c.surface.get());
             std::mt19937_64 rng(5);
             std::uniform_real_distribution<double> pos(-4000.0, 4000.0), time(0.0, 100.0);
             double sx = 0.0, sy = 0.0, ss = 0.0;
@@ -115,19 +127,60 @@ TEST(SeaState, ModelSlopesPlusMicroSlopesAreCoxAndMunks) {
                 sy += gy;
                 ss += gx * gx + gy * gy;
             }
-            const double model = ss / n - (sx * sx + sy * sy) / (double(n) * n);
+            double model = ss / n - (sx * sx + sy * sy) / (double(n) * n);
+            if (octaves) {
+                model = 0.0;
+                for (int i = 0; i < static_cast<int>(d.octaves.octaves.size()); ++i)
+                    model += octaves->octaveSlopeVariance(i);
+            }
             const double micro = d.lighting.microSlopeVariance, total = coxMunkSlopeVariance(u);
             std::printf("%s U = %4.1f: model slopes %.4f + micro %.4f = %.4f, Cox-Munk %.4f\n",
                         toString(kind), u, model, micro, model + micro, total);
-            if (micro > MIN_MICRO_SLOPE_VARIANCE * 1.01)
+            if (micro > MIN_MICRO_SLOPE_VARIANCE * 1.01) {
                 EXPECT_NEAR((model + micro) / total, 1.0, 0.10) << toString(kind) << " U = " << u;
-            else
+            } else {
                 EXPECT_GE(model + micro, total * 0.9) << toString(kind) << " U = " << u;
+            }
+            // The octave sea resolves SEA_STATE_RESOLVED_SLOPES of the total in its own octaves (the
+            // rest is its BRDF), so near the camera the sun meets facets.
+            if (kind == SurfaceKind::Octaves) {
+                EXPECT_NEAR(model / total, SEA_STATE_RESOLVED_SLOPES, 0.08) << "U = " << u;
+            }
             EXPECT_GE(micro, MIN_MICRO_SLOPE_VARIANCE);
             lastMicro = micro;
         }
         EXPECT_GE(lastMicro, MIN_MICRO_SLOPE_VARIANCE);
     }
+}
+
+// HeightOctaves::octaveSlopeVariance against the surface itself: the finest octave's gradient (the sum of
+// octaves [0, i] minus [0, i - 1]) at every texel centre of every time slice, where the bilinear sampling is
+// the texel, has that variance.
+TEST(SeaState, OctaveSlopeVarianceIsTheVarianceOverTexels) {
+    const OceanDesc d = applySeaState({}, {9.0, 60.0});
+    const OceanComponent c = makeOcean(d);
+    const auto* octaves = dynamic_cast<const HeightOctaves*>(c.surface.get());
+    ASSERT_NE(octaves, nullptr);
+    const int i = static_cast<int>(d.octaves.octaves.size()) - 1;
+    const OctaveDesc& o = d.octaves.octaves[static_cast<size_t>(i)];
+    const int size = d.octaves.mapSize, frames = d.octaves.frames;
+    double sx = 0.0, sy = 0.0, ss = 0.0;
+    for (int f = 0; f < frames; ++f)
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const glm::dvec2 p = (glm::dvec2(x, y) + 0.5) / double(size) * o.tileSize;
+                const double t = (f + 1e-9) / frames * o.loopPeriod;
+                const glm::dvec3 g =
+                    octaves->heightAndGradient(p, t, i + 1) - octaves->heightAndGradient(p, t, i);
+                sx += g.y;
+                sy += g.z;
+                ss += g.y * g.y + g.z * g.z;
+            }
+    const double n = double(frames) * size * size;
+    const double sampled = ss / n - (sx * sx + sy * sy) / (n * n);
+    std::printf("octave %d (%.3f m tile): slope variance over texels %.6f, octaveSlopeVariance %.6f\n", i,
+                o.tileSize, sampled, octaves->octaveSlopeVariance(i));
+    EXPECT_NEAR(sampled / octaves->octaveSlopeVariance(i), 1.0, 1e-3);
 }
 
 TEST(SeaState, BadMicroSlopeVarianceIsRejectedNamingTheField) {

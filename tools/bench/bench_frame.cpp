@@ -18,6 +18,7 @@
 #include "engine/gl/GpuTimer.h"
 #include "ocean/Ocean.h"
 #include "ocean/Presets.h"
+#include "ocean/SeaState.h"
 
 #include "BenchText.h"
 
@@ -124,6 +125,12 @@ std::vector<Setting> settings(bool quick) {
          [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
     high("high/sky-gradient", "the gradient sky instead of the physical clear sky (LightingDesc::sky)",
          [](ocean::OceanDesc& d) { d.lighting.sky = ocean::LightingDesc::Sky::Gradient; });
+    // The near sea: a sea state gives the octave sea its detail octaves (down to 16 cm) carrying 80 % of
+    // Cox & Munk's slopes (ocean/SeaState.h), 7 lighting octaves instead of 5.
+    high("high/sea-state-9", "applySeaState at U10 = 9 m/s: detail octaves and resolved glints",
+         [](ocean::OceanDesc& d) {
+             d = ocean::applySeaState(d, {9.0, d.octaves.windDirectionDeg});
+         });
     high("high/fft", "FFT sea (N = 256) with its living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Fft; });
     high("high/gerstner", "Gerstner sum (8 waves) with its living whitecaps",

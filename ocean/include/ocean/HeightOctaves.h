@@ -279,6 +279,11 @@ public:
     glm::dvec2 combinedOrigin(int level, const glm::dvec2& cameraXY) const;
     /// Height and world-space gradient (dH/dx, dH/dy) summed over octaves [0, octaveCount).
     glm::dvec3 heightAndGradient(const glm::dvec2& worldXY, double time, int octaveCount) const;
+    /// World-space slope variance of octave `octave` as the GPU lights it: (A_i B_i)^2 times the variance
+    /// of its map's gradient texels over every texel and frame. The lighting's LEAN moments sum to this once
+    /// the octave is filtered away, and its resolved facets vary by it; sampling heightAndGradient at
+    /// random points gives less, since bilinear interpolation between texels smooths the gradient.
+    double octaveSlopeVariance(int octave) const;
     /// Unit normal from all octaves' slopes (what the fragment shader lights with).
     glm::dvec3 normalAt(const glm::dvec2& worldXY, double time) const override;
 

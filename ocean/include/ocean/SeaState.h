@@ -27,6 +27,13 @@ inline constexpr double SEA_STATE_MIN_WIND = 1.0, SEA_STATE_MAX_WIND = 30.0;
 inline constexpr double SEA_STATE_REFERENCE_WIND = 12.0;
 /// Floor of the sub-model slope variance (capillary roughness the models never hold).
 inline constexpr double MIN_MICRO_SLOPE_VARIANCE = 0.0005;
+/// The octave sea under a sea state: detail octaves are added (tile / SEA_STATE_DETAIL_RATIO each, down to
+/// SEA_STATE_FINEST_TILE metres, SEA_STATE_OCTAVES in all) and its lighting-only octaves scaled so the model
+/// resolves SEA_STATE_RESOLVED_SLOPES of Cox & Munk's slope variance (SeaState.cpp).
+inline constexpr int SEA_STATE_OCTAVES = 7;
+inline constexpr double SEA_STATE_DETAIL_RATIO = 4.37;
+inline constexpr double SEA_STATE_FINEST_TILE = 0.15;
+inline constexpr double SEA_STATE_RESOLVED_SLOPES = 0.8;
 
 /// Pierson & Moskowitz (1964): fully developed Hs = 0.21 U^2 / g, metres.
 double pmSignificantWaveHeight(double windSpeed);
