@@ -132,6 +132,19 @@ glm::dvec2 transmittanceCoords(const AtmosphereDesc& d, double r, double mu) {
 
 } // namespace
 
+bool skyHoldsFog(const LightingDesc& l) {
+    return l.fogHeightFalloff > 0.0f && !l.fogColor;
+}
+
+AtmosphereDesc atmosphereFor(const LightingDesc& l) {
+    AtmosphereDesc a;
+    if (skyHoldsFog(l)) {
+        a.hazeExtinction = l.fogDensity;
+        a.hazeScaleHeight = l.fogHeightFalloff;
+    }
+    return a;
+}
+
 ClearSky::ClearSky(const AtmosphereDesc& desc) : mDesc(desc) {
     validate(mDesc);
     buildTransmittance();
@@ -149,15 +162,18 @@ glm::dvec3 ClearSky::transmittanceToSpaceIntegrated(double altitude, double mu, 
     mu = std::clamp(mu, -1.0, 1.0);
     if (rayHitsGround(r, mu, mDesc.bottomRadius))
         return glm::dvec3(0.0);
-    const double dist = distanceOut(r, mu, mDesc.topRadius);
-    const double dt = dist / steps;
+    return glm::exp(-opticalDepth(r, mu, distanceOut(r, mu, mDesc.topRadius), steps));
+}
+
+glm::dvec3 ClearSky::opticalDepth(double r, double mu, double distance, int steps) const {
+    const double dt = distance / steps;
     glm::dvec3 depth(0.0);
     for (int i = 0; i < steps; ++i) { // midpoint rule; altitude along the ray from the law of cosines
         const double t = (i + 0.5) * dt;
         const double rt = std::sqrt(t * t + 2.0 * r * mu * t + r * r);
         depth += extinctionAt(rt - mDesc.bottomRadius) * dt;
     }
-    return glm::exp(-depth);
+    return depth;
 }
 
 void ClearSky::buildTransmittance() {
@@ -286,13 +302,6 @@ glm::dvec3 ClearSky::multipleScattering(double altitude, double muSun) const {
     return bilinear(mMultiple, MULTIPLE_MU, MULTIPLE_R, fx, fy);
 }
 
-namespace {
-struct RayResult {
-    glm::dvec3 inscatter{0.0};
-    glm::dvec3 transmittance{1.0};
-};
-} // namespace
-
 glm::dvec3 ClearSky::radiance(double altitude, const glm::dvec3& view, const glm::dvec3& sun,
                               int steps) const {
     // Single scattering (Bruneton 2008 eq. 6 without the sun's disc) plus sigma_s Psi_ms (Hillaire 2020
@@ -344,7 +353,8 @@ std::vector<glm::vec3> ClearSky::horizonBand(double altitude, const glm::dvec3& 
     return band;
 }
 
-EnvironmentMap ClearSky::skyMap(double altitude, const glm::dvec3& sun, const ClearSkyQuality& q) const {
+namespace {
+void validateSkyMapInput(double altitude, const glm::dvec3& sun, const ClearSkyQuality& q) {
     if (!std::isfinite(altitude))
         throw std::invalid_argument("ClearSky::skyMap(): altitude must be finite");
     if (!(glm::length(sun) > 0.0) || !std::isfinite(glm::length(sun)))
@@ -356,17 +366,26 @@ EnvironmentMap ClearSky::skyMap(double altitude, const glm::dvec3& sun, const Cl
             "ClearSkyQuality.tableAzimuths must lie in [2, 4096] and tableElevations in [4, 4096]");
     if (q.mapWidth < 4 || q.mapWidth > 16384 || q.mapWidth % 2 != 0)
         throw std::invalid_argument("ClearSkyQuality.mapWidth must be even and lie in [4, 16384]");
+}
+} // namespace
 
-    const AtmosphereDesc& d = mDesc;
-    const double h = std::clamp(altitude, 0.0, d.topRadius - d.bottomRadius - 1.0);
-    const glm::dvec3 s = glm::normalize(sun);
-    // The sea's horizon lies dip = acos(R / (R + h)) below the horizontal; the table's elevations are
-    // spaced quadratically away from it (Hillaire 2020, sec. 5.3), so the bright band and the aureole's
-    // foot get most rows. Rows above the horizon first, then those below.
-    const double dip = std::acos(std::min(d.bottomRadius / (d.bottomRadius + h), 1.0));
-    const double horizon = -dip;
-    const int na = q.tableAzimuths, ne = q.tableElevations, half = ne / 2;
-    auto elevationOfRow = [&](double fy) { // fy in [0, ne): the row's continuous coordinate
+/// The sun-relative sky-view table of one altitude: azimuths from the sun 0..180 degrees (the sky is
+/// symmetric about the sun's vertical), elevations spaced quadratically away from the sea's horizon, which
+/// lies dip = acos(R / (R + h)) below the horizontal (Hillaire 2020, sec. 5.3), so the bright band and the
+/// aureole's foot get most rows. Rows [0, half) lie below the horizon, [half, ne) above it.
+struct ClearSky::SkyView {
+    double altitude, horizon, sunHeading;
+    int na, ne, half;
+    std::vector<glm::dvec3> table;
+
+    SkyView(const AtmosphereDesc& d, double h, const glm::dvec3& sun, const ClearSkyQuality& q)
+        : altitude(h), horizon(-std::acos(std::min(d.bottomRadius / (d.bottomRadius + h), 1.0))),
+          sunHeading(std::abs(sun.x) + std::abs(sun.y) < 1e-12 ? 0.0 : std::atan2(sun.x, sun.y)),
+          na(q.tableAzimuths), ne(q.tableElevations), half(q.tableElevations / 2),
+          table(static_cast<size_t>(na) * ne) {}
+
+    /// Elevation of the continuous row coordinate fy in [0, ne).
+    double elevationOfRow(double fy) const {
         const double v = fy / ne;
         if (v >= 0.5) {
             const double l = (v - 0.5) * 2.0;
@@ -374,76 +393,86 @@ EnvironmentMap ClearSky::skyMap(double altitude, const glm::dvec3& sun, const Cl
         }
         const double l = (0.5 - v) * 2.0;
         return horizon - (0.5 * PI + horizon) * l * l;
-    };
-    auto rowOfElevation = [&](double e) { // the inverse, as a continuous node coordinate
+    }
+    /// The inverse, as a continuous node coordinate (node j at row coordinate j + 0.5).
+    double rowOfElevation(double e) const {
         double v;
         if (e >= horizon)
             v = 0.5 + 0.5 * std::sqrt(clamp01((e - horizon) / (0.5 * PI - horizon)));
         else
             v = 0.5 - 0.5 * std::sqrt(clamp01((horizon - e) / (0.5 * PI + horizon)));
         return v * ne - 0.5;
-    };
-    const double sunHeading = std::abs(s.x) + std::abs(s.y) < 1e-12 ? 0.0 : std::atan2(s.x, s.y);
-    auto direction = [&](double azimuthFromSun, double elevation) {
-        const double heading = sunHeading + azimuthFromSun;
-        return glm::dvec3(std::cos(elevation) * std::sin(heading), std::cos(elevation) * std::cos(heading),
-                          std::sin(elevation));
-    };
+    }
+    /// The direction (ENU) of node (i, j).
+    glm::dvec3 direction(int i, int j) const {
+        const double heading = sunHeading + PI * i / (na - 1), elevation = elevationOfRow(j + 0.5);
+        return {std::cos(elevation) * std::sin(heading), std::cos(elevation) * std::cos(heading),
+                std::sin(elevation)};
+    }
+    glm::dvec3& at(int i, int j) { return table[static_cast<size_t>(j) * na + i]; }
+};
 
-    std::vector<glm::dvec3> table(static_cast<size_t>(na) * ne);
-    for (int j = half; j < ne; ++j) // above the horizon
-        for (int i = 0; i < na; ++i)
-            table[static_cast<size_t>(j) * na + i] =
-                radiance(h, direction(PI * i / (na - 1), elevationOfRow(j + 0.5)), s, q.viewSteps);
-    // Below it, the rays end on the sea: the air in between, plus the sea as a flat mirror with Schlick's
-    // Fresnel (WATER_F0) reflecting the sky at the mirrored elevation. A stand-in for what steep facets
-    // reflect downward and for the map's mip filter near the horizon; the sea pass draws the sea itself.
-    for (int j = 0; j < half; ++j)
-        for (int i = 0; i < na; ++i) {
-            const double e = elevationOfRow(j + 0.5);
-            const glm::dvec3 v = direction(PI * i / (na - 1), e);
-            const double r = d.bottomRadius + h;
-            const double tHit = distanceToGround(r, v.z, d.bottomRadius);
+void ClearSky::fillAboveHorizon(SkyView& view, const glm::dvec3& sun, int steps) const {
+    for (int j = view.half; j < view.ne; ++j)
+        for (int i = 0; i < view.na; ++i)
+            view.at(i, j) = radiance(view.altitude, view.direction(i, j), sun, steps);
+}
+
+void ClearSky::fillBelowHorizon(SkyView& view, const glm::dvec3& sun, int steps) const {
+    // The rays end on the sea: the air in between, plus the sea as a flat mirror with Schlick's Fresnel
+    // (WATER_F0) reflecting the sky at the mirrored elevation (rows above the horizon, filled first). A
+    // stand-in for what steep facets reflect downward and for the map's mip filter near the horizon; the
+    // sea pass draws the sea itself.
+    const double r = mDesc.bottomRadius + view.altitude;
+    for (int j = 0; j < view.half; ++j)
+        for (int i = 0; i < view.na; ++i) {
+            const glm::dvec3 v = view.direction(i, j);
+            const double tHit = distanceToGround(r, v.z, mDesc.bottomRadius);
             // The view ray's transmittance to the sea: T(eye -> space) / T(sea -> space) along the same line
-            // cannot be used (the line is blocked), so integrate it directly (few steps: it is short or
-            // thin).
-            glm::dvec3 depth(0.0);
-            constexpr int STEPS = 16;
-            for (int k = 0; k < STEPS; ++k) {
-                const double t = (k + 0.5) * tHit / STEPS;
-                const double rt = std::sqrt(t * t + 2.0 * r * v.z * t + r * r);
-                depth += extinctionAt(rt - d.bottomRadius) * (tHit / STEPS);
-            }
+            // cannot be used (the line is blocked), so integrate it (few steps: it is short or thin).
+            const glm::dvec3 depth = opticalDepth(r, v.z, tHit, 16);
             const glm::dvec3 hitPoint = glm::dvec3(0.0, 0.0, r) + v * tHit;
             const double cosI = std::max(-glm::dot(v, glm::normalize(hitPoint)), 0.0);
             const double fresnel = WATER_F0 + (1.0 - WATER_F0) * std::pow(1.0 - cosI, 5.0);
-            const double mirrored = std::min(horizon + (horizon - e), 0.5 * PI);
-            const glm::dvec3 sky = bilinear(table, na, ne, static_cast<double>(i),
-                                            std::max(rowOfElevation(mirrored), static_cast<double>(half)));
-            table[static_cast<size_t>(j) * na + i] =
-                radiance(h, v, s, q.viewSteps) + glm::exp(-depth) * fresnel * sky;
+            const double e = view.elevationOfRow(j + 0.5);
+            const double mirrored = std::min(view.horizon + (view.horizon - e), 0.5 * PI);
+            const glm::dvec3 sky =
+                bilinear(view.table, view.na, view.ne, static_cast<double>(i),
+                         std::max(view.rowOfElevation(mirrored), static_cast<double>(view.half)));
+            view.at(i, j) = radiance(view.altitude, v, sun, steps) + glm::exp(-depth) * fresnel * sky;
         }
+}
 
+EnvironmentMap ClearSky::resample(const SkyView& view, const glm::dvec3& sun, int width) {
     EnvironmentMap map;
-    map.width = q.mapWidth;
-    map.height = q.mapWidth / 2;
+    map.width = width;
+    map.height = width / 2;
     map.rgb.resize(static_cast<size_t>(map.width) * map.height * 3);
     const glm::dvec2 sunXY =
-        std::abs(s.x) + std::abs(s.y) < 1e-12 ? glm::dvec2(0.0, 1.0) : glm::normalize(glm::dvec2(s));
+        std::abs(sun.x) + std::abs(sun.y) < 1e-12 ? glm::dvec2(0.0, 1.0) : glm::normalize(glm::dvec2(sun));
     for (int row = 0; row < map.height; ++row)
         for (int col = 0; col < map.width; ++col) {
             const glm::dvec3 dir = environmentDirection((col + 0.5) / map.width, (row + 0.5) / map.height);
             const double len = std::hypot(dir.x, dir.y);
             const double cosAz =
                 len < 1e-12 ? 1.0 : std::clamp((dir.x * sunXY.x + dir.y * sunXY.y) / len, -1.0, 1.0);
-            const double fx = std::acos(cosAz) / PI * (na - 1);
-            const double fy = rowOfElevation(std::asin(std::clamp(dir.z, -1.0, 1.0)));
-            const glm::dvec3 c = bilinear(table, na, ne, fx, fy);
+            const double fx = std::acos(cosAz) / PI * (view.na - 1);
+            const double fy = view.rowOfElevation(std::asin(std::clamp(dir.z, -1.0, 1.0)));
+            const glm::dvec3 c = bilinear(view.table, view.na, view.ne, fx, fy);
             float* out = &map.rgb[(static_cast<size_t>(row) * map.width + col) * 3];
             for (int k = 0; k < 3; ++k)
                 out[k] = static_cast<float>(std::max(c[k], 0.0));
         }
     return map;
+}
+
+EnvironmentMap ClearSky::skyMap(double altitude, const glm::dvec3& sun, const ClearSkyQuality& q) const {
+    validateSkyMapInput(altitude, sun, q);
+    const glm::dvec3 s = glm::normalize(sun);
+    SkyView view(mDesc, std::clamp(altitude, 0.0, mDesc.topRadius - mDesc.bottomRadius - 1.0), s, q);
+    fillAboveHorizon(view, s, q.viewSteps);
+    fillBelowHorizon(view, s, q.viewSteps);
+    return resample(view, s, q.mapWidth);
 }
 
 } // namespace pacifica::ocean

@@ -451,10 +451,7 @@ CrestGlow crestGlow(double headingDeg) {
 // old constant sun, so the glow's share of the sea fell from 5.3 % to 1.8 % (bound 1.2 %).
 TEST_F(LookGl, ThinLitCrestsGlow) {
     const CrestGlow toward = crestGlow(90.0), away = crestGlow(270.0);
-    const ocean::LightingDesc defaults;
-    ocean::AtmosphereDesc air; // the renderer's: the default fog as the haze (LightingGpu.cpp atmosphereOf)
-    air.hazeExtinction = defaults.fogDensity;
-    air.hazeScaleHeight = defaults.fogHeightFalloff;
+    const ocean::AtmosphereDesc air = ocean::atmosphereFor({}); // the renderer's, default fog as the haze
     const glm::dvec3 sunlight = ocean::ClearSky(air).sunlight(
         0.0, glm::dvec3(std::cos(10.0 * M_PI / 180.0), 0.0, std::sin(10.0 * M_PI / 180.0)));
     const double waterGreenOverRed = toward.greenOverRed / (sunlight.g / sunlight.r);

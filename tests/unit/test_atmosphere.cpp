@@ -263,9 +263,7 @@ TEST(Atmosphere, HazeDimsTheSunAndWhitensTheHorizon) {
 // default LightingDesc: its sun and its fog as the haze.
 TEST(Atmosphere, WaterReferenceIsTheDefaultSkysIrradiance) {
     const ocean::LightingDesc l;
-    AtmosphereDesc d;
-    d.hazeExtinction = l.fogDensity;
-    d.hazeScaleHeight = l.fogHeightFalloff;
-    const glm::vec3 e = ocean::environmentIrradiance(ClearSky(d).skyMap(0.0, glm::normalize(l.sunDirection)));
+    const glm::vec3 e = ocean::environmentIrradiance(
+        ClearSky(ocean::atmosphereFor(l)).skyMap(0.0, glm::normalize(l.sunDirection)));
     EXPECT_NEAR(0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b, ocean::PHYSICAL_SKY_WATER_REFERENCE, 2e-4);
 }

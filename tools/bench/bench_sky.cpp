@@ -17,12 +17,9 @@ using pacifica::ocean::AtmosphereDesc;
 using pacifica::ocean::ClearSky;
 using pacifica::ocean::ClearSkyQuality;
 
-/// The renderer's default atmosphere: Earth's with the default fog (3e-5 /m, 600 m) as its haze.
+/// The renderer's default atmosphere: Earth's with the default fog as its haze.
 AtmosphereDesc defaultAir() {
-    AtmosphereDesc a;
-    a.hazeExtinction = 3.0e-5;
-    a.hazeScaleHeight = 600.0;
-    return a;
+    return pacifica::ocean::atmosphereFor({});
 }
 
 void tables(benchmark::State& state) {

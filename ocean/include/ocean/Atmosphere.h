@@ -62,6 +62,14 @@ struct ClearSkyQuality {
     int mapWidth = 512;       ///< the lat-long map handed to the renderer (height = width / 2)
 };
 
+/// Whether the physical sky holds the fog (LightingDesc::fogDensity, fogHeightFalloff) as its haze layer: a
+/// layered fog of the sky's own colour. A uniform fog (H = 0) fogs the sea only; a fog of a given colour
+/// (LightingDesc::fogColor) is mixed over the sky instead, since the air would scatter the sunlight's colour.
+bool skyHoldsFog(const LightingDesc& lighting);
+/// The atmosphere of a lighting: Earth's (AtmosphereDesc defaults), with the fog's layer as its haze when
+/// skyHoldsFog(). What the renderer draws the physical sky with.
+AtmosphereDesc atmosphereFor(const LightingDesc& lighting);
+
 class ClearSky {
 public:
     /// Precomputes the transmittance and multiple-scattering tables (tens of ms). Throws
@@ -102,6 +110,12 @@ public:
                                        int steps = 32) const;
 
 private:
+    struct SkyView; // the sun-relative sky-view table of skyMap() (Atmosphere.cpp)
+    void fillAboveHorizon(SkyView& view, const glm::dvec3& sun, int steps) const;
+    void fillBelowHorizon(SkyView& view, const glm::dvec3& sun, int steps) const;
+    static EnvironmentMap resample(const SkyView& view, const glm::dvec3& sun, int width);
+    /// Optical depth from radius r over `distance` metres along a ray of cosine mu (midpoint rule).
+    glm::dvec3 opticalDepth(double r, double mu, double distance, int steps) const;
     glm::dvec3 extinctionAt(double altitude) const;
     glm::dvec3 multipleScattering(double altitude, double muSun) const;
     void buildTransmittance();

@@ -101,20 +101,6 @@ double skyLevelAltitude(int level) {
     return SKY_ALTITUDE_H0 * std::expm1(level * std::log1p(SKY_ALTITUDE_STEP));
 }
 
-/// Whether the physical sky holds the fog as its haze layer: for a layered fog of the sky's own colour. A
-/// uniform fog (H = 0) fogs the sea only; a fog of a given colour (LightingDesc::fogColor) is mixed over
-/// the sky as before, since the air would scatter the sunlight's colour instead.
-bool skyHoldsFog(const LightingDesc& l) {
-    return l.fogHeightFalloff > 0.0f && !l.fogColor;
-}
-
-/// The atmosphere of a lighting: Earth's, with the fog's layer as its haze when the sky holds it.
-AtmosphereDesc atmosphereOf(const LightingDesc& l) {
-    AtmosphereDesc a;
-    a.hazeExtinction = skyHoldsFog(l) ? l.fogDensity : 0.0;
-    a.hazeScaleHeight = skyHoldsFog(l) ? l.fogHeightFalloff : a.hazeScaleHeight;
-    return a;
-}
 } // namespace
 
 LightingGpu::GeneratedSky LightingGpu::computeSky(const ClearSky& air, int level, const glm::dvec3& sun) {
@@ -130,7 +116,7 @@ LightingGpu::GeneratedSky LightingGpu::computeSky(const ClearSky& air, int level
 const LightingGpu::GeneratedSky& LightingGpu::generatedSky(const LightingDesc& l, double cameraAltitude) {
     constexpr size_t KEPT = 4; // a few cameras at different altitudes, or a climb, without recomputing
     const glm::dvec3 sun = glm::normalize(l.sunDirection);
-    const AtmosphereDesc air = atmosphereOf(l);
+    const AtmosphereDesc air = atmosphereFor(l);
     if (mClearSky && (mClearSky->desc().hazeExtinction != air.hazeExtinction ||
                       mClearSky->desc().hazeScaleHeight != air.hazeScaleHeight)) {
         mPendingSkies.clear(); // another haze: new tables and skies (waits for the workers)
