@@ -16,64 +16,139 @@
 #define GRID_TEXTURE(s, p, scale) texture(s, p)
 #endif
 
-uniform sampler2D uFftDisplacement; // RGBA32F (lambda Dx, lambda Dy, h, J), one level
-uniform sampler2D uFftSlope;        // RGBA32F (g_x, g_y, g_x^2, g_y^2), full mip chain, repeat
-uniform vec2 uFftUvOffset;          // fract(camera.xy / L)
-uniform float uFftInvTile;          // 1 / L
-uniform int uFftSize;               // N (power of two)
+// Cascades (FftCascades): uFftCascades tiles, each with its own maps, tile and offset; the displacement and
+// the lighting are sums over them (independent draws: the slope variances add too). FFT_MAX_CASCADES
+// elements per array (OceanConstants.h; FFT_CASCADE_SUM below is written for 4). With two draws per cascade
+// (FftDesc::aperiodic; layers 0 and 1 of each map) a cascade is w.x A + w.y B, w = (cos theta, sin theta),
+// theta = FFT_MIX_AMPLITUDE sum_j sin(psi_j + k_j . rel) (FftCascades::mixWeights; psi_j formed in double
+// about the camera); the lighting takes w.x m_A + w.y m_B for the mean slope and w.x^2 v_A + w.y^2 v_B for
+// the unresolved variance (the draws are independent).
+uniform int uFftCascades;
+uniform int uFftDraws;                                     // 1, or 2 (aperiodic)
+uniform sampler2DArray uFftDisplacement[FFT_MAX_CASCADES]; // RGBA32F (lambda Dx, lambda Dy, h, J), 1 level
+uniform sampler2DArray uFftSlope[FFT_MAX_CASCADES];        // RGBA32F (g_x, g_y, g_x^2, g_y^2), mipmapped
+uniform vec2 uFftUvOffset[FFT_MAX_CASCADES];               // fract(camera.xy / L)
+uniform float uFftInvTile[FFT_MAX_CASCADES];               // 1 / L
+uniform int uFftSize[FFT_MAX_CASCADES];                    // N (power of two)
+uniform vec3 uFftMix[FFT_MAX_CASCADES * FFT_MIX_TERMS];    // (k_x, k_y, psi) per cascade and term
+uniform float uFftFadeEnd[FFT_MAX_CASCADES]; // FftCascades::displacementFadeEnd (1e30: no fade)
 
-vec3 fftFetch(ivec2 t) { return texelFetch(uFftDisplacement, t & (uFftSize - 1), 0).xyz; }
-
-vec3 modelDisplacement(vec2 rel) {
-    vec2 p = fract(rel * uFftInvTile + uFftUvOffset) * float(uFftSize); // grid units, [0, N]
-    vec2 p0 = floor(p);
-    vec2 a = p - p0;
-    ivec2 t0 = ivec2(p0);
-    vec3 d00 = fftFetch(t0);
-    vec3 d10 = fftFetch(t0 + ivec2(1, 0));
-    vec3 d01 = fftFetch(t0 + ivec2(0, 1));
-    vec3 d11 = fftFetch(t0 + ivec2(1, 1));
-    vec3 bottom = d00 + (d10 - d00) * a.x;
-    vec3 top = d01 + (d11 - d01) * a.x;
-    return bottom + (top - bottom) * a.y;
+vec2 fftMixWeights(int c, vec2 rel) {
+    if (uFftDraws < 2)
+        return vec2(1.0, 0.0);
+    float theta = 0.0;
+    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+        vec3 m = uFftMix[c * FFT_MIX_TERMS + j];
+        theta += sin(m.z + dot(m.xy, rel));
+    }
+    theta *= FFT_MIX_AMPLITUDE;
+    return vec2(cos(theta), sin(theta));
 }
 
-// Foam inputs (ocean.frag): (h, J) bilinear from the same texels as modelDisplacement — J is the Jacobian
-// determinant of the choppy map, computed with the displacement (fft_finalize.comp; Tessendorf 2001 §4.4).
-// With the living whitecaps (uFftFoamMemory, FftDesc::foamMemory) h is the remembered crest height,
-// max(h, decay * M) with M the memory map bilinear from the same texels (FftOcean::foamHeightAt, the CPU
-// twin): foam stays where a crest passed and fades. The crests' glow then takes the displaced height.
+// Cascade c's texels around rel: bilinear weights in a, the four texel indices.
+struct FftCell {
+    vec2 a;
+    ivec2 t00, t10, t01, t11;
+};
+FftCell fftCell(int c, vec2 rel) {
+    int n = uFftSize[c];
+    vec2 p = fract(rel * uFftInvTile[c] + uFftUvOffset[c]) * float(n); // grid units, [0, N]
+    vec2 p0 = floor(p);
+    ivec2 t0 = ivec2(p0);
+    FftCell cell;
+    cell.a = p - p0;
+    cell.t00 = t0 & (n - 1);
+    cell.t10 = (t0 + ivec2(1, 0)) & (n - 1);
+    cell.t01 = (t0 + ivec2(0, 1)) & (n - 1);
+    cell.t11 = (t0 + ivec2(1, 1)) & (n - 1);
+    return cell;
+}
+
+// Bilinear (exact path) of layer `layer` of a one-level array map.
+vec4 fftBilinear(sampler2DArray map, FftCell cell, int layer) {
+    vec4 d00 = texelFetch(map, ivec3(cell.t00, layer), 0);
+    vec4 d10 = texelFetch(map, ivec3(cell.t10, layer), 0);
+    vec4 d01 = texelFetch(map, ivec3(cell.t01, layer), 0);
+    vec4 d11 = texelFetch(map, ivec3(cell.t11, layer), 0);
+    vec4 bottom = d00 + (d10 - d00) * cell.a.x;
+    vec4 top = d01 + (d11 - d01) * cell.a.x;
+    return bottom + (top - bottom) * cell.a.y;
+}
+
+// The displacement's distance fade (FftCascades::displacementFadeEnd; GerstnerWaves::fade):
+// s^2 (3 - 2 s), s = clamp((R - r) / (R / 2), 0, 1).
+float fftFade(float r, float fadeEnd) {
+    float s = clamp((fadeEnd - r) / (0.5 * fadeEnd), 0.0, 1.0);
+    return s * s * (3.0 - 2.0 * s);
+}
+
+vec3 fftDisplacement(sampler2DArray map, int c, vec2 rel) {
+    float fade = fftFade(length(rel), uFftFadeEnd[c]);
+    if (fade == 0.0)
+        return vec3(0.0);
+    FftCell cell = fftCell(c, rel);
+    vec3 d = fftBilinear(map, cell, 0).xyz;
+    if (uFftDraws < 2)
+        return fade * d;
+    vec2 w = fade * fftMixWeights(c, rel);
+    return w.x * d + w.y * fftBilinear(map, cell, 1).xyz;
+}
+
+// FFT_CASCADE_SUM(f, maps): f(maps[c], c, rel) summed over the cascades, each array element named by a
+// constant index (llvmpipe's compiler crashes on a dynamically indexed sampler under textureGrad).
+#define FFT_CASCADE_SUM(T, f, maps)                                                                          \
+    T sum = f(maps[0], 0, rel);                                                                              \
+    if (uFftCascades > 1) sum += f(maps[1], 1, rel);                                                         \
+    if (uFftCascades > 2) sum += f(maps[2], 2, rel);                                                         \
+    if (uFftCascades > 3) sum += f(maps[3], 3, rel);                                                         \
+    return sum;
+
+vec3 modelDisplacement(vec2 rel) { FFT_CASCADE_SUM(vec3, fftDisplacement, uFftDisplacement) }
+
+// Foam inputs (ocean.frag): (h, J) of cascade 0, bilinear from the same texels as modelDisplacement — J is
+// the Jacobian determinant of the choppy map, computed with the displacement (fft_finalize.comp; Tessendorf
+// 2001 §4.4); the whitecaps follow the largest waves (FftCascades::foamHeightAt). With the living whitecaps
+// (uFftFoamMemory, FftDesc::foamMemory) h is the remembered crest height, max(h, decay * M) with M the
+// memory map bilinear from the same texels (FftOcean::foamHeightAt, the CPU twin): foam stays where a crest
+// passed and fades. The crests' glow then takes the displaced height. Two draws: h = w.x h_A + w.y h_B,
+// J ~ 1 + w.x (J_A - 1) + w.y (J_B - 1) (first order in the displacement's derivatives), and M = |w.x| times
+// A's memory of the crests of sign(w.x) h_A, plus the same of B.
 #define MODEL_HAS_FOAM_INPUTS
 #define MODEL_FOAM_REMEMBERS
-uniform sampler2D uFftFoam;  // R32F memory map M_j (fft_foam.comp), one level
+uniform sampler2DArray uFftFoam; // RG32F memory maps M_j (crests of +h, of -h), a layer per draw
 uniform bool uFftFoamMemory;
-uniform float uFftFoamDecay; // e^(-(t - t_j) / FOAM_DECAY_TIME), formed in double
+uniform float uFftFoamDecay;     // e^(-(t - t_j) / FOAM_DECAY_TIME), formed in double
 vec2 modelFoamInputs(vec2 rel) {
-    vec2 p = fract(rel * uFftInvTile + uFftUvOffset) * float(uFftSize);
-    vec2 p0 = floor(p);
-    vec2 a = p - p0;
-    ivec2 t0 = ivec2(p0);
-    ivec2 t00 = t0 & (uFftSize - 1), t10 = (t0 + ivec2(1, 0)) & (uFftSize - 1);
-    ivec2 t01 = (t0 + ivec2(0, 1)) & (uFftSize - 1), t11 = (t0 + ivec2(1, 1)) & (uFftSize - 1);
-    vec2 d00 = texelFetch(uFftDisplacement, t00, 0).zw;
-    vec2 d10 = texelFetch(uFftDisplacement, t10, 0).zw;
-    vec2 d01 = texelFetch(uFftDisplacement, t01, 0).zw;
-    vec2 d11 = texelFetch(uFftDisplacement, t11, 0).zw;
-    vec2 bottom = d00 + (d10 - d00) * a.x;
-    vec2 top = d01 + (d11 - d01) * a.x;
-    vec2 hj = bottom + (top - bottom) * a.y;
+    FftCell cell = fftCell(0, rel);
+    vec2 w = fftMixWeights(0, rel);
+    vec2 a = fftBilinear(uFftDisplacement[0], cell, 0).zw;
+    vec2 hj = a;
+    if (uFftDraws > 1) {
+        vec2 b = fftBilinear(uFftDisplacement[0], cell, 1).zw;
+        hj = vec2(w.x * a.x + w.y * b.x, 1.0 + w.x * (a.y - 1.0) + w.y * (b.y - 1.0));
+    }
     if (uFftFoamMemory) {
-        float m00 = texelFetch(uFftFoam, t00, 0).r, m10 = texelFetch(uFftFoam, t10, 0).r;
-        float m01 = texelFetch(uFftFoam, t01, 0).r, m11 = texelFetch(uFftFoam, t11, 0).r;
-        float mb = m00 + (m10 - m00) * a.x;
-        float mt = m01 + (m11 - m01) * a.x;
-        hj.x = max(hj.x, uFftFoamDecay * (mb + (mt - mb) * a.y));
+        vec2 ma = fftBilinear(uFftFoam, cell, 0).rg;
+        float m = w.x >= 0.0 ? w.x * ma.r : -w.x * ma.g;
+        if (uFftDraws > 1) {
+            vec2 mb = fftBilinear(uFftFoam, cell, 1).rg;
+            m += w.y >= 0.0 ? w.y * mb.r : -w.y * mb.g;
+        }
+        hj.x = max(hj.x, uFftFoamDecay * m);
     }
     return hj;
 }
 
-vec3 modelLighting(vec2 rel) {
-    vec2 uv = rel * uFftInvTile + uFftUvOffset + 0.5 / float(uFftSize);
-    vec4 s = GRID_TEXTURE(uFftSlope, uv, uFftInvTile);
-    return vec3(s.xy, max(s.z + s.w - dot(s.xy, s.xy), 0.0));
+vec3 fftLighting(sampler2DArray slopes, int c, vec2 rel) {
+    vec2 uv = rel * uFftInvTile[c] + uFftUvOffset[c] + 0.5 / float(uFftSize[c]);
+    vec4 s = GRID_TEXTURE(slopes, vec3(uv, 0.0), uFftInvTile[c]);
+    vec3 a = vec3(s.xy, max(s.z + s.w - dot(s.xy, s.xy), 0.0));
+    if (uFftDraws < 2)
+        return a;
+    vec4 t = GRID_TEXTURE(slopes, vec3(uv, 1.0), uFftInvTile[c]);
+    vec3 b = vec3(t.xy, max(t.z + t.w - dot(t.xy, t.xy), 0.0));
+    vec2 w = fftMixWeights(c, rel);
+    return vec3(w.x * a.xy + w.y * b.xy, w.x * w.x * a.z + w.y * w.y * b.z);
 }
+
+vec3 modelLighting(vec2 rel) { FFT_CASCADE_SUM(vec3, fftLighting, uFftSlope) }

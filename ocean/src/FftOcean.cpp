@@ -3,6 +3,7 @@
 #include "ocean/FftOcean.h"
 
 #include "engine/Time.h"
+#include "ocean/GerstnerWaves.h"
 #include "ocean/OceanConstants.h"
 
 #include <algorithm>
@@ -55,6 +56,17 @@ void validate(const FftDesc& d) {
             "FftDesc.amplitudeScale must be finite and >= 0, got " + num(d.amplitudeScale));
     require(std::isfinite(d.loopPeriod) && d.loopPeriod > 0.0,
             "FftDesc.loopPeriod must be finite and > 0, got " + num(d.loopPeriod));
+    require(d.cascades >= 1 && d.cascades <= FFT_MAX_CASCADES, "FftDesc.cascades must be in [1, " +
+                                                                   std::to_string(FFT_MAX_CASCADES) +
+                                                                   "], got " + std::to_string(d.cascades));
+    require(std::isfinite(d.cascadeRatio) && d.cascadeRatio >= 2.0,
+            "FftDesc.cascadeRatio must be finite and >= 2, got " + num(d.cascadeRatio));
+    require(d.detailSize >= 16 && d.detailSize <= 1024 && (d.detailSize & (d.detailSize - 1)) == 0,
+            "FftDesc.detailSize must be a power of two in [16, 1024], got " + std::to_string(d.detailSize));
+    require(!std::isnan(d.minWavenumber) && d.minWavenumber >= 0.0 && std::isfinite(d.minWavenumber),
+            "FftDesc.minWavenumber must be finite and >= 0, got " + num(d.minWavenumber));
+    require(!std::isnan(d.maxWavenumber) && d.maxWavenumber > d.minWavenumber,
+            "FftDesc.maxWavenumber must be > minWavenumber, got " + num(d.maxWavenumber));
 }
 
 /// Unit vector the wind blows toward: compass angle (clockwise from north) to (east, north).
@@ -178,6 +190,8 @@ FftOcean::FftOcean(const FftDesc& desc) : mDesc(desc) {
             const double kl = glm::length(k);
             if (i == 0 || m == 0 || kl == 0.0)
                 continue; // Nyquist row/column and k = 0 stay 0 (see the header)
+            if (kl < desc.minWavenumber || kl >= desc.maxWavenumber)
+                continue; // another cascade's band (FftCascades)
             // Dispersion w = sqrt(g k) (deep water) quantised to the loop (Tessendorf: looping in time).
             const double q = std::max(1.0, std::round(std::sqrt(GRAVITY * kl) / w0));
             mQ[idx] = static_cast<uint32_t>(q);
@@ -273,6 +287,12 @@ double FftOcean::jacobianAt(const glm::dvec2& xy, double t) const {
     return (1.0 + l * s.dxx.real()) * (1.0 + l * s.dyy.real()) - jxy * jxy;
 }
 
+FftOcean::Derivatives FftOcean::derivativesAt(const glm::dvec2& xy, double t) const {
+    const Sums s = sumAt(xy, t, true);
+    const double l = mDesc.choppiness;
+    return {s.hx.real(), s.hy.real(), l * s.dxx.real(), l * s.dyy.real(), l * s.dxy.real()};
+}
+
 double FftOcean::significantWaveHeight() const {
     return mHs;
 }
@@ -289,6 +309,13 @@ std::vector<double> FftOcean::foamHeightsAt(const glm::dvec2& xy, const std::vec
             out.push_back(displacementAt(xy, t).z);
         return out;
     }
+    for (const CrestMemory& m : crestMemoriesAt(xy, times))
+        out.push_back(std::max(m.height, m.up));
+    return out;
+}
+
+std::vector<FftOcean::CrestMemory> FftOcean::crestMemoriesAt(const glm::dvec2& xy,
+                                                             const std::vector<double>& times) const {
     if (!std::isfinite(xy.x) || !std::isfinite(xy.y))
         throw std::invalid_argument("FftOcean::foamHeightAt(): point must be finite");
     // h(x, t) = Re sum_k htilde(k, t) e^{i k.x} = Re sum_q (a_q e^{i 2 pi q s} + b_q e^{-i 2 pi q s}),
@@ -320,14 +347,25 @@ std::vector<double> FftOcean::foamHeightsAt(const glm::dvec2& xy, const std::vec
         }
         return h;
     };
+    std::vector<CrestMemory> out;
+    out.reserve(times.size());
     for (double t : times) {
-        const int64_t j = foamStepIndex(t);
-        double memory = 0.0;
-        for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k)
-            memory = std::max(memory, std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME) *
-                                          std::max(heightAt(foamStepTime(j - k)), 0.0));
-        const double decay = std::exp(-(t - foamStepTime(j)) / FOAM_DECAY_TIME);
-        out.push_back(std::max(heightAt(t), decay * memory));
+        CrestMemory m;
+        m.height = heightAt(t);
+        if (mDesc.foamMemory) {
+            const int64_t j = foamStepIndex(t);
+            double up = 0.0, down = 0.0;
+            for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k) {
+                const double w = std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME);
+                const double h = heightAt(foamStepTime(j - k));
+                up = std::max(up, w * std::max(h, 0.0));
+                down = std::max(down, w * std::max(-h, 0.0));
+            }
+            const double decay = std::exp(-(t - foamStepTime(j)) / FOAM_DECAY_TIME);
+            m.up = decay * up;
+            m.down = decay * down;
+        }
+        out.push_back(m);
     }
     return out;
 }
@@ -341,6 +379,147 @@ glm::dvec3 FftOcean::displacementSeenFrom(const glm::dvec2& xy, double t, const 
     const glm::dvec3 bottom = glm::mix(at(fx, fy), at(fx + 1.0, fy), ax);
     const glm::dvec3 top = glm::mix(at(fx, fy + 1.0), at(fx + 1.0, fy + 1.0), ax);
     return glm::mix(bottom, top, ay);
+}
+
+// FftCascades ---------------------------------------------------------------------------------------------
+
+FftDesc FftCascades::cascadeDesc(const FftDesc& desc, int c, int draw) {
+    FftDesc d = desc;
+    d.cascades = 1;
+    d.tileSize = desc.tileSize / std::pow(desc.cascadeRatio, c);
+    d.size = c == 0 ? desc.size : desc.detailSize;
+    d.seed = desc.seed + static_cast<uint32_t>(c + 64 * draw);
+    // Band edges: a wave of wavelength lambda goes to the coarsest cascade whose grid spacing L_c / N_c is
+    // at most lambda / FFT_CASCADE_BAND_TEXELS, i.e. k < 2 pi N_c / (FFT_CASCADE_BAND_TEXELS L_c).
+    auto edge = [&](int coarse) { // top of cascade `coarse`'s band
+        const double tile = desc.tileSize / std::pow(desc.cascadeRatio, coarse);
+        const int n = coarse == 0 ? desc.size : desc.detailSize;
+        return kTwoPi * n / (FFT_CASCADE_BAND_TEXELS * tile);
+    };
+    d.minWavenumber = c == 0 ? desc.minWavenumber : edge(c - 1);
+    d.maxWavenumber = c + 1 < desc.cascades ? edge(c) : desc.maxWavenumber;
+    return d;
+}
+
+FftCascades::FftCascades(const FftDesc& desc) : mDesc(desc) {
+    validate(desc);
+    double var = 0.0;
+    for (int c = 0; c < desc.cascades; ++c) {
+        mCascades.push_back(std::make_shared<const FftOcean>(cascadeDesc(desc, c)));
+        if (desc.aperiodic)
+            mSecond.push_back(std::make_shared<const FftOcean>(cascadeDesc(desc, c, 1)));
+        // cos^2 + sin^2 = 1: the mix has the variance of the draws (taken as A's).
+        const double hs = mCascades.back()->significantWaveHeight();
+        var += hs * hs / 16.0;
+    }
+    mHs = 4.0 * std::sqrt(var);
+}
+
+glm::dvec3 FftCascades::mixTerm(int c, int j) const {
+    const double tile = mCascades.at(static_cast<size_t>(c))->desc().tileSize;
+    const double k = kTwoPi / (FFT_MIX_WAVELENGTHS[j] * tile);
+    const double a = FFT_MIX_DIRECTIONS_DEG[j] * std::numbers::pi / 180.0;
+    // Phases from the golden ratio's fractional parts, a different set per cascade.
+    const double phase = kTwoPi * std::fmod(0.5 + 0.6180339887498949 * (j + FFT_MIX_TERMS * c), 1.0);
+    return {k * std::sin(a), k * std::cos(a), phase};
+}
+
+glm::dvec2 FftCascades::mixWeights(int c, const glm::dvec2& xy) const {
+    if (!mDesc.aperiodic)
+        return {1.0, 0.0};
+    double theta = 0.0;
+    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+        const glm::dvec3 m = mixTerm(c, j);
+        theta += std::sin(m.x * xy.x + m.y * xy.y + m.z); // the argument's rounding: ~1e-16 of it
+    }
+    theta *= FFT_MIX_AMPLITUDE;
+    return {std::cos(theta), std::sin(theta)};
+}
+
+glm::dvec3 FftCascades::displacementAt(const glm::dvec2& xy, double t) const {
+    glm::dvec3 d(0.0);
+    for (size_t c = 0; c < mCascades.size(); ++c) {
+        const glm::dvec2 w = mixWeights(static_cast<int>(c), xy);
+        d += w.x * mCascades[c]->displacementAt(xy, t);
+        if (!mSecond.empty())
+            d += w.y * mSecond[c]->displacementAt(xy, t);
+    }
+    return d;
+}
+
+double FftCascades::displacementFadeEnd(int c) const {
+    const FftDesc& d = mCascades.at(static_cast<size_t>(c))->desc();
+    // The band's shortest wave: 2 pi / its top wavenumber, or the grid's Nyquist wavelength 2 L / N.
+    const double shortest = std::max(kTwoPi / d.maxWavenumber, 2.0 * d.tileSize / d.size);
+    return GerstnerWaves::DISPLACEMENT_FADE_WAVELENGTHS * shortest;
+}
+
+glm::dvec3 FftCascades::displacementSeenFrom(const glm::dvec2& xy, double t,
+                                             const glm::dvec2& cameraXY) const {
+    glm::dvec3 d(0.0);
+    const double r = glm::length(xy - cameraXY);
+    for (size_t c = 0; c < mCascades.size(); ++c) {
+        const double f = GerstnerWaves::fade(r, displacementFadeEnd(static_cast<int>(c)));
+        if (f == 0.0)
+            continue;
+        const glm::dvec2 w = f * mixWeights(static_cast<int>(c), xy);
+        d += w.x * mCascades[c]->displacementSeenFrom(xy, t, cameraXY);
+        if (!mSecond.empty())
+            d += w.y * mSecond[c]->displacementSeenFrom(xy, t, cameraXY);
+    }
+    return d;
+}
+
+FftOcean::Derivatives FftCascades::derivativesAt(const glm::dvec2& xy, double t) const {
+    FftOcean::Derivatives s;
+    auto add = [&](const FftOcean& sea, double w) {
+        const FftOcean::Derivatives d = sea.derivativesAt(xy, t);
+        s.hx += w * d.hx;
+        s.hy += w * d.hy;
+        s.dxx += w * d.dxx;
+        s.dyy += w * d.dyy;
+        s.dxy += w * d.dxy;
+    };
+    for (size_t c = 0; c < mCascades.size(); ++c) {
+        const glm::dvec2 w = mixWeights(static_cast<int>(c), xy);
+        add(*mCascades[c], w.x);
+        if (!mSecond.empty())
+            add(*mSecond[c], w.y);
+    }
+    return s;
+}
+
+glm::dvec3 FftCascades::normalAt(const glm::dvec2& xy, double t) const {
+    const FftOcean::Derivatives s = derivativesAt(xy, t);
+    const glm::dvec3 px(1.0 + s.dxx, s.dxy, s.hx), py(s.dxy, 1.0 + s.dyy, s.hy); // as FftOcean::normalAt
+    return glm::normalize(glm::cross(px, py));
+}
+
+double FftCascades::jacobianAt(const glm::dvec2& xy, double t) const {
+    const FftOcean::Derivatives s = derivativesAt(xy, t);
+    return (1.0 + s.dxx) * (1.0 + s.dyy) - s.dxy * s.dxy;
+}
+
+double FftCascades::foamHeightAt(const glm::dvec2& xy, double t) const {
+    return foamHeightsAt(xy, {t})[0];
+}
+
+std::vector<double> FftCascades::foamHeightsAt(const glm::dvec2& xy, const std::vector<double>& times) const {
+    if (mSecond.empty())
+        return mCascades.front()->foamHeightsAt(xy, times);
+    const glm::dvec2 w = mixWeights(0, xy);
+    const auto a = mCascades.front()->crestMemoriesAt(xy, times);
+    const auto b = mSecond.front()->crestMemoriesAt(xy, times);
+    auto remembered = [](const FftOcean::CrestMemory& m, double weight) {
+        return weight >= 0.0 ? weight * m.up : -weight * m.down;
+    };
+    std::vector<double> out;
+    out.reserve(times.size());
+    for (size_t i = 0; i < times.size(); ++i) {
+        const double h = w.x * a[i].height + w.y * b[i].height;
+        out.push_back(mDesc.foamMemory ? std::max(h, remembered(a[i], w.x) + remembered(b[i], w.y)) : h);
+    }
+    return out;
 }
 
 } // namespace pacifica::ocean

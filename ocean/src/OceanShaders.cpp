@@ -55,7 +55,13 @@ std::string shaderConstantDefines() {
         memory, sizeof memory,
         "#define FOAM_MEMORY_WINDOW %d\n#define FOAM_MEMORY_STEP %.9g\n#define FOAM_DECAY_TIME %.9g\n",
         FOAM_MEMORY_WINDOW, FOAM_MEMORY_STEP, FOAM_DECAY_TIME);
-    return std::string(buf) + shading + memory;
+    // The FFT sea's cascades (fft.glsl's sampler arrays).
+    char mixAmplitude[64];
+    std::snprintf(mixAmplitude, sizeof mixAmplitude, "%.9g", FFT_MIX_AMPLITUDE);
+    const std::string fft = "#define FFT_MAX_CASCADES " + std::to_string(FFT_MAX_CASCADES) +
+                            "\n#define FFT_MIX_TERMS " + std::to_string(FFT_MIX_TERMS) +
+                            "\n#define FFT_MIX_AMPLITUDE " + mixAmplitude + "\n";
+    return std::string(buf) + shading + memory + fft;
 }
 
 } // namespace pacifica::ocean

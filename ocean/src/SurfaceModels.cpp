@@ -17,7 +17,7 @@ std::shared_ptr<const SurfaceModel> makeSurfaceModel(const OceanDesc& desc) {
     case SurfaceKind::Gerstner:
         return std::make_shared<GerstnerWaves>(desc.gerstner);
     case SurfaceKind::Fft:
-        return std::make_shared<FftOcean>(desc.fft);
+        return std::make_shared<FftCascades>(desc.fft);
     default:
         break;
     }

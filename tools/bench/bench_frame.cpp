@@ -131,8 +131,24 @@ std::vector<Setting> settings(bool quick) {
          [](ocean::OceanDesc& d) {
              d = ocean::applySeaState(d, {9.0, d.octaves.windDirectionDeg});
          });
-    high("high/fft", "FFT sea (N = 256) with its living whitecaps",
+    high("high/fft", "FFT sea: 4 cascades (256^2, 3 x 128^2), 2 draws each, living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Fft; });
+    high("high/fft-sea-state-9", "the FFT sea under applySeaState at U10 = 9 m/s", [](ocean::OceanDesc& d) {
+        d.model = ocean::SurfaceKind::Fft;
+        d = ocean::applySeaState(d, {9.0, d.fft.windDirectionDeg});
+    });
+    high("high/fft-no-mix", "FFT cascades with one draw each (FftDesc::aperiodic off)",
+         [](ocean::OceanDesc& d) {
+             d.model = ocean::SurfaceKind::Fft;
+             d.fft.aperiodic = false;
+         });
+    high("high/fft-one-tile", "one 500 m FFT tile, no mix (the FFT sea before its cascades)",
+         [](ocean::OceanDesc& d) {
+             d.model = ocean::SurfaceKind::Fft;
+             d.fft.cascades = 1;
+             d.fft.aperiodic = false;
+             d.fft.tileSize = 500.0;
+         });
     high("high/gerstner", "Gerstner sum (8 waves) with its living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Gerstner; });
     high("high/gerstner-no-foam-memory",

@@ -215,7 +215,7 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--fetch", o.fetch, "FFT (JONSWAP): fetch, m (default 200000)");
     app.add_option("--choppiness", o.choppiness,
                    "FFT: horizontal displacement scale lambda, 0..3 (default 1)");
-    app.add_option("--fft-tile", o.fftTile, "FFT: metres per tile (default 500)");
+    app.add_option("--fft-tile", o.fftTile, "FFT: metres per tile of the largest cascade (default 2000)");
     app.add_option("--height-map", o.heightMaps,
                    "octaves: painted height map image for the next octave (repeat: octave 0, 1, ...); W x W, "
                    "or W x (W * frames) for an animated map")

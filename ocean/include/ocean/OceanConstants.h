@@ -12,6 +12,21 @@ inline constexpr double WATER_F0 = 0.02; ///< Schlick reflectance at normal inci
 inline constexpr float DEEP_WATER_COLOR[3] = {0.0045f, 0.019f, 0.032f}; ///< scene-linear upwelling radiance
 inline constexpr float FOG_DENSITY = 1.0f / 60000.0f; ///< 1/m, exponential distance fog (overridable)
 inline constexpr int MAX_OCTAVES = 8;
+/// The FFT sea's cascades (FftDesc::cascades): at most this many tiles, and a wave goes to the coarsest
+/// tile whose grid spacing is at most 1/FFT_CASCADE_BAND_TEXELS of its wavelength (6: bilinear interpolation
+/// of the displacement keeps such a wave within 4 % of its amplitude; the finer tile takes the rest).
+inline constexpr int FFT_MAX_CASCADES = 4;
+inline constexpr double FFT_CASCADE_BAND_TEXELS = 6.0;
+/// The FFT cascades' aperiodic mix (FftDesc::aperiodic): cascade c is cos(theta) A + sin(theta) B of two
+/// independent draws A, B, with theta(x) = FFT_MIX_AMPLITUDE * sum_j sin(k_j . x + phi_j), |k_j| = 2 pi /
+/// (FFT_MIX_WAVELENGTHS[j] L_c) toward compass FFT_MIX_DIRECTIONS_DEG[j]. A lattice shift s of the tile
+/// leaves A and B alone, so the field's correlation at s is E[cos(theta(x + s) - theta(x))] = prod_j J0(2 a
+/// sin(k_j . s / 2)) (J0 the Bessel function): for the tile's shifts (L, 0), (0, L), (L, +-L), (2L, 0), ...
+/// it is below 0.03 with these values; theta changes by ~6 radians over a tile (RMS gradient 6.4 / L).
+inline constexpr int FFT_MIX_TERMS = 4;
+inline constexpr double FFT_MIX_AMPLITUDE = 1.5;
+inline constexpr double FFT_MIX_WAVELENGTHS[FFT_MIX_TERMS] = {1.37, 2.11, 2.97, 4.43};
+inline constexpr double FFT_MIX_DIRECTIONS_DEG[FFT_MIX_TERMS] = {17.0, 79.0, 133.0, 211.0};
 inline constexpr double EARTH_RADIUS = 6371000.0; ///< m, mean radius (IUGG) for the curvature drop
 
 // Shading (ocean.frag, sky.glsl; docs/ARCHITECTURE.md "Shading").

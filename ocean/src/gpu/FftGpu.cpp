@@ -54,94 +54,149 @@ uint32_t FftGpu::timeWord(double time, double loopPeriod) {
     return static_cast<uint32_t>(static_cast<uint64_t>(scaled) & 0xffffffffu);
 }
 
-FftGpu::FftGpu(std::shared_ptr<const FftOcean> ocean) : mOcean(std::move(ocean)) {
-    if (!mOcean)
+FftGpu::FftGpu(std::shared_ptr<const FftOcean> ocean) {
+    if (!ocean)
         throw std::invalid_argument("FftGpu::FftGpu(): ocean is null");
-    mSize = mOcean->desc().size;
-    const int n = mSize;
-    // Threads per FFT line: each does N / (2 threads) butterflies per stage. 64 keeps whole warps/wavefronts
-    // busy on GPUs (N * 4 workgroups per pass); on llvmpipe fewer threads per group run faster (fewer
-    // coroutine switches at barriers): 256 -> 64 took N = 256 from ~85 to ~63 ms there.
-    const int threads = std::min(n / 2, 64);
-    const std::string defines =
-        "#define FFT_N " + std::to_string(n) + "u\n#define FFT_LOG2N " + std::to_string(log2Int(n)) +
-        "u\n#define FFT_THREADS " + std::to_string(threads) + "\n#define FFT_PLANES " +
-        std::to_string(FFT_PLANES) + "u\n#define TILE_GROUP " + std::to_string(TILE_GROUP) +
-        "\n#define JACOBIAN_FLOOR " + std::to_string(JACOBIAN_FLOOR) + "\n";
-    mSpectrumProgram = buildCompute("fft_spectrum.comp", defines);
-    mPassProgram = buildCompute("fft_pass.comp", defines);
-    mFinalizeProgram = buildCompute("fft_finalize.comp", defines);
-    if (mOcean->desc().foamMemory) {
+    init({{std::move(ocean)}});
+}
+
+FftGpu::FftGpu(std::shared_ptr<const FftCascades> cascades) : mSea(std::move(cascades)) {
+    if (!mSea)
+        throw std::invalid_argument("FftGpu::FftGpu(): cascades is null");
+    std::vector<std::vector<std::shared_ptr<const FftOcean>>> draws;
+    for (size_t c = 0; c < mSea->cascades().size(); ++c) {
+        draws.push_back({mSea->cascades()[c]});
+        if (!mSea->secondDraws().empty())
+            draws.back().push_back(mSea->secondDraws()[c]);
+    }
+    init(std::move(draws));
+}
+
+void FftGpu::init(std::vector<std::vector<std::shared_ptr<const FftOcean>>> cascades) {
+    if (cascades.empty() || static_cast<int>(cascades.size()) > FFT_MAX_CASCADES)
+        throw std::invalid_argument("FftGpu::FftGpu(): 1 to " + std::to_string(FFT_MAX_CASCADES) +
+                                    " cascades, got " + std::to_string(cascades.size()));
+    auto kernelsFor = [this](int n) -> const Kernels* {
+        for (const auto& k : mKernels)
+            if (k->size == n)
+                return k.get();
+        auto k = std::make_unique<Kernels>();
+        k->size = n;
+        // Threads per FFT line: each does N / (2 threads) butterflies per stage. 64 keeps whole
+        // warps/wavefronts busy on GPUs (N * 4 workgroups per pass); on llvmpipe fewer threads per group run
+        // faster (fewer coroutine switches at barriers): 256 -> 64 took N = 256 from ~85 to ~63 ms there.
+        const int threads = std::min(n / 2, 64);
+        const std::string defines =
+            "#define FFT_N " + std::to_string(n) + "u\n#define FFT_LOG2N " + std::to_string(log2Int(n)) +
+            "u\n#define FFT_THREADS " + std::to_string(threads) + "\n#define FFT_PLANES " +
+            std::to_string(FFT_PLANES) + "u\n#define TILE_GROUP " + std::to_string(TILE_GROUP) +
+            "\n#define JACOBIAN_FLOOR " + std::to_string(JACOBIAN_FLOOR) + "\n";
+        k->spectrum = buildCompute("fft_spectrum.comp", defines);
+        k->pass = buildCompute("fft_pass.comp", defines);
+        k->finalize = buildCompute("fft_finalize.comp", defines);
+        // Twiddles e^{+2 pi i j / N}, j < N/2, in double then rounded once (more accurate than GLSL sin/cos).
+        std::vector<float> tw(static_cast<size_t>(n));
+        for (int j = 0; j < n / 2; ++j) {
+            const double a = 2.0 * std::numbers::pi * j / n;
+            tw[static_cast<size_t>(2 * j)] = static_cast<float>(std::cos(a));
+            tw[static_cast<size_t>(2 * j + 1)] = static_cast<float>(std::sin(a));
+        }
+        k->twiddles = gl::Buffer::create(tw.size() * sizeof(float), tw.data());
+        mKernels.push_back(std::move(k));
+        return mKernels.back().get();
+    };
+    size_t largest = 0;
+    for (auto& draws : cascades) {
+        if (draws.empty() || draws.size() > 2)
+            throw std::invalid_argument("FftGpu::FftGpu(): a cascade has 1 or 2 draws");
+        Cascade c;
+        const int n = draws.front() ? draws.front()->desc().size : 0;
+        for (const auto& d : draws)
+            if (!d || d->desc().size != n)
+                throw std::invalid_argument("FftGpu::FftGpu(): a cascade's draw is null or of another size");
+        c.draws = std::move(draws);
+        c.kernels = kernelsFor(n);
+        const int layers = static_cast<int>(c.draws.size());
+        c.displacement = gl::Texture::createArray2D(GL_RGBA32F, n, n, layers, 1);
+        c.displacement.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
+        c.slope = gl::Texture::createArray2D(GL_RGBA32F, n, n, layers, log2Int(n) + 1);
+        c.slope.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
+        largest = std::max(largest, static_cast<size_t>(n) * n);
+        mCascades.push_back(std::move(c));
+    }
+    mData = gl::Buffer::create(largest * FFT_PLANES * 2 * sizeof(float), nullptr);
+    const Cascade& first = mCascades.front();
+    if (first.draws.front()->desc().foamMemory) {
+        const int n = first.kernels->size, draws = static_cast<int>(first.draws.size());
+        const std::string defines = "#define FFT_N " + std::to_string(n) + "u\n#define TILE_GROUP " +
+                                    std::to_string(TILE_GROUP) + "\n";
         mFoamSampleProgram = buildCompute("fft_foam.comp", defines + "#define FFT_FOAM_SAMPLE\n");
         mFoamMemoryProgram =
             buildCompute("fft_foam.comp", defines); // FOAM_MEMORY_WINDOW: shaderConstantDefines
-        mFoamSamples = gl::Texture::createArray2D(GL_R32F, n, n, FOAM_MEMORY_WINDOW, 1);
-        mFoamMemory = gl::Texture::create2D(GL_R32F, n, n, 1);
+        // Per draw: a ring of FOAM_MEMORY_WINDOW samples and a memory layer, (crests of +h, crests of -h).
+        mFoamSamples = gl::Texture::createArray2D(GL_RG32F, n, n, FOAM_MEMORY_WINDOW * draws, 1);
+        mFoamMemory = gl::Texture::createArray2D(GL_RG32F, n, n, draws, 1);
         mFoamMemory.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
     }
-
-    const size_t cells = static_cast<size_t>(n) * n;
-    mData = gl::Buffer::create(cells * FFT_PLANES * 2 * sizeof(float), nullptr);
-    mDisplacement = gl::Texture::create2D(GL_RGBA32F, n, n, 1);
-    mDisplacement.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
-    mSlope = gl::Texture::create2D(GL_RGBA32F, n, n, log2Int(n) + 1);
-    mSlope.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
 }
 
-void FftGpu::upload() {
+void FftGpu::upload(Cascade& c) {
     // Spectrum in FFT storage order: storage index p holds wave number n' = p (p < N/2) or p - N, i.e.
     // lattice index (p + N/2) mod N, so the inverse DFT's e^{2 pi i p x / N} = e^{i k x} needs no sign
     // correction afterwards. Per cell: (h0(k), conj(h0(-k))) and the integer q(k).
-    const int n = mSize;
-    const auto& h0 = mOcean->h0();
-    const auto& q = mOcean->omegaMultiple();
+    const int n = c.kernels->size;
     const size_t cells = static_cast<size_t>(n) * n;
-    std::vector<float> pairs(cells * 4);
-    std::vector<uint32_t> mult(cells);
     auto lattice = [n](int p) { return (p + n / 2) % n; };
-    for (int py = 0; py < n; ++py) {
-        for (int px = 0; px < n; ++px) {
-            const int i = lattice(px), m = lattice(py);
-            // -k: wave number -n' -> lattice N - i (mod N); the Nyquist index 0 maps to itself (h0 = 0).
-            const int ni = (n - i) % n, nm = (n - m) % n;
-            const std::complex<double> a = h0[static_cast<size_t>(m) * n + i];
-            const std::complex<double> b = std::conj(h0[static_cast<size_t>(nm) * n + ni]);
-            const size_t s = static_cast<size_t>(py) * n + px;
-            pairs[s * 4 + 0] = static_cast<float>(a.real());
-            pairs[s * 4 + 1] = static_cast<float>(a.imag());
-            pairs[s * 4 + 2] = static_cast<float>(b.real());
-            pairs[s * 4 + 3] = static_cast<float>(b.imag());
-            mult[s] = q[static_cast<size_t>(m) * n + i];
+    for (const auto& draw : c.draws) {
+        const auto& h0 = draw->h0();
+        const auto& q = draw->omegaMultiple();
+        std::vector<float> pairs(cells * 4);
+        std::vector<uint32_t> mult(cells);
+        for (int py = 0; py < n; ++py) {
+            for (int px = 0; px < n; ++px) {
+                const int i = lattice(px), m = lattice(py);
+                // -k: wave number -n' -> lattice N - i (mod N); the Nyquist index 0 maps to itself (h0 = 0).
+                const int ni = (n - i) % n, nm = (n - m) % n;
+                const std::complex<double> a = h0[static_cast<size_t>(m) * n + i];
+                const std::complex<double> b = std::conj(h0[static_cast<size_t>(nm) * n + ni]);
+                const size_t s = static_cast<size_t>(py) * n + px;
+                pairs[s * 4 + 0] = static_cast<float>(a.real());
+                pairs[s * 4 + 1] = static_cast<float>(a.imag());
+                pairs[s * 4 + 2] = static_cast<float>(b.real());
+                pairs[s * 4 + 3] = static_cast<float>(b.imag());
+                mult[s] = q[static_cast<size_t>(m) * n + i];
+            }
         }
+        c.h0Pairs.push_back(gl::Buffer::create(pairs.size() * sizeof(float), pairs.data()));
+        c.omegaMultiples.push_back(gl::Buffer::create(mult.size() * sizeof(uint32_t), mult.data()));
     }
-    // Twiddles e^{+2 pi i j / N}, j < N/2, in double then rounded once (more accurate than GLSL sin/cos).
-    std::vector<float> tw(static_cast<size_t>(n));
-    for (int j = 0; j < n / 2; ++j) {
-        const double a = 2.0 * std::numbers::pi * j / n;
-        tw[static_cast<size_t>(2 * j)] = static_cast<float>(std::cos(a));
-        tw[static_cast<size_t>(2 * j + 1)] = static_cast<float>(std::sin(a));
-    }
-    mH0Pairs = gl::Buffer::create(pairs.size() * sizeof(float), pairs.data());
-    mOmegaMultiples = gl::Buffer::create(mult.size() * sizeof(uint32_t), mult.data());
-    mTwiddles = gl::Buffer::create(tw.size() * sizeof(float), tw.data());
-    mUploaded = true;
 }
 
-void FftGpu::transform(uint32_t word, unsigned firstPlane, unsigned planes) {
-    const GLuint n = static_cast<GLuint>(mSize);
+void FftGpu::bindBuffers(const Cascade& c, int d) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mData.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.h0Pairs[static_cast<size_t>(d)].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, c.omegaMultiples[static_cast<size_t>(d)].id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, c.kernels->twiddles.id());
+}
+
+void FftGpu::transform(const Cascade& c, int d, uint32_t word, unsigned firstPlane, unsigned planes) {
+    const GLuint n = static_cast<GLuint>(c.kernels->size);
     const GLuint groups2d = n / TILE_GROUP;
+    bindBuffers(c, d);
     // 1. htilde(k, t) and the derived spectra.
-    glUseProgram(mSpectrumProgram.id());
-    glUniform1ui(location(mSpectrumProgram.id(), "uTimeWord"), word);
-    glUniform1f(location(mSpectrumProgram.id(), "uDeltaK"),
-                static_cast<float>(2.0 * std::numbers::pi / mOcean->desc().tileSize));
+    const GLuint spectrum = c.kernels->spectrum.id();
+    glUseProgram(spectrum);
+    glUniform1ui(location(spectrum, "uTimeWord"), word);
+    glUniform1f(location(spectrum, "uDeltaK"),
+                static_cast<float>(2.0 * std::numbers::pi / c.draws.front()->desc().tileSize));
     glDispatchCompute(groups2d, groups2d, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
     // 2-3. Inverse FFT along x (rows), then along y (columns), of planes [firstPlane, firstPlane + planes).
-    glUseProgram(mPassProgram.id());
-    const int dirLoc = location(mPassProgram.id(), "uDirection");
-    glUniform1ui(location(mPassProgram.id(), "uPlaneBase"), firstPlane);
+    const GLuint pass = c.kernels->pass.id();
+    glUseProgram(pass);
+    const int dirLoc = location(pass, "uDirection");
+    glUniform1ui(location(pass, "uPlaneBase"), firstPlane);
     for (int dir = 0; dir < 2; ++dir) {
         glUniform1i(dirLoc, dir);
         glDispatchCompute(n, planes, 1);
@@ -159,19 +214,24 @@ int FftGpu::updateFoamMemory(double time) {
     const int64_t first = mHaveFoam && j > mFoamStep && j - mFoamStep < FOAM_MEMORY_WINDOW
                               ? mFoamStep + 1
                               : j - FOAM_MEMORY_WINDOW + 1;
-    const GLuint groups2d = static_cast<GLuint>(mSize) / TILE_GROUP;
+    const Cascade& c0 = mCascades.front();
+    const GLuint groups2d = static_cast<GLuint>(c0.kernels->size) / TILE_GROUP;
     auto layerOf = [](int64_t step) {
         return static_cast<int>(((step % FOAM_MEMORY_WINDOW) + FOAM_MEMORY_WINDOW) % FOAM_MEMORY_WINDOW);
     };
+    const int draws = static_cast<int>(c0.draws.size());
     int passes = 0;
-    glBindImageTexture(2, mFoamSamples.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32F);
+    glBindImageTexture(2, mFoamSamples.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
     for (int64_t step = first; step <= j; ++step) {
-        transform(timeWord(foamStepTime(step), mOcean->desc().loopPeriod), 1, 1); // h: plane 1
-        glUseProgram(mFoamSampleProgram.id());
-        glUniform1i(location(mFoamSampleProgram.id(), "uLayer"), layerOf(step));
-        glDispatchCompute(groups2d, groups2d, 1);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        passes += 4;
+        const uint32_t word = timeWord(foamStepTime(step), c0.draws.front()->desc().loopPeriod);
+        for (int d = 0; d < draws; ++d) {
+            transform(c0, d, word, 1, 1); // h: plane 1
+            glUseProgram(mFoamSampleProgram.id());
+            glUniform1i(location(mFoamSampleProgram.id(), "uLayer"), d * FOAM_MEMORY_WINDOW + layerOf(step));
+            glDispatchCompute(groups2d, groups2d, 1);
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+            passes += 4;
+        }
     }
     glUseProgram(mFoamMemoryProgram.id());
     float weights[FOAM_MEMORY_WINDOW];
@@ -179,31 +239,33 @@ int FftGpu::updateFoamMemory(double time) {
         weights[k] = static_cast<float>(std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME));
     glUniform1fv(location(mFoamMemoryProgram.id(), "uWeight"), FOAM_MEMORY_WINDOW, weights);
     glUniform1i(location(mFoamMemoryProgram.id(), "uNewest"), layerOf(j));
-    glBindImageTexture(3, mFoamMemory.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    glDispatchCompute(groups2d, groups2d, 1);
+    glBindImageTexture(3, mFoamMemory.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
+    for (int d = 0; d < draws; ++d) {
+        glUniform1i(location(mFoamMemoryProgram.id(), "uDraw"), d);
+        glDispatchCompute(groups2d, groups2d, 1);
+        ++passes;
+    }
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     mHaveFoam = true;
     mFoamStep = j;
-    return passes + 1;
+    return passes;
 }
 
 SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
     SurfaceGpuStats stats;
-    const uint32_t word = timeWord(time, mOcean->desc().loopPeriod);
-    const bool foamDue = mOcean->desc().foamMemory && !(mHaveFoam && foamStepIndex(time) == mFoamStep);
+    // One loop period for every cascade (cascadeDesc keeps it), so one time word.
+    const FftDesc& desc = mCascades.front().draws.front()->desc();
+    const uint32_t word = timeWord(time, desc.loopPeriod);
+    const bool foamDue = desc.foamMemory && !(mHaveFoam && foamStepIndex(time) == mFoamStep);
     if (mHaveMaps && word == mLastWord && !foamDue)
         return stats;     // same wrapped time: the maps are already exactly these
     gl::StateGuard guard; // restores the host's program
     if (!mUploaded) {
-        upload();
+        for (Cascade& c : mCascades)
+            upload(c);
+        mUploaded = true;
         stats.uploads = 1;
     }
-    const GLuint n = static_cast<GLuint>(mSize);
-    const GLuint groups2d = n / TILE_GROUP;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mData.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, mH0Pairs.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, mOmegaMultiples.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, mTwiddles.id());
     if (foamDue)
         stats.computePasses += updateFoamMemory(time);
     if (mHaveMaps && word == mLastWord) { // only the memory moved on (its samples leave the maps alone)
@@ -211,21 +273,26 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
         mTotals.uploads += stats.uploads;
         return stats;
     }
-    transform(word, 0, FFT_PLANES);
-
-    // 4. Unpack into the maps.
-    glUseProgram(mFinalizeProgram.id());
-    glUniform1f(location(mFinalizeProgram.id(), "uChoppiness"),
-                static_cast<float>(mOcean->desc().choppiness));
-    glBindImageTexture(0, mDisplacement.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, mSlope.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(groups2d, groups2d, 1);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
-    // Mip chain of the slope map for filtered lighting (LEAN-style variance, fft.glsl).
-    glGenerateTextureMipmap(mSlope.id());
-
-    stats.computePasses += 4;
+    for (const Cascade& c : mCascades) {
+        for (int d = 0; d < static_cast<int>(c.draws.size()); ++d) {
+            transform(c, d, word, 0, FFT_PLANES);
+            // 4. Unpack into layer d of the maps.
+            const GLuint finalize = c.kernels->finalize.id();
+            glUseProgram(finalize);
+            glUniform1f(location(finalize, "uChoppiness"), static_cast<float>(c.draws[d]->desc().choppiness));
+            glBindImageTexture(0, c.displacement.id(), 0, GL_FALSE, d, GL_WRITE_ONLY, GL_RGBA32F);
+            glBindImageTexture(1, c.slope.id(), 0, GL_FALSE, d, GL_WRITE_ONLY, GL_RGBA32F);
+            const GLuint groups2d = static_cast<GLuint>(c.kernels->size) / TILE_GROUP;
+            glDispatchCompute(groups2d, groups2d, 1);
+            // The scratch planes are rewritten by the next draw's spectrum pass.
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                            GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                            GL_SHADER_STORAGE_BARRIER_BIT);
+            stats.computePasses += 4;
+        }
+        // Mip chains of the slope maps for filtered lighting (LEAN-style variance, fft.glsl).
+        glGenerateTextureMipmap(c.slope.id());
+    }
     mHaveMaps = true;
     mLastWord = word;
     mTotals.computePasses += stats.computePasses;
@@ -234,50 +301,87 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
 }
 
 void FftGpu::bind(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld) {
-    const double tile = mOcean->desc().tileSize;
-    // fract(camera.xy / L) in double (exact fmod), so the GPU's float sees only [0, 1].
-    const glm::vec2 offset(static_cast<float>(wrapPhase(cameraWorld.x, tile) / tile),
-                           static_cast<float>(wrapPhase(cameraWorld.y, tile) / tile));
-    glProgramUniform2f(program, location(program, "uFftUvOffset"), offset.x, offset.y);
-    glProgramUniform1f(program, location(program, "uFftInvTile"), static_cast<float>(1.0 / tile));
-    glProgramUniform1i(program, location(program, "uFftSize"), mSize);
-    glProgramUniform1i(program, location(program, "uFftDisplacement"), firstUnit);
-    glProgramUniform1i(program, location(program, "uFftSlope"), firstUnit + 1);
-    glBindTextureUnit(static_cast<GLuint>(firstUnit), mDisplacement.id());
-    glBindTextureUnit(static_cast<GLuint>(firstUnit + 1), mSlope.id());
-    // Foam memory on firstUnit + 2 (the sampler always names its unit); the decay since the last lattice
-    // time, formed in double: e^(-(t - t_j) / tau).
-    const bool memory = mOcean->desc().foamMemory;
-    glProgramUniform1i(program, location(program, "uFftFoam"), firstUnit + 2);
+    // Foam memory on firstUnit (the sampler always names its unit); the decay since the last lattice time,
+    // formed in double: e^(-(t - t_j) / tau).
+    const bool memory = mCascades.front().draws.front()->desc().foamMemory;
+    glProgramUniform1i(program, location(program, "uFftFoam"), firstUnit);
     glProgramUniform1i(program, location(program, "uFftFoamMemory"), memory ? 1 : 0);
     const double decay =
         memory ? std::exp(-(time - foamStepTime(foamStepIndex(time))) / FOAM_DECAY_TIME) : 0.0;
     glProgramUniform1f(program, location(program, "uFftFoamDecay"), static_cast<float>(decay));
-    glBindTextureUnit(static_cast<GLuint>(firstUnit + 2), memory ? mFoamMemory.id() : 0);
+    glBindTextureUnit(static_cast<GLuint>(firstUnit), memory ? mFoamMemory.id() : 0);
+    const int count = static_cast<int>(mCascades.size());
+    glProgramUniform1i(program, location(program, "uFftCascades"), count);
+    glProgramUniform1i(program, location(program, "uFftDraws"),
+                       static_cast<int>(mCascades.front().draws.size()));
+    // Every element of the sampler arrays names a unit of its type; those past the cascade count repeat
+    // cascade 0's (never read: fft.glsl stops at uFftCascades).
+    for (int i = 0; i < FFT_MAX_CASCADES; ++i) {
+        const int ci = i < count ? i : 0;
+        const Cascade& c = mCascades[static_cast<size_t>(ci)];
+        const std::string idx = "[" + std::to_string(i) + "]";
+        const double tile = c.draws.front()->desc().tileSize;
+        // fract(camera.xy / L) in double (exact fmod), so the GPU's float sees only [0, 1].
+        const glm::vec2 offset(static_cast<float>(wrapPhase(cameraWorld.x, tile) / tile),
+                               static_cast<float>(wrapPhase(cameraWorld.y, tile) / tile));
+        glProgramUniform2f(program, location(program, ("uFftUvOffset" + idx).c_str()), offset.x, offset.y);
+        glProgramUniform1f(program, location(program, ("uFftInvTile" + idx).c_str()),
+                           static_cast<float>(1.0 / tile));
+        glProgramUniform1i(program, location(program, ("uFftSize" + idx).c_str()), c.kernels->size);
+        glProgramUniform1f(program, location(program, ("uFftFadeEnd" + idx).c_str()),
+                           mSea ? static_cast<float>(mSea->displacementFadeEnd(ci)) : 1.0e30f);
+        glProgramUniform1i(program, location(program, ("uFftDisplacement" + idx).c_str()),
+                           firstUnit + 1 + 2 * ci);
+        glProgramUniform1i(program, location(program, ("uFftSlope" + idx).c_str()), firstUnit + 2 + 2 * ci);
+        if (i < count) {
+            glBindTextureUnit(static_cast<GLuint>(firstUnit + 1 + 2 * i), c.displacement.id());
+            glBindTextureUnit(static_cast<GLuint>(firstUnit + 2 + 2 * i), c.slope.id());
+        }
+        // The mix angle's terms about the camera: sin(k.(camera + rel) + phase) = sin(psi + k.rel) with
+        // psi = wrap(k.camera + phase, 2 pi) formed in double, so the float sees only k.rel.
+        for (int j = 0; j < FFT_MIX_TERMS && mSea && i < count; ++j) {
+            const glm::dvec3 m = mSea->mixTerm(i, j);
+            const double psi =
+                wrapPhase(m.x * cameraWorld.x + m.y * cameraWorld.y + m.z, 2.0 * std::numbers::pi);
+            const std::string name = "uFftMix[" + std::to_string(i * FFT_MIX_TERMS + j) + "]";
+            glProgramUniform3f(program, location(program, name.c_str()), static_cast<float>(m.x),
+                               static_cast<float>(m.y), static_cast<float>(psi));
+        }
+    }
 }
 
 std::vector<float> FftGpu::readFoamMemory() const {
-    std::vector<float> out(static_cast<size_t>(mSize) * mSize);
     if (!mFoamMemory)
         return {};
-    glGetTextureImage(mFoamMemory.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)),
-                      out.data());
-    return out;
+    const int n = mCascades.front().kernels->size, draws = static_cast<int>(mCascades.front().draws.size());
+    std::vector<float> all(static_cast<size_t>(n) * n * draws);
+    glGetTextureImage(mFoamMemory.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(all.size() * sizeof(float)),
+                      all.data());
+    all.resize(static_cast<size_t>(n) * n); // draw A's layer
+    return all;
 }
 
-std::vector<float> FftGpu::readDisplacementMap() const {
-    std::vector<float> out(static_cast<size_t>(mSize) * mSize * 4);
-    glGetTextureImage(mDisplacement.id(), 0, GL_RGBA, GL_FLOAT,
-                      static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
-    return out;
+namespace {
+/// Layer `layer` of level `level` of a 2D array texture of `layers` layers, RGBA floats.
+std::vector<float> readLayer(unsigned texture, int level, int size, int layers, int layer) {
+    std::vector<float> all(static_cast<size_t>(size) * size * 4 * layers);
+    glGetTextureImage(texture, level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(all.size() * sizeof(float)),
+                      all.data());
+    const auto first =
+        all.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(size) * size * 4 * layer);
+    return {first, first + static_cast<std::ptrdiff_t>(static_cast<size_t>(size) * size * 4)};
+}
+} // namespace
+
+std::vector<float> FftGpu::readDisplacementMap(int cascade, int draw) const {
+    const Cascade& c = mCascades.at(static_cast<size_t>(cascade));
+    return readLayer(c.displacement.id(), 0, c.kernels->size, static_cast<int>(c.draws.size()), draw);
 }
 
-std::vector<float> FftGpu::readSlopeMap(int level) const {
-    const int s = std::max(1, mSize >> level);
-    std::vector<float> out(static_cast<size_t>(s) * s * 4);
-    glGetTextureImage(mSlope.id(), level, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)),
-                      out.data());
-    return out;
+std::vector<float> FftGpu::readSlopeMap(int level, int cascade, int draw) const {
+    const Cascade& c = mCascades.at(static_cast<size_t>(cascade));
+    return readLayer(c.slope.id(), level, std::max(1, c.kernels->size >> level),
+                     static_cast<int>(c.draws.size()), draw);
 }
 
 } // namespace pacifica::ocean

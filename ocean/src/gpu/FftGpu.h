@@ -19,10 +19,13 @@
 // word = round(wrap(t, T) / T * 2^32), formed in double here. The shader's phase q * word (mod 2^32, exact
 // uint arithmetic) / 2^32 turns is then exact up to the final float conversion, for any t.
 //
+// Cascades (FftCascades): each cascade has its own spectrum, maps and compute passes (1-4 above, run per
+// cascade on one shared scratch buffer); fft.glsl sums them. The living whitecaps follow cascade 0.
+//
 // GL state: update() restores the current program (gl::StateGuard) but leaves shader-storage buffer
 // bindings 0..3 and image units 0..3 pointing at this object's resources; bind() binds texture units
-// [firstUnit, firstUnit + 3). Needs a current GL 4.5 context for construction, update(), bind() and the
-// destructor.
+// [firstUnit, firstUnit + unitsUsed()). Needs a current GL 4.5 context for construction, update(), bind() and
+// the destructor.
 #pragma once
 
 #include "gpu/SurfaceGpu.h"
@@ -42,6 +45,8 @@ public:
     /// Compiles the compute programs and allocates the buffers and maps (no upload yet: the first update()
     /// uploads h0 and q once and reports it).
     explicit FftGpu(std::shared_ptr<const FftOcean> ocean);
+    /// The same for every cascade of `cascades` (FftDesc::cascades of them, summed by fft.glsl).
+    explicit FftGpu(std::shared_ptr<const FftCascades> cascades);
 
     std::vector<std::string> glslFiles() const override { return {"fft.glsl"}; }
     /// Recomputes the maps for time t: 4 compute passes (+ 1 upload the first time), plus 4 per foam sample
@@ -51,40 +56,59 @@ public:
     /// tile does not depend on the camera; cameraWorld is unused here (bind() uses it). Throws
     /// std::invalid_argument for a non-finite time (wrapPhase).
     SurfaceGpuStats update(double time, const glm::dvec3& cameraWorld) override;
-    /// Sets fft.glsl's uniforms (tile offset fract(camera.xy / L) formed in double, the foam memory's decay
-    /// since its lattice time) and binds the maps of the last update() to units firstUnit (displacement),
-    /// firstUnit + 1 (slopes) and firstUnit + 2 (foam memory). Does no GPU work (call update(time) first).
+    /// Sets fft.glsl's uniforms (per cascade the tile offset fract(camera.xy / L) formed in double; the foam
+    /// memory's decay since its lattice time) and binds the maps of the last update(): the foam memory to
+    /// firstUnit, then per cascade c its displacement and slope maps to firstUnit + 1 + 2c and + 2 + 2c. Does
+    /// no GPU work (call update(time) first).
     void bind(unsigned program, int firstUnit, double time, const glm::dvec3& cameraWorld) override;
-    int unitsUsed() const override { return 3; }
+    int unitsUsed() const override { return 1 + 2 * static_cast<int>(mCascades.size()); }
 
-    const FftOcean& ocean() const { return *mOcean; }
+    /// Cascade 0's (the only one for a single FftOcean).
+    const FftOcean& ocean() const { return *mCascades.front().draws.front(); }
+    int cascadeCount() const { return static_cast<int>(mCascades.size()); }
     /// Sums of every update()'s stats since construction.
     SurfaceGpuStats totals() const { return mTotals; }
     /// round(wrap(t, T) / T * 2^32) mod 2^32: the only form in which time reaches the GPU.
     static uint32_t timeWord(double time, double loopPeriod);
 
-    /// Read-backs for tests and tools: RGBA floats, row-major (j * N + i) * 4; level of the slope map.
-    std::vector<float> readDisplacementMap() const;
-    std::vector<float> readSlopeMap(int level = 0) const;
-    /// The living whitecaps' memory M_j of the last update() (FftOcean::foamHeightAt), N x N floats,
-    /// row-major; empty without FftDesc::foamMemory.
+    /// Read-backs for tests and tools: RGBA floats, row-major (j * N + i) * 4; level of the slope map; of
+    /// draw `draw` of cascade `cascade`.
+    std::vector<float> readDisplacementMap(int cascade = 0, int draw = 0) const;
+    std::vector<float> readSlopeMap(int level = 0, int cascade = 0, int draw = 0) const;
+    /// The living whitecaps' memory M_j of the last update() (FftOcean::foamHeightAt) of cascade 0's draw A,
+    /// N x N floats, row-major; empty without FftDesc::foamMemory.
     std::vector<float> readFoamMemory() const;
-    unsigned displacementTexture() const { return mDisplacement.id(); }
-    unsigned slopeTexture() const { return mSlope.id(); }
+    unsigned displacementTexture(int cascade = 0) const { return mCascades[cascade].displacement.id(); }
+    unsigned slopeTexture(int cascade = 0) const { return mCascades[cascade].slope.id(); }
 
 private:
-    void upload();
-    /// Passes 1-3 (spectrum, inverse FFT along x then y) for the time word, transforming only planes
-    /// [firstPlane, firstPlane + planes).
-    void transform(uint32_t word, unsigned firstPlane, unsigned planes);
+    /// The compute programs and twiddles of one grid size N (cascades of the same N share them).
+    struct Kernels {
+        int size = 0;
+        gl::Program spectrum, pass, finalize;
+        gl::Buffer twiddles;
+    };
+    /// One cascade: its draws (A, and B when aperiodic), each a layer of the maps.
+    struct Cascade {
+        std::vector<std::shared_ptr<const FftOcean>> draws;
+        const Kernels* kernels = nullptr;
+        std::vector<gl::Buffer> h0Pairs, omegaMultiples; // per draw
+        gl::Texture displacement, slope;                 // 2D arrays, a layer per draw
+    };
+    void init(std::vector<std::vector<std::shared_ptr<const FftOcean>>> cascades);
+    void upload(Cascade& c);
+    /// Binds the buffers of draw d of cascade c (storage bindings 0..3).
+    void bindBuffers(const Cascade& c, int d);
+    /// Passes 1-3 (spectrum, inverse FFT along x then y) of draw d of cascade c for the time word,
+    /// transforming only planes [firstPlane, firstPlane + planes).
+    void transform(const Cascade& c, int d, uint32_t word, unsigned firstPlane, unsigned planes);
     /// Samples the lattice times the window lacks and rebuilds the memory map; returns the passes run.
     int updateFoamMemory(double time);
 
-    std::shared_ptr<const FftOcean> mOcean;
-    int mSize = 0;
-    gl::Program mSpectrumProgram, mPassProgram, mFinalizeProgram;
-    gl::Buffer mH0Pairs, mOmegaMultiples, mTwiddles, mData;
-    gl::Texture mDisplacement, mSlope;
+    std::shared_ptr<const FftCascades> mSea; // null for a single FftOcean
+    std::vector<std::unique_ptr<Kernels>> mKernels;
+    std::vector<Cascade> mCascades;
+    gl::Buffer mData; // scratch planes, sized for the largest N
     gl::Program mFoamSampleProgram, mFoamMemoryProgram;
     gl::Texture mFoamSamples, mFoamMemory; // the ring of FOAM_MEMORY_WINDOW crest samples; the memory map
     bool mHaveFoam = false;

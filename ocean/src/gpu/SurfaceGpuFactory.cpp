@@ -17,7 +17,7 @@ std::unique_ptr<SurfaceGpu> makeSurfaceGpu(const std::shared_ptr<const SurfaceMo
     case SurfaceKind::Gerstner:
         return std::make_unique<GerstnerGpu>(std::static_pointer_cast<const GerstnerWaves>(model));
     case SurfaceKind::Fft:
-        return std::make_unique<FftGpu>(std::static_pointer_cast<const FftOcean>(model));
+        return std::make_unique<FftGpu>(std::static_pointer_cast<const FftCascades>(model));
     default:
         break;
     }
