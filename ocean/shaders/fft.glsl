@@ -18,8 +18,10 @@
 
 // Cascades (FftCascades): uFftCascades tiles, each with its own maps, tile and offset; the displacement and
 // the lighting are sums over them (independent draws: the slope variances add too). FFT_MAX_CASCADES
-// elements per array (OceanConstants.h; FFT_CASCADE_SUM below is written for 4). With two draws per cascade
-// (FftDesc::aperiodic; layers 0 and 1 of each map) a cascade is w.x A + w.y B, w = (cos theta, sin theta),
+// elements per array (OceanConstants.h; FFT_CASCADE_SUM below is written for 4). The maps of the cascades
+// of one grid size are one 2D array (FftGpu's groups): cascade c's draws are its layers uFftLayer[c] and
+// uFftLayer[c] + 1, and cascades of a group name the same texture units. With two draws per cascade
+// (FftDesc::aperiodic) a cascade is w.x A + w.y B, w = (cos theta, sin theta),
 // theta = FFT_MIX_AMPLITUDE sum_j sin(psi_j + k_j . rel) (FftCascades::mixWeights; psi_j formed in double
 // about the camera); the lighting takes w.x m_A + w.y m_B for the mean slope and w.x^2 v_A + w.y^2 v_B for
 // the unresolved variance (the draws are independent).
@@ -30,6 +32,7 @@ uniform sampler2DArray uFftSlope[FFT_MAX_CASCADES];        // RGBA32F (g_x, g_y,
 uniform vec2 uFftUvOffset[FFT_MAX_CASCADES];               // fract(camera.xy / L)
 uniform float uFftInvTile[FFT_MAX_CASCADES];               // 1 / L
 uniform int uFftSize[FFT_MAX_CASCADES];                    // N (power of two)
+uniform int uFftLayer[FFT_MAX_CASCADES];                   // the cascade's draw A in its maps (B: + 1)
 uniform vec3 uFftMix[FFT_MAX_CASCADES * FFT_MIX_TERMS];    // (k_x, k_y, psi) per cascade and term
 uniform float uFftFadeEnd[FFT_MAX_CASCADES]; // FftCascades::displacementFadeEnd (1e30: no fade)
 
@@ -87,11 +90,11 @@ vec3 fftDisplacement(sampler2DArray map, int c, vec2 rel) {
     if (fade == 0.0)
         return vec3(0.0);
     FftCell cell = fftCell(c, rel);
-    vec3 d = fftBilinear(map, cell, 0).xyz;
+    vec3 d = fftBilinear(map, cell, uFftLayer[c]).xyz;
     if (uFftDraws < 2)
         return fade * d;
     vec2 w = fade * fftMixWeights(c, rel);
-    return w.x * d + w.y * fftBilinear(map, cell, 1).xyz;
+    return w.x * d + w.y * fftBilinear(map, cell, uFftLayer[c] + 1).xyz;
 }
 
 // FFT_CASCADE_SUM(f, maps): f(maps[c], c, rel) summed over the cascades, each array element named by a
@@ -121,10 +124,10 @@ uniform float uFftFoamDecay;     // e^(-(t - t_j) / FOAM_DECAY_TIME), formed in 
 vec2 modelFoamInputs(vec2 rel) {
     FftCell cell = fftCell(0, rel);
     vec2 w = fftMixWeights(0, rel);
-    vec2 a = fftBilinear(uFftDisplacement[0], cell, 0).zw;
+    vec2 a = fftBilinear(uFftDisplacement[0], cell, uFftLayer[0]).zw;
     vec2 hj = a;
     if (uFftDraws > 1) {
-        vec2 b = fftBilinear(uFftDisplacement[0], cell, 1).zw;
+        vec2 b = fftBilinear(uFftDisplacement[0], cell, uFftLayer[0] + 1).zw;
         hj = vec2(w.x * a.x + w.y * b.x, 1.0 + w.x * (a.y - 1.0) + w.y * (b.y - 1.0));
     }
     if (uFftFoamMemory) {
@@ -141,11 +144,11 @@ vec2 modelFoamInputs(vec2 rel) {
 
 vec3 fftLighting(sampler2DArray slopes, int c, vec2 rel) {
     vec2 uv = rel * uFftInvTile[c] + uFftUvOffset[c] + 0.5 / float(uFftSize[c]);
-    vec4 s = GRID_TEXTURE(slopes, vec3(uv, 0.0), uFftInvTile[c]);
+    vec4 s = GRID_TEXTURE(slopes, vec3(uv, float(uFftLayer[c])), uFftInvTile[c]);
     vec3 a = vec3(s.xy, max(s.z + s.w - dot(s.xy, s.xy), 0.0));
     if (uFftDraws < 2)
         return a;
-    vec4 t = GRID_TEXTURE(slopes, vec3(uv, 1.0), uFftInvTile[c]);
+    vec4 t = GRID_TEXTURE(slopes, vec3(uv, float(uFftLayer[c] + 1)), uFftInvTile[c]);
     vec3 b = vec3(t.xy, max(t.z + t.w - dot(t.xy, t.xy), 0.0));
     vec2 w = fftMixWeights(c, rel);
     return vec3(w.x * a.xy + w.y * b.xy, w.x * w.x * a.z + w.y * w.y * b.z);

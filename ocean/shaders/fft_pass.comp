@@ -14,8 +14,9 @@ layout(std430, binding = 0) buffer Planes { vec2 planes[]; };              // [p
 layout(std430, binding = 3) readonly buffer Twiddles { vec2 twiddles[]; }; // e^{2 pi i j / N}
 
 uniform int uDirection; // 0: transform along x (one row per workgroup), 1: along y (one column)
-uniform uint uPlaneBase; // the first plane transformed (workgroup y = plane - uPlaneBase): the foam memory's
-                         // samples transform plane 1 (h) alone
+uniform uint uPlaneBase;      // the first plane of each layer transformed: the foam memory's samples
+uniform uint uPlanesPerLayer; // transform plane 1 (h) alone; workgroup y = layer * uPlanesPerLayer + the
+                              // plane's index among them (layer l's planes start at plane FFT_PLANES l)
 
 shared vec2 sLine[FFT_N];
 
@@ -23,7 +24,9 @@ vec2 cmul(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y *
 
 void main() {
     uint line = gl_WorkGroupID.x;
-    uint base = (uPlaneBase + gl_WorkGroupID.y) * FFT_N * FFT_N + (uDirection == 0 ? line * FFT_N : line);
+    uint layer = gl_WorkGroupID.y / uPlanesPerLayer;
+    uint plane = layer * FFT_PLANES + uPlaneBase + gl_WorkGroupID.y % uPlanesPerLayer;
+    uint base = plane * FFT_N * FFT_N + (uDirection == 0 ? line * FFT_N : line);
     uint stride = uDirection == 0 ? 1u : FFT_N;
     uint tid = gl_LocalInvocationID.x;
 

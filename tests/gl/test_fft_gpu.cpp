@@ -528,7 +528,12 @@ TEST(FftCascadesGpu, ShaderMatchesTheCpuTwinAroundCameras) {
     const auto sea = std::make_shared<const ocean::FftCascades>(d);
     FftGpu gpu(sea);
     EXPECT_EQ(gpu.cascadeCount(), 4);
-    EXPECT_EQ(gpu.unitsUsed(), 9);
+    EXPECT_EQ(gpu.unitsUsed(), 5); // the foam memory, then the maps of the 64^2 and the 32^2 cascades
+    // The draws of one grid size are transformed together: 4 passes for cascade 0's two draws, 4 for the
+    // other cascades' six, whatever their count; the first frame also samples the foam window of cascade
+    // 0's two draws (4 passes a lattice time, both draws at once, and the memory pass).
+    EXPECT_EQ(gpu.update(5.05, {}).computePasses, 4 * ocean::FOAM_MEMORY_WINDOW + 1 + 8);
+    EXPECT_EQ(gpu.update(5.07, {}).computePasses, 8);
     const double hs = sea->significantWaveHeight();
     const glm::dvec3 cameras[] = {{0.0, 0.0, 30.0}, {1.0e7 + 0.37, -1.0e7 + 0.81, 30.0}};
     std::mt19937 rng(9);

@@ -174,6 +174,17 @@ std::vector<Setting> sweep(bool quick) {
                 add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
         if (m == SurfaceKind::Fft) // living whitecaps off: foam on the current crests only
             add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.fft.foamMemory = false; });
+        if (m == SurfaceKind::Fft) { // the near sea's cascades (4 = baseline) and their aperiodic mix (on)
+            for (int n : {1, 2, 3})
+                add(m, "fft_cascades", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.cascades = n; });
+            add(m, "fft_cascades", "1-tile-500m", [](ocean::OceanDesc& d) {
+                d.fft.cascades = 1;
+                d.fft.aperiodic = false;
+                d.fft.tileSize = 500.0;
+            });
+            add(m, "fft_mix", "off", [](ocean::OceanDesc& d) { d.fft.aperiodic = false; });
+            add(m, "fft_detail_size", "64", [](ocean::OceanDesc& d) { d.fft.detailSize = 64; });
+        }
         if (m == SurfaceKind::Gerstner)
             add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.gerstner.foamMemory = false; });
         add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });

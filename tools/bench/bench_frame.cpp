@@ -142,6 +142,16 @@ std::vector<Setting> settings(bool quick) {
              d.model = ocean::SurfaceKind::Fft;
              d.fft.aperiodic = false;
          });
+    high("high/fft-detail-64", "FFT cascades 1-3 of 64^2 (FftDesc::detailSize 128 -> 64)",
+         [](ocean::OceanDesc& d) {
+             d.model = ocean::SurfaceKind::Fft;
+             d.fft.detailSize = 64;
+         });
+    high("high/fft-128-64", "FFT cascade 0 of 128^2, cascades 1-3 of 64^2", [](ocean::OceanDesc& d) {
+        d.model = ocean::SurfaceKind::Fft;
+        d.fft.size = 128;
+        d.fft.detailSize = 64;
+    });
     high("high/fft-one-tile", "one 500 m FFT tile, no mix (the FFT sea before its cascades)",
          [](ocean::OceanDesc& d) {
              d.model = ocean::SurfaceKind::Fft;

@@ -19,6 +19,8 @@ namespace {
 
 /// Complex planes transformed per update (two real fields each; see fft_spectrum.comp).
 constexpr int FFT_PLANES = 4;
+/// Layers (draws) one group of cascades may hold: every cascade's two draws.
+constexpr int FFT_MAX_LAYERS = 2 * FFT_MAX_CASCADES;
 /// Local size of the 2D passes (spectrum, finalize); N >= 16 is a multiple.
 constexpr int TILE_GROUP = 8;
 /// Floor on the Jacobian used when the slope map divides by it (fft_finalize.comp): where the surface
@@ -76,12 +78,38 @@ void FftGpu::init(std::vector<std::vector<std::shared_ptr<const FftOcean>>> casc
     if (cascades.empty() || static_cast<int>(cascades.size()) > FFT_MAX_CASCADES)
         throw std::invalid_argument("FftGpu::FftGpu(): 1 to " + std::to_string(FFT_MAX_CASCADES) +
                                     " cascades, got " + std::to_string(cascades.size()));
-    auto kernelsFor = [this](int n) -> const Kernels* {
-        for (const auto& k : mKernels)
-            if (k->size == n)
-                return k.get();
-        auto k = std::make_unique<Kernels>();
-        k->size = n;
+    // Group the cascades by grid size, in cascade order (cascade 0 first in its group).
+    for (auto& draws : cascades) {
+        if (draws.empty() || draws.size() > 2)
+            throw std::invalid_argument("FftGpu::FftGpu(): a cascade has 1 or 2 draws");
+        const int n = draws.front() ? draws.front()->desc().size : 0;
+        for (const auto& d : draws)
+            if (!d || d->desc().size != n)
+                throw std::invalid_argument("FftGpu::FftGpu(): a cascade's draw is null or of another size");
+        Cascade c;
+        c.draws = std::move(draws);
+        c.group = -1;
+        for (size_t g = 0; g < mGroups.size(); ++g)
+            if (mGroups[g].size == n)
+                c.group = static_cast<int>(g);
+        if (c.group < 0) {
+            mGroups.emplace_back();
+            mGroups.back().size = n;
+            c.group = static_cast<int>(mGroups.size()) - 1;
+        }
+        Group& g = mGroups[static_cast<size_t>(c.group)];
+        c.firstLayer = g.layers;
+        g.layers += static_cast<int>(c.draws.size());
+        for (const auto& d : c.draws)
+            g.deltaK.push_back(static_cast<float>(2.0 * std::numbers::pi / d->desc().tileSize));
+        mCascades.push_back(std::move(c));
+    }
+    size_t largest = 0;
+    for (Group& g : mGroups) {
+        const int n = g.size;
+        if (g.layers > FFT_MAX_LAYERS)
+            throw std::invalid_argument("FftGpu::FftGpu(): more than " + std::to_string(FFT_MAX_LAYERS) +
+                                        " draws of one grid size");
         // Threads per FFT line: each does N / (2 threads) butterflies per stage. 64 keeps whole
         // warps/wavefronts busy on GPUs (N * 4 workgroups per pass); on llvmpipe fewer threads per group run
         // faster (fewer coroutine switches at barriers): 256 -> 64 took N = 256 from ~85 to ~63 ms there.
@@ -90,10 +118,12 @@ void FftGpu::init(std::vector<std::vector<std::shared_ptr<const FftOcean>>> casc
             "#define FFT_N " + std::to_string(n) + "u\n#define FFT_LOG2N " + std::to_string(log2Int(n)) +
             "u\n#define FFT_THREADS " + std::to_string(threads) + "\n#define FFT_PLANES " +
             std::to_string(FFT_PLANES) + "u\n#define TILE_GROUP " + std::to_string(TILE_GROUP) +
-            "\n#define JACOBIAN_FLOOR " + std::to_string(JACOBIAN_FLOOR) + "\n";
-        k->spectrum = buildCompute("fft_spectrum.comp", defines);
-        k->pass = buildCompute("fft_pass.comp", defines);
-        k->finalize = buildCompute("fft_finalize.comp", defines);
+            "\n#define JACOBIAN_FLOOR " + std::to_string(JACOBIAN_FLOOR) + "\n#define FFT_MAX_LAYERS " +
+            std::to_string(FFT_MAX_LAYERS) + "\n";
+        g.spectrum = buildCompute("fft_spectrum.comp", defines);
+        g.pass = buildCompute("fft_pass.comp", defines);
+        g.finalize = buildCompute("fft_finalize.comp", defines);
+        g.mip = buildCompute("fft_mip.comp", defines);
         // Twiddles e^{+2 pi i j / N}, j < N/2, in double then rounded once (more accurate than GLSL sin/cos).
         std::vector<float> tw(static_cast<size_t>(n));
         for (int j = 0; j < n / 2; ++j) {
@@ -101,34 +131,19 @@ void FftGpu::init(std::vector<std::vector<std::shared_ptr<const FftOcean>>> casc
             tw[static_cast<size_t>(2 * j)] = static_cast<float>(std::cos(a));
             tw[static_cast<size_t>(2 * j + 1)] = static_cast<float>(std::sin(a));
         }
-        k->twiddles = gl::Buffer::create(tw.size() * sizeof(float), tw.data());
-        mKernels.push_back(std::move(k));
-        return mKernels.back().get();
-    };
-    size_t largest = 0;
-    for (auto& draws : cascades) {
-        if (draws.empty() || draws.size() > 2)
-            throw std::invalid_argument("FftGpu::FftGpu(): a cascade has 1 or 2 draws");
-        Cascade c;
-        const int n = draws.front() ? draws.front()->desc().size : 0;
-        for (const auto& d : draws)
-            if (!d || d->desc().size != n)
-                throw std::invalid_argument("FftGpu::FftGpu(): a cascade's draw is null or of another size");
-        c.draws = std::move(draws);
-        c.kernels = kernelsFor(n);
-        const int layers = static_cast<int>(c.draws.size());
-        c.displacement = gl::Texture::createArray2D(GL_RGBA32F, n, n, layers, 1);
-        c.displacement.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
-        c.slope = gl::Texture::createArray2D(GL_RGBA32F, n, n, layers, log2Int(n) + 1);
-        c.slope.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
-        largest = std::max(largest, static_cast<size_t>(n) * n);
-        mCascades.push_back(std::move(c));
+        g.twiddles = gl::Buffer::create(tw.size() * sizeof(float), tw.data());
+        g.displacement = gl::Texture::createArray2D(GL_RGBA32F, n, n, g.layers, 1);
+        g.displacement.setSampling(GL_NEAREST, GL_NEAREST, GL_REPEAT);
+        g.slope = gl::Texture::createArray2D(GL_RGBA32F, n, n, g.layers, log2Int(n) + 1);
+        g.slope.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
+        largest = std::max(largest, static_cast<size_t>(n) * n * g.layers);
     }
     mData = gl::Buffer::create(largest * FFT_PLANES * 2 * sizeof(float), nullptr);
     const Cascade& first = mCascades.front();
     if (first.draws.front()->desc().foamMemory) {
-        const int n = first.kernels->size, draws = static_cast<int>(first.draws.size());
-        const std::string defines = "#define FFT_N " + std::to_string(n) + "u\n#define TILE_GROUP " +
+        const int n = first.draws.front()->desc().size, draws = static_cast<int>(first.draws.size());
+        const std::string defines = "#define FFT_N " + std::to_string(n) + "u\n#define FFT_PLANES " +
+                                    std::to_string(FFT_PLANES) + "u\n#define TILE_GROUP " +
                                     std::to_string(TILE_GROUP) + "\n";
         mFoamSampleProgram = buildCompute("fft_foam.comp", defines + "#define FFT_FOAM_SAMPLE\n");
         mFoamMemoryProgram =
@@ -140,66 +155,67 @@ void FftGpu::init(std::vector<std::vector<std::shared_ptr<const FftOcean>>> casc
     }
 }
 
-void FftGpu::upload(Cascade& c) {
+void FftGpu::upload(Group& g, int groupIndex) {
     // Spectrum in FFT storage order: storage index p holds wave number n' = p (p < N/2) or p - N, i.e.
     // lattice index (p + N/2) mod N, so the inverse DFT's e^{2 pi i p x / N} = e^{i k x} needs no sign
-    // correction afterwards. Per cell: (h0(k), conj(h0(-k))) and the integer q(k).
-    const int n = c.kernels->size;
+    // correction afterwards. Per cell: (h0(k), conj(h0(-k))) and the integer q(k); a layer per draw.
+    const int n = g.size;
     const size_t cells = static_cast<size_t>(n) * n;
+    std::vector<float> pairs(cells * 4 * g.layers);
+    std::vector<uint32_t> mult(cells * g.layers);
     auto lattice = [n](int p) { return (p + n / 2) % n; };
-    for (const auto& draw : c.draws) {
-        const auto& h0 = draw->h0();
-        const auto& q = draw->omegaMultiple();
-        std::vector<float> pairs(cells * 4);
-        std::vector<uint32_t> mult(cells);
-        for (int py = 0; py < n; ++py) {
-            for (int px = 0; px < n; ++px) {
-                const int i = lattice(px), m = lattice(py);
-                // -k: wave number -n' -> lattice N - i (mod N); the Nyquist index 0 maps to itself (h0 = 0).
-                const int ni = (n - i) % n, nm = (n - m) % n;
-                const std::complex<double> a = h0[static_cast<size_t>(m) * n + i];
-                const std::complex<double> b = std::conj(h0[static_cast<size_t>(nm) * n + ni]);
-                const size_t s = static_cast<size_t>(py) * n + px;
-                pairs[s * 4 + 0] = static_cast<float>(a.real());
-                pairs[s * 4 + 1] = static_cast<float>(a.imag());
-                pairs[s * 4 + 2] = static_cast<float>(b.real());
-                pairs[s * 4 + 3] = static_cast<float>(b.imag());
-                mult[s] = q[static_cast<size_t>(m) * n + i];
+    for (const Cascade& c : mCascades) {
+        if (c.group != groupIndex)
+            continue;
+        for (size_t d = 0; d < c.draws.size(); ++d) {
+            const auto& h0 = c.draws[d]->h0();
+            const auto& q = c.draws[d]->omegaMultiple();
+            const size_t base = (static_cast<size_t>(c.firstLayer) + d) * cells;
+            for (int py = 0; py < n; ++py) {
+                for (int px = 0; px < n; ++px) {
+                    const int i = lattice(px), m = lattice(py);
+                    // -k: wave number -n' -> lattice N - i (mod N); the Nyquist index 0 maps to itself.
+                    const int ni = (n - i) % n, nm = (n - m) % n;
+                    const std::complex<double> a = h0[static_cast<size_t>(m) * n + i];
+                    const std::complex<double> b = std::conj(h0[static_cast<size_t>(nm) * n + ni]);
+                    const size_t s = base + static_cast<size_t>(py) * n + px;
+                    pairs[s * 4 + 0] = static_cast<float>(a.real());
+                    pairs[s * 4 + 1] = static_cast<float>(a.imag());
+                    pairs[s * 4 + 2] = static_cast<float>(b.real());
+                    pairs[s * 4 + 3] = static_cast<float>(b.imag());
+                    mult[s] = q[static_cast<size_t>(m) * n + i];
+                }
             }
         }
-        c.h0Pairs.push_back(gl::Buffer::create(pairs.size() * sizeof(float), pairs.data()));
-        c.omegaMultiples.push_back(gl::Buffer::create(mult.size() * sizeof(uint32_t), mult.data()));
     }
+    g.h0Pairs = gl::Buffer::create(pairs.size() * sizeof(float), pairs.data());
+    g.omegaMultiples = gl::Buffer::create(mult.size() * sizeof(uint32_t), mult.data());
 }
 
-void FftGpu::bindBuffers(const Cascade& c, int d) {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mData.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, c.h0Pairs[static_cast<size_t>(d)].id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, c.omegaMultiples[static_cast<size_t>(d)].id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, c.kernels->twiddles.id());
-}
-
-void FftGpu::transform(const Cascade& c, int d, uint32_t word, unsigned firstPlane, unsigned planes) {
-    const GLuint n = static_cast<GLuint>(c.kernels->size);
+void FftGpu::transform(const Group& g, int layers, uint32_t word, unsigned firstPlane, unsigned planes) {
+    const GLuint n = static_cast<GLuint>(g.size);
     const GLuint groups2d = n / TILE_GROUP;
-    bindBuffers(c, d);
-    // 1. htilde(k, t) and the derived spectra.
-    const GLuint spectrum = c.kernels->spectrum.id();
-    glUseProgram(spectrum);
-    glUniform1ui(location(spectrum, "uTimeWord"), word);
-    glUniform1f(location(spectrum, "uDeltaK"),
-                static_cast<float>(2.0 * std::numbers::pi / c.draws.front()->desc().tileSize));
-    glDispatchCompute(groups2d, groups2d, 1);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mData.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.h0Pairs.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g.omegaMultiples.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g.twiddles.id());
+    // 1. htilde(k, t) and the derived spectra, every layer (dispatch z).
+    glUseProgram(g.spectrum.id());
+    glUniform1ui(location(g.spectrum.id(), "uTimeWord"), word);
+    glUniform1fv(location(g.spectrum.id(), "uDeltaK"), static_cast<GLsizei>(g.deltaK.size()),
+                 g.deltaK.data());
+    glDispatchCompute(groups2d, groups2d, static_cast<GLuint>(layers));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
-    // 2-3. Inverse FFT along x (rows), then along y (columns), of planes [firstPlane, firstPlane + planes).
-    const GLuint pass = c.kernels->pass.id();
-    glUseProgram(pass);
-    const int dirLoc = location(pass, "uDirection");
-    glUniform1ui(location(pass, "uPlaneBase"), firstPlane);
+    // 2-3. Inverse FFT along x (rows), then along y (columns): workgroup y = the line's plane among the
+    // `planes` transformed per layer, times the layers.
+    glUseProgram(g.pass.id());
+    const int dirLoc = location(g.pass.id(), "uDirection");
+    glUniform1ui(location(g.pass.id(), "uPlaneBase"), firstPlane);
+    glUniform1ui(location(g.pass.id(), "uPlanesPerLayer"), planes);
     for (int dir = 0; dir < 2; ++dir) {
         glUniform1i(dirLoc, dir);
-        glDispatchCompute(n, planes, 1);
+        glDispatchCompute(n, planes * static_cast<GLuint>(layers), 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
 }
@@ -214,41 +230,36 @@ int FftGpu::updateFoamMemory(double time) {
     const int64_t first = mHaveFoam && j > mFoamStep && j - mFoamStep < FOAM_MEMORY_WINDOW
                               ? mFoamStep + 1
                               : j - FOAM_MEMORY_WINDOW + 1;
-    const Cascade& c0 = mCascades.front();
-    const GLuint groups2d = static_cast<GLuint>(c0.kernels->size) / TILE_GROUP;
-    auto layerOf = [](int64_t step) {
+    const Cascade& c0 = mCascades.front(); // layers [0, draws) of its group
+    const Group& g0 = mGroups[static_cast<size_t>(c0.group)];
+    const GLuint groups2d = static_cast<GLuint>(g0.size) / TILE_GROUP;
+    const int draws = static_cast<int>(c0.draws.size());
+    auto slotOf = [](int64_t step) {
         return static_cast<int>(((step % FOAM_MEMORY_WINDOW) + FOAM_MEMORY_WINDOW) % FOAM_MEMORY_WINDOW);
     };
-    const int draws = static_cast<int>(c0.draws.size());
     int passes = 0;
     glBindImageTexture(2, mFoamSamples.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
     for (int64_t step = first; step <= j; ++step) {
-        const uint32_t word = timeWord(foamStepTime(step), c0.draws.front()->desc().loopPeriod);
-        for (int d = 0; d < draws; ++d) {
-            transform(c0, d, word, 1, 1); // h: plane 1
-            glUseProgram(mFoamSampleProgram.id());
-            glUniform1i(location(mFoamSampleProgram.id(), "uLayer"), d * FOAM_MEMORY_WINDOW + layerOf(step));
-            glDispatchCompute(groups2d, groups2d, 1);
-            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-            passes += 4;
-        }
+        transform(g0, draws, timeWord(foamStepTime(step), c0.draws.front()->desc().loopPeriod), 1,
+                  1); // h: plane 1 of each draw
+        glUseProgram(mFoamSampleProgram.id());
+        glUniform1i(location(mFoamSampleProgram.id(), "uSlot"), slotOf(step));
+        glDispatchCompute(groups2d, groups2d, static_cast<GLuint>(draws));
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        passes += 4;
     }
     glUseProgram(mFoamMemoryProgram.id());
     float weights[FOAM_MEMORY_WINDOW];
     for (int k = 0; k < FOAM_MEMORY_WINDOW; ++k)
         weights[k] = static_cast<float>(std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME));
     glUniform1fv(location(mFoamMemoryProgram.id(), "uWeight"), FOAM_MEMORY_WINDOW, weights);
-    glUniform1i(location(mFoamMemoryProgram.id(), "uNewest"), layerOf(j));
+    glUniform1i(location(mFoamMemoryProgram.id(), "uNewest"), slotOf(j));
     glBindImageTexture(3, mFoamMemory.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
-    for (int d = 0; d < draws; ++d) {
-        glUniform1i(location(mFoamMemoryProgram.id(), "uDraw"), d);
-        glDispatchCompute(groups2d, groups2d, 1);
-        ++passes;
-    }
+    glDispatchCompute(groups2d, groups2d, static_cast<GLuint>(draws));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     mHaveFoam = true;
     mFoamStep = j;
-    return passes;
+    return passes + 1;
 }
 
 SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
@@ -261,8 +272,8 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
         return stats;     // same wrapped time: the maps are already exactly these
     gl::StateGuard guard; // restores the host's program
     if (!mUploaded) {
-        for (Cascade& c : mCascades)
-            upload(c);
+        for (size_t g = 0; g < mGroups.size(); ++g)
+            upload(mGroups[g], static_cast<int>(g));
         mUploaded = true;
         stats.uploads = 1;
     }
@@ -273,25 +284,32 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
         mTotals.uploads += stats.uploads;
         return stats;
     }
-    for (const Cascade& c : mCascades) {
-        for (int d = 0; d < static_cast<int>(c.draws.size()); ++d) {
-            transform(c, d, word, 0, FFT_PLANES);
-            // 4. Unpack into layer d of the maps.
-            const GLuint finalize = c.kernels->finalize.id();
-            glUseProgram(finalize);
-            glUniform1f(location(finalize, "uChoppiness"), static_cast<float>(c.draws[d]->desc().choppiness));
-            glBindImageTexture(0, c.displacement.id(), 0, GL_FALSE, d, GL_WRITE_ONLY, GL_RGBA32F);
-            glBindImageTexture(1, c.slope.id(), 0, GL_FALSE, d, GL_WRITE_ONLY, GL_RGBA32F);
-            const GLuint groups2d = static_cast<GLuint>(c.kernels->size) / TILE_GROUP;
-            glDispatchCompute(groups2d, groups2d, 1);
-            // The scratch planes are rewritten by the next draw's spectrum pass.
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                            GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
-                            GL_SHADER_STORAGE_BARRIER_BIT);
-            stats.computePasses += 4;
+    for (const Group& g : mGroups) {
+        transform(g, g.layers, word, 0, FFT_PLANES);
+        // 4. Unpack every layer into its layer of the maps (dispatch z).
+        glUseProgram(g.finalize.id());
+        glUniform1f(location(g.finalize.id(), "uChoppiness"), static_cast<float>(desc.choppiness));
+        glBindImageTexture(0, g.displacement.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, g.slope.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        const GLuint groups2d = static_cast<GLuint>(g.size) / TILE_GROUP;
+        glDispatchCompute(groups2d, groups2d, static_cast<GLuint>(g.layers));
+        // The scratch planes are rewritten by the next group's spectrum pass.
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                        GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                        GL_SHADER_STORAGE_BARRIER_BIT);
+        // Mip chains of the slope maps for filtered lighting (LEAN-style variance, fft.glsl): every layer
+        // at once, a dispatch per level.
+        glUseProgram(g.mip.id());
+        const int sizeLoc = location(g.mip.id(), "uSize");
+        for (int level = 1, size = g.size / 2; size >= 1; ++level, size /= 2) {
+            glBindImageTexture(0, g.slope.id(), level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
+            glBindImageTexture(1, g.slope.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            glUniform1i(sizeLoc, size);
+            const GLuint groups = static_cast<GLuint>((size + TILE_GROUP - 1) / TILE_GROUP);
+            glDispatchCompute(groups, groups, static_cast<GLuint>(g.layers));
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
         }
-        // Mip chains of the slope maps for filtered lighting (LEAN-style variance, fft.glsl).
-        glGenerateTextureMipmap(c.slope.id());
+        stats.computePasses += 4;
     }
     mHaveMaps = true;
     mLastWord = word;
@@ -310,6 +328,12 @@ void FftGpu::bind(unsigned program, int firstUnit, double time, const glm::dvec3
         memory ? std::exp(-(time - foamStepTime(foamStepIndex(time))) / FOAM_DECAY_TIME) : 0.0;
     glProgramUniform1f(program, location(program, "uFftFoamDecay"), static_cast<float>(decay));
     glBindTextureUnit(static_cast<GLuint>(firstUnit), memory ? mFoamMemory.id() : 0);
+    for (size_t g = 0; g < mGroups.size(); ++g) {
+        glBindTextureUnit(static_cast<GLuint>(firstUnit + 1 + 2 * static_cast<int>(g)),
+                          mGroups[g].displacement.id());
+        glBindTextureUnit(static_cast<GLuint>(firstUnit + 2 + 2 * static_cast<int>(g)),
+                          mGroups[g].slope.id());
+    }
     const int count = static_cast<int>(mCascades.size());
     glProgramUniform1i(program, location(program, "uFftCascades"), count);
     glProgramUniform1i(program, location(program, "uFftDraws"),
@@ -320,23 +344,22 @@ void FftGpu::bind(unsigned program, int firstUnit, double time, const glm::dvec3
         const int ci = i < count ? i : 0;
         const Cascade& c = mCascades[static_cast<size_t>(ci)];
         const std::string idx = "[" + std::to_string(i) + "]";
-        const double tile = c.draws.front()->desc().tileSize;
+        const FftDesc& d = c.draws.front()->desc();
+        const double tile = d.tileSize;
         // fract(camera.xy / L) in double (exact fmod), so the GPU's float sees only [0, 1].
         const glm::vec2 offset(static_cast<float>(wrapPhase(cameraWorld.x, tile) / tile),
                                static_cast<float>(wrapPhase(cameraWorld.y, tile) / tile));
         glProgramUniform2f(program, location(program, ("uFftUvOffset" + idx).c_str()), offset.x, offset.y);
         glProgramUniform1f(program, location(program, ("uFftInvTile" + idx).c_str()),
                            static_cast<float>(1.0 / tile));
-        glProgramUniform1i(program, location(program, ("uFftSize" + idx).c_str()), c.kernels->size);
+        glProgramUniform1i(program, location(program, ("uFftSize" + idx).c_str()), d.size);
+        glProgramUniform1i(program, location(program, ("uFftLayer" + idx).c_str()), c.firstLayer);
         glProgramUniform1f(program, location(program, ("uFftFadeEnd" + idx).c_str()),
                            mSea ? static_cast<float>(mSea->displacementFadeEnd(ci)) : 1.0e30f);
         glProgramUniform1i(program, location(program, ("uFftDisplacement" + idx).c_str()),
-                           firstUnit + 1 + 2 * ci);
-        glProgramUniform1i(program, location(program, ("uFftSlope" + idx).c_str()), firstUnit + 2 + 2 * ci);
-        if (i < count) {
-            glBindTextureUnit(static_cast<GLuint>(firstUnit + 1 + 2 * i), c.displacement.id());
-            glBindTextureUnit(static_cast<GLuint>(firstUnit + 2 + 2 * i), c.slope.id());
-        }
+                           firstUnit + 1 + 2 * c.group);
+        glProgramUniform1i(program, location(program, ("uFftSlope" + idx).c_str()),
+                           firstUnit + 2 + 2 * c.group);
         // The mix angle's terms about the camera: sin(k.(camera + rel) + phase) = sin(psi + k.rel) with
         // psi = wrap(k.camera + phase, 2 pi) formed in double, so the float sees only k.rel.
         for (int j = 0; j < FFT_MIX_TERMS && mSea && i < count; ++j) {
@@ -353,7 +376,8 @@ void FftGpu::bind(unsigned program, int firstUnit, double time, const glm::dvec3
 std::vector<float> FftGpu::readFoamMemory() const {
     if (!mFoamMemory)
         return {};
-    const int n = mCascades.front().kernels->size, draws = static_cast<int>(mCascades.front().draws.size());
+    const Cascade& c0 = mCascades.front();
+    const int n = c0.draws.front()->desc().size, draws = static_cast<int>(c0.draws.size());
     std::vector<float> all(static_cast<size_t>(n) * n * draws);
     glGetTextureImage(mFoamMemory.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(all.size() * sizeof(float)),
                       all.data());
@@ -375,13 +399,14 @@ std::vector<float> readLayer(unsigned texture, int level, int size, int layers, 
 
 std::vector<float> FftGpu::readDisplacementMap(int cascade, int draw) const {
     const Cascade& c = mCascades.at(static_cast<size_t>(cascade));
-    return readLayer(c.displacement.id(), 0, c.kernels->size, static_cast<int>(c.draws.size()), draw);
+    const Group& g = mGroups[static_cast<size_t>(c.group)];
+    return readLayer(g.displacement.id(), 0, g.size, g.layers, c.firstLayer + draw);
 }
 
 std::vector<float> FftGpu::readSlopeMap(int level, int cascade, int draw) const {
     const Cascade& c = mCascades.at(static_cast<size_t>(cascade));
-    return readLayer(c.slope.id(), level, std::max(1, c.kernels->size >> level),
-                     static_cast<int>(c.draws.size()), draw);
+    const Group& g = mGroups[static_cast<size_t>(c.group)];
+    return readLayer(g.slope.id(), level, std::max(1, g.size >> level), g.layers, c.firstLayer + draw);
 }
 
 } // namespace pacifica::ocean
