@@ -10,6 +10,9 @@ function(pacifica_target_defaults tgt)
     endif()
 endfunction()
 
+# Bytes per embedded string literal (pacifica_embed_files): under MSVC's 16380-byte limit per literal.
+set(PACIFICA_EMBED_CHUNK 12000)
+
 # pacifica_embed_files(OUT_CPP NAMESPACE ns FILES a.glsl b.glsl)
 # Writes a .cpp that defines `std::string_view ns::find(std::string_view name)` returning the file's text,
 # so installed libraries carry their shaders and error messages can still name the original file.
@@ -22,8 +25,31 @@ function(pacifica_embed_files out_cpp)
     foreach(f IN LISTS ARG_FILES)
         get_filename_component(name ${f} NAME)
         file(READ ${f} text)
-        # Raw string literals with a delimiter no shader uses; split long files to stay under limits.
-        string(APPEND body "    {\"${name}\", R\"PACIFICA_EMBED(${text})PACIFICA_EMBED\"},\n")
+        # Raw string literals with a delimiter no shader uses, one per PACIFICA_EMBED_CHUNK bytes: adjacent
+        # literals concatenate, and no single one exceeds MSVC's 16380-byte limit (error C2026).
+        string(LENGTH "${text}" length)
+        set(literals "")
+        set(start 0)
+        while(start LESS length)
+            string(SUBSTRING "${text}" ${start} ${PACIFICA_EMBED_CHUNK} chunk)
+            # End a chunk after its last newline (a line never straddles two literals, nor does a UTF-8
+            # character in a comment).
+            string(LENGTH "${chunk}" taken)
+            math(EXPR rest "${length} - ${start} - ${taken}")
+            if(rest GREATER 0)
+                string(FIND "${chunk}" "\n" newline REVERSE)
+                if(newline GREATER_EQUAL 0)
+                    math(EXPR taken "${newline} + 1")
+                    string(SUBSTRING "${chunk}" 0 ${taken} chunk)
+                endif()
+            endif()
+            string(APPEND literals "\n        R\"PACIFICA_EMBED(${chunk})PACIFICA_EMBED\"")
+            math(EXPR start "${start} + ${taken}")
+        endwhile()
+        if(length EQUAL 0)
+            set(literals "\"\"")
+        endif()
+        string(APPEND body "    {\"${name}\",${literals}},\n")
         set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${f})
     endforeach()
     string(APPEND body "};\n} // namespace\n")

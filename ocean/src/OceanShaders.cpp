@@ -20,48 +20,75 @@ std::string_view shaderText(std::string_view name) {
     return text;
 }
 
+namespace {
+
+/// "#define NAME value" lines, the string grown as they are added (no fixed-size buffer to outgrow). Reals
+/// are written with 9 significant digits ("%.9g": a float round-trips; the doubles here need no more).
+class Defines {
+public:
+    Defines& add(const char* name, double value) {
+        char number[32]; // "%.9g" of a double: at most 16 characters
+        std::snprintf(number, sizeof number, "%.9g", value);
+        return line(name, number);
+    }
+    Defines& add(const char* name, float value) { return add(name, static_cast<double>(value)); }
+    Defines& add(const char* name, int value) { return line(name, std::to_string(value)); }
+    std::string text;
+
+private:
+    Defines& line(const char* name, const std::string& value) {
+        text += "#define ";
+        text += name;
+        text += ' ';
+        text += value;
+        text += '\n';
+        return *this;
+    }
+};
+
+} // namespace
+
 std::string shaderConstantDefines() {
-    char buf[512];
-    std::snprintf(buf, sizeof buf,
-                  "#define MAX_OCTAVES %d\n#define GRAVITY %.9g\n#define WATER_F0 %.9g\n"
-                  "#define DEEP_WATER_R %.9g\n#define DEEP_WATER_G %.9g\n#define DEEP_WATER_B %.9g\n"
-                  "#define EARTH_RADIUS %.9g\n",
-                  MAX_OCTAVES, GRAVITY, WATER_F0, static_cast<double>(DEEP_WATER_COLOR[0]),
-                  static_cast<double>(DEEP_WATER_COLOR[1]), static_cast<double>(DEEP_WATER_COLOR[2]),
-                  EARTH_RADIUS);
+    Defines d;
+    d.add("MAX_OCTAVES", MAX_OCTAVES)
+        .add("GRAVITY", GRAVITY)
+        .add("WATER_F0", WATER_F0)
+        .add("DEEP_WATER_R", DEEP_WATER_COLOR[0])
+        .add("DEEP_WATER_G", DEEP_WATER_COLOR[1])
+        .add("DEEP_WATER_B", DEEP_WATER_COLOR[2])
+        .add("EARTH_RADIUS", EARTH_RADIUS);
     // Shading constants (ocean.frag, sky.glsl).
-    char shading[1024];
-    std::snprintf(
-        shading, sizeof shading,
-        "#define WATER_IOR %.9g\n#define WATER_EXT_R %.9g\n#define WATER_EXT_G %.9g\n"
-        "#define WATER_EXT_B %.9g\n#define WATER_SCATTER_DEPTH %.9g\n#define FOAM_ALBEDO %.9g\n"
-        "#define SUN_DIFFUSE_SCALE %.9g\n#define FOAM_TILE_NEAR %.9g\n#define FOAM_TILE_FAR %.9g\n"
-        "#define FOAM_FADE_START %.9g\n#define FOAM_FADE_END %.9g\n#define FOG_NOISE_TILE %.9g\n"
-        "#define FOG_NOISE_TILE_VERTICAL %.9g\n#define ENVIRONMENT_HORIZON_BINS %d\n"
-        "#define WATER_SCATTERING %.9g\n#define CREST_SCATTER_G %.9g\n#define CREST_SCATTER_PATH %.9g\n"
-        "#define FOAM_EDGE %.9g\n#define FOAM_PATTERN_SIZE %d\n#define FOG_NOISE_TILE_2 %.9g\n"
-        "#define FOG_NOISE_TILE_VERTICAL_2 %.9g\n#define FOG_NOISE_WARP %.9g\n",
-        WATER_IOR, static_cast<double>(WATER_EXTINCTION[0]), static_cast<double>(WATER_EXTINCTION[1]),
-        static_cast<double>(WATER_EXTINCTION[2]), static_cast<double>(WATER_SCATTER_DEPTH),
-        static_cast<double>(FOAM_ALBEDO), static_cast<double>(SUN_DIFFUSE_SCALE), FOAM_TILE_NEAR,
-        FOAM_TILE_FAR, static_cast<double>(FOAM_FADE_START), static_cast<double>(FOAM_FADE_END),
-        FOG_NOISE_TILE, FOG_NOISE_TILE_VERTICAL, ENVIRONMENT_HORIZON_BINS,
-        static_cast<double>(WATER_SCATTERING), static_cast<double>(CREST_SCATTER_G),
-        static_cast<double>(CREST_SCATTER_PATH), FOAM_EDGE, FOAM_PATTERN_SIZE, FOG_NOISE_TILE_2,
-        FOG_NOISE_TILE_VERTICAL_2, FOG_NOISE_WARP);
+    d.add("WATER_IOR", WATER_IOR)
+        .add("WATER_EXT_R", WATER_EXTINCTION[0])
+        .add("WATER_EXT_G", WATER_EXTINCTION[1])
+        .add("WATER_EXT_B", WATER_EXTINCTION[2])
+        .add("WATER_SCATTER_DEPTH", WATER_SCATTER_DEPTH)
+        .add("FOAM_ALBEDO", FOAM_ALBEDO)
+        .add("SUN_DIFFUSE_SCALE", SUN_DIFFUSE_SCALE)
+        .add("FOAM_TILE_NEAR", FOAM_TILE_NEAR)
+        .add("FOAM_TILE_FAR", FOAM_TILE_FAR)
+        .add("FOAM_FADE_START", FOAM_FADE_START)
+        .add("FOAM_FADE_END", FOAM_FADE_END)
+        .add("FOG_NOISE_TILE", FOG_NOISE_TILE)
+        .add("FOG_NOISE_TILE_VERTICAL", FOG_NOISE_TILE_VERTICAL)
+        .add("ENVIRONMENT_HORIZON_BINS", ENVIRONMENT_HORIZON_BINS)
+        .add("WATER_SCATTERING", WATER_SCATTERING)
+        .add("CREST_SCATTER_G", CREST_SCATTER_G)
+        .add("CREST_SCATTER_PATH", CREST_SCATTER_PATH)
+        .add("FOAM_EDGE", FOAM_EDGE)
+        .add("FOAM_PATTERN_SIZE", FOAM_PATTERN_SIZE)
+        .add("FOG_NOISE_TILE_2", FOG_NOISE_TILE_2)
+        .add("FOG_NOISE_TILE_VERTICAL_2", FOG_NOISE_TILE_VERTICAL_2)
+        .add("FOG_NOISE_WARP", FOG_NOISE_WARP);
     // Living whitecaps of the FFT and Gerstner seas (fft_foam.comp, gerstner.glsl).
-    char memory[256];
-    std::snprintf(
-        memory, sizeof memory,
-        "#define FOAM_MEMORY_WINDOW %d\n#define FOAM_MEMORY_STEP %.9g\n#define FOAM_DECAY_TIME %.9g\n",
-        FOAM_MEMORY_WINDOW, FOAM_MEMORY_STEP, FOAM_DECAY_TIME);
-    // The FFT sea's cascades (fft.glsl's sampler arrays).
-    char mixAmplitude[64];
-    std::snprintf(mixAmplitude, sizeof mixAmplitude, "%.9g", FFT_MIX_AMPLITUDE);
-    const std::string fft = "#define FFT_MAX_CASCADES " + std::to_string(FFT_MAX_CASCADES) +
-                            "\n#define FFT_MIX_TERMS " + std::to_string(FFT_MIX_TERMS) +
-                            "\n#define FFT_MIX_AMPLITUDE " + mixAmplitude + "\n";
-    return std::string(buf) + shading + memory + fft;
+    d.add("FOAM_MEMORY_WINDOW", FOAM_MEMORY_WINDOW)
+        .add("FOAM_MEMORY_STEP", FOAM_MEMORY_STEP)
+        .add("FOAM_DECAY_TIME", FOAM_DECAY_TIME);
+    // The FFT sea's cascades (fft.glsl's sampler arrays and mix).
+    d.add("FFT_MAX_CASCADES", FFT_MAX_CASCADES)
+        .add("FFT_MIX_TERMS", FFT_MIX_TERMS)
+        .add("FFT_MIX_AMPLITUDE", FFT_MIX_AMPLITUDE);
+    return d.text;
 }
 
 } // namespace pacifica::ocean

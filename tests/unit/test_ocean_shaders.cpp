@@ -1,0 +1,86 @@
+// The ocean's embedded shaders and generated #defines: every file under ocean/shaders is embedded byte for
+// byte; no embedded string literal exceeds MSVC's 16380-byte limit (the embedder splits long files at line
+// ends into adjacent literals); shaderConstantDefines() holds each constant once, with its value. No GL.
+#include "ocean/OceanConstants.h"
+#include "ocean/OceanShaders.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+using namespace pacifica::ocean;
+
+namespace {
+
+std::string readFile(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+} // namespace
+
+TEST(OceanShaders, EveryShaderFileIsEmbeddedByteForByte) {
+    const std::filesystem::path dir =
+        std::filesystem::path(PACIFICA_SOURCE_DIR_FOR_TESTS) / "ocean" / "shaders";
+    int files = 0;
+    size_t longest = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        const std::string disk = readFile(entry.path());
+        EXPECT_EQ(std::string(shaderText(name)), disk) << name;
+        longest = std::max(longest, disk.size());
+        ++files;
+    }
+    EXPECT_GE(files, 25);
+    EXPECT_GT(longest, 16380u) << "the test is meant to cover a file longer than one literal may be";
+    EXPECT_THROW(shaderText("no-such.glsl"), std::out_of_range);
+}
+
+TEST(OceanShaders, NoEmbeddedLiteralExceedsMsvcsLimit) {
+    const std::string generated = readFile(PACIFICA_OCEAN_EMBEDDED_CPP);
+    ASSERT_FALSE(generated.empty()) << PACIFICA_OCEAN_EMBEDDED_CPP;
+    const std::string open = "R\"PACIFICA_EMBED(", close = ")PACIFICA_EMBED\"";
+    size_t pos = 0, literals = 0, longest = 0;
+    while ((pos = generated.find(open, pos)) != std::string::npos) {
+        const size_t begin = pos + open.size(), end = generated.find(close, begin);
+        ASSERT_NE(end, std::string::npos);
+        longest = std::max(longest, end - begin);
+        ++literals;
+        pos = end + close.size();
+    }
+    std::printf("%zu literals, the longest %zu bytes\n", literals, longest);
+    EXPECT_LE(longest, 16380u);
+    EXPECT_GT(literals, 25u); // more literals than files: the long ones are split
+}
+
+TEST(OceanShaders, ConstantDefinesHoldEachConstantOnce) {
+    const std::string d = shaderConstantDefines();
+    auto expectLine = [&](const std::string& line) {
+        const size_t at = d.find(line + "\n");
+        EXPECT_NE(at, std::string::npos) << line;
+        EXPECT_EQ(d.find(line + "\n", at + 1), std::string::npos) << line << " twice";
+    };
+    expectLine("#define MAX_OCTAVES " + std::to_string(MAX_OCTAVES));
+    expectLine("#define GRAVITY 9.81");
+    expectLine("#define WATER_F0 0.02");
+    expectLine("#define FOAM_PATTERN_SIZE " + std::to_string(FOAM_PATTERN_SIZE));
+    expectLine("#define FOG_NOISE_TILE_2 7416.4");
+    expectLine("#define FOAM_MEMORY_WINDOW " + std::to_string(FOAM_MEMORY_WINDOW));
+    expectLine("#define FFT_MAX_CASCADES " + std::to_string(FFT_MAX_CASCADES));
+    expectLine("#define FFT_MIX_AMPLITUDE 1.5");
+    // Every line is a define; 35 constants.
+    size_t lines = 0;
+    for (size_t at = 0; (at = d.find('\n', at)) != std::string::npos; ++at)
+        ++lines;
+    EXPECT_EQ(lines, 35u);
+    EXPECT_EQ(d.rfind("#define ", 0), 0u);
+    EXPECT_EQ(d.back(), '\n');
+}
