@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The near sea against the look reference: `pacifica replay` renders the reference's 2 m and 50 m views (U10 =
 9 m/s, sun 30 degrees up and 30 degrees right of the view, the camera looking downwind, 1280x720, vertical fov
-60 degrees, pitch -5 degrees; docs/LOOK.md, "The clear sky") with the default model, and the sparkle of its
-glitter must be at least half the reference frame's.
+60 degrees, pitch -5 degrees; docs/LOOK.md, "The clear sky") with the default model and with the FFT sea
+(`--model fft`, its cascades: docs/LOOK.md, "The FFT sea"), and the sparkle of each one's glitter must be at
+least half the reference frame's.
 
 Sparkle: in the glitter region (the right half of the 640x360 frame from 6 rows below the horizon down), the
 RMS of the luminance minus its 3x3 box mean (the high-frequency energy), over the mean luminance; luminance of
@@ -27,6 +28,7 @@ from pngread import read_png  # noqa: E402
 
 SKIP = 77
 VIEWS = {"2m": 2.0, "50m": 50.0}
+MODELS = {"default": [], "fft": ["--model", "fft"]}
 HORIZON_ROW = 150  # pitch -5 degrees in a 60-degree, 360-row frame: 180 - 5 / 30 * 180
 MIN_RATIO = 0.5
 
@@ -67,32 +69,36 @@ def main():
         return SKIP
     tmp = tempfile.mkdtemp(prefix="pacifica-look-reference-")
     failed = []
-    for view, z in VIEWS.items():
-        flight = os.path.join(tmp, f"view_{view}.csv")
-        with open(flight, "w", encoding="utf-8") as f:
-            f.write("time_s,x_m,y_m,z_m,heading_deg,pitch_deg,roll_deg\n")
-            f.write(f"0.0,0,0,{z},60,-5,0\n1.0,0,0,{z},60,-5,0\n")
-        out = os.path.join(tmp, view)
-        proc = subprocess.run([exe, "replay", flight, "--out", out, "--size", "1280x720", "--sea-state", "9",
-                               "--sun-elevation", "30", "--sun-azimuth", "90", "--no-events", "--start", "0",
-                               "--end", "0", "--no-progress"], capture_output=True, text=True, timeout=300)
-        if proc.returncode != 0:
-            failed.append(f"{view}: replay exited {proc.returncode}: {proc.stderr[-1500:]}")
-            continue
-        small = os.path.join(tmp, f"{view}_640.png")
-        subprocess.run(["oiiotool", os.path.join(out, "frame_00000.png"), "--ch", "R,G,B", "--resize", "640x360",
-                        "-d", "uint8", "-o", small], check=True)
-        ours, ref = sparkle(small), sparkle(refs[view])
-        ok = ours >= MIN_RATIO * ref
-        print(f"  {'ok  ' if ok else 'FAIL'}  {view}: sparkle {ours:.4f}, reference {ref:.4f} "
-              f"(ratio {ours / ref:.2f}, bound {MIN_RATIO})")
-        if not ok:
-            failed.append(f"{view}: sparkle {ours:.4f} < {MIN_RATIO} x reference {ref:.4f}")
+    cases = 0
+    for model, extra in MODELS.items():
+        for view, z in VIEWS.items():
+            flight = os.path.join(tmp, f"view_{view}.csv")
+            with open(flight, "w", encoding="utf-8") as f:
+                f.write("time_s,x_m,y_m,z_m,heading_deg,pitch_deg,roll_deg\n")
+                f.write(f"0.0,0,0,{z},60,-5,0\n1.0,0,0,{z},60,-5,0\n")
+            out = os.path.join(tmp, f"{model}_{view}")
+            proc = subprocess.run([exe, "replay", flight, "--out", out, "--size", "1280x720", "--sea-state", "9",
+                                   "--sun-elevation", "30", "--sun-azimuth", "90", "--no-events", "--start", "0",
+                                   "--end", "0", "--no-progress"] + extra,
+                                  capture_output=True, text=True, timeout=300)
+            cases += 1
+            if proc.returncode != 0:
+                failed.append(f"{model} {view}: replay exited {proc.returncode}: {proc.stderr[-1500:]}")
+                continue
+            small = os.path.join(tmp, f"{model}_{view}_640.png")
+            subprocess.run(["oiiotool", os.path.join(out, "frame_00000.png"), "--ch", "R,G,B", "--resize",
+                            "640x360", "-d", "uint8", "-o", small], check=True)
+            ours, ref = sparkle(small), sparkle(refs[view])
+            ok = ours >= MIN_RATIO * ref
+            print(f"  {'ok  ' if ok else 'FAIL'}  {model} {view}: sparkle {ours:.4f}, reference {ref:.4f} "
+                  f"(ratio {ours / ref:.2f}, bound {MIN_RATIO})")
+            if not ok:
+                failed.append(f"{model} {view}: sparkle {ours:.4f} < {MIN_RATIO} x reference {ref:.4f}")
     if failed:
         print("FAILED:\n  " + "\n  ".join(failed) + f"\n(temp dir kept: {tmp})")
         return 1
     shutil.rmtree(tmp, ignore_errors=True)
-    print(f"{len(VIEWS)} passed, 0 failed")
+    print(f"{cases} passed, 0 failed")
     return 0
 
 
