@@ -108,7 +108,8 @@ vec3 fftDisplacement(sampler2DArray map, int c, vec2 rel) {
 
 vec3 modelDisplacement(vec2 rel) { FFT_CASCADE_SUM(vec3, fftDisplacement, uFftDisplacement) }
 
-// Foam inputs (ocean.frag): (h, J) of cascade 0, bilinear from the same texels as modelDisplacement — J is
+// Foam inputs (ocean.frag): (h, J) of cascade 0 (h plus cascade 1's height), bilinear from the same texels
+// as modelDisplacement — J is
 // the Jacobian determinant of the choppy map, computed with the displacement (fft_finalize.comp; Tessendorf
 // 2001 §4.4); the whitecaps follow the largest waves (FftCascades::foamHeightAt). With the living whitecaps
 // (uFftFoamMemory, FftDesc::foamMemory) h is the remembered crest height, max(h, decay * M) with M the
@@ -138,6 +139,17 @@ vec2 modelFoamInputs(vec2 rel) {
             m += w.y >= 0.0 ? w.y * mb.r : -w.y * mb.g;
         }
         hj.x = max(hj.x, uFftFoamDecay * m);
+    }
+    // Cascade 1's shorter waves riding on the crests (FftCascades::foamHeightAt): ragged whitecaps of many
+    // sizes instead of the long crests' smooth caps. Bilinear from its texels, unfaded.
+    if (uFftCascades > 1) {
+        FftCell cell1 = fftCell(1, rel);
+        float h1 = fftBilinear(uFftDisplacement[1], cell1, uFftLayer[1]).z;
+        if (uFftDraws > 1) {
+            vec2 w1 = fftMixWeights(1, rel);
+            h1 = w1.x * h1 + w1.y * fftBilinear(uFftDisplacement[1], cell1, uFftLayer[1] + 1).z;
+        }
+        hj.x += h1;
     }
     return hj;
 }

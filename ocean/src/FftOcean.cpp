@@ -505,19 +505,35 @@ double FftCascades::foamHeightAt(const glm::dvec2& xy, double t) const {
 }
 
 std::vector<double> FftCascades::foamHeightsAt(const glm::dvec2& xy, const std::vector<double>& times) const {
-    if (mSecond.empty())
-        return mCascades.front()->foamHeightsAt(xy, times);
-    const glm::dvec2 w = mixWeights(0, xy);
-    const auto a = mCascades.front()->crestMemoriesAt(xy, times);
-    const auto b = mSecond.front()->crestMemoriesAt(xy, times);
-    auto remembered = [](const FftOcean::CrestMemory& m, double weight) {
-        return weight >= 0.0 ? weight * m.up : -weight * m.down;
-    };
     std::vector<double> out;
-    out.reserve(times.size());
-    for (size_t i = 0; i < times.size(); ++i) {
-        const double h = w.x * a[i].height + w.y * b[i].height;
-        out.push_back(mDesc.foamMemory ? std::max(h, remembered(a[i], w.x) + remembered(b[i], w.y)) : h);
+    if (mSecond.empty()) {
+        out = mCascades.front()->foamHeightsAt(xy, times);
+    } else {
+        const glm::dvec2 w = mixWeights(0, xy);
+        const auto a = mCascades.front()->crestMemoriesAt(xy, times);
+        const auto b = mSecond.front()->crestMemoriesAt(xy, times);
+        auto remembered = [](const FftOcean::CrestMemory& m, double weight) {
+            return weight >= 0.0 ? weight * m.up : -weight * m.down;
+        };
+        out.reserve(times.size());
+        for (size_t i = 0; i < times.size(); ++i) {
+            const double h = w.x * a[i].height + w.y * b[i].height;
+            out.push_back(mDesc.foamMemory ? std::max(h, remembered(a[i], w.x) + remembered(b[i], w.y)) : h);
+        }
+    }
+    // The shorter waves riding on the crests (cascade 1's height, mixed): they break the long crests'
+    // smooth caps into ragged patches of many sizes. Heights only (crestMemoriesAt's one O(N^2) pass per
+    // point), no memory of their own.
+    if (mCascades.size() > 1) {
+        const glm::dvec2 w = mixWeights(1, xy);
+        const auto a = mCascades[1]->crestMemoriesAt(xy, times);
+        for (size_t i = 0; i < times.size(); ++i)
+            out[i] += w.x * a[i].height;
+        if (!mSecond.empty()) {
+            const auto b = mSecond[1]->crestMemoriesAt(xy, times);
+            for (size_t i = 0; i < times.size(); ++i)
+                out[i] += w.y * b[i].height;
+        }
     }
     return out;
 }

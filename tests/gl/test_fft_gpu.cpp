@@ -516,8 +516,9 @@ TEST(FftFoamMemory, FoamOutlivesTheCrest) {
 //    above) and coordinate error (1e-4 m x slopes ~0.3 for rel <= 250 m) sum to <~ 1e-4 Hs over 8 draws;
 //    the float mix angle sin(psi + k.rel) is off by ~|k.rel| 2^-23 ~ 3e-5 rad for the finest tile (a
 //    relative error of the cascade's part). Bound 2e-4 Hs.
-//  - foam inputs at cascade 0's grid nodes, where the bilinear is the texel: the height and the remembered
-//    crests equal foamHeightAt (the memory maps as above, 1e-4 Hs).
+//  - foam inputs at cascade 0's grid nodes, which are cascade 1's nodes too with the tile ratio 4, where the
+//    bilinear is the texel: the height, the remembered crests and cascade 1's height equal foamHeightAt (the
+//    memory maps as above, 1e-4 Hs).
 // And the mix is not trivial: the sea differs from draw A's alone by more than 0.05 Hs somewhere.
 TEST(FftCascadesGpu, ShaderMatchesTheCpuTwinAroundCameras) {
     ASSERT_TRUE(context());
@@ -525,6 +526,7 @@ TEST(FftCascadesGpu, ShaderMatchesTheCpuTwinAroundCameras) {
     d.size = 64;
     d.detailSize = 32;
     d.tileSize = 800.0;
+    d.cascadeRatio = 4.0; // cascade 1's nodes (6.25 m) include cascade 0's (12.5 m): foam compared there
     const auto sea = std::make_shared<const ocean::FftCascades>(d);
     FftGpu gpu(sea);
     EXPECT_EQ(gpu.cascadeCount(), 4);

@@ -489,7 +489,8 @@ TEST(FftCascadesMix, LatticeShiftsNoLongerCorrelate) {
 }
 
 // The mixed sea is the weighted sum of its draws, in displacement and in the derivatives the normal and the
-// Jacobian come from; the foam height is max(h, the remembered crests of the signed draws).
+// Jacobian come from; the foam height is max(h, the remembered crests of the signed draws) of cascade 0 plus
+// cascade 1's height.
 TEST(FftCascadesSurface, IsTheMixOfItsDraws) {
     FftDesc d;
     d.size = 32;
@@ -519,7 +520,12 @@ TEST(FftCascadesSurface, IsTheMixOfItsDraws) {
     const double h = w.x * a[0].height + w.y * b[0].height;
     const double m =
         (w.x >= 0 ? w.x * a[0].up : -w.x * a[0].down) + (w.y >= 0 ? w.y * b[0].up : -w.y * b[0].down);
-    EXPECT_NEAR(sea.foamHeightAt(x, t), std::max(h, m), 1e-12);
+    // Plus cascade 1's mixed height: its shorter waves riding on the crests.
+    const glm::dvec2 w1 = sea.mixWeights(1, x);
+    const double h1 = w1.x * sea.cascades()[1]->displacementAt(x, t).z +
+                      w1.y * sea.secondDraws()[1]->displacementAt(x, t).z;
+    EXPECT_NEAR(sea.foamHeightAt(x, t), std::max(h, m) + h1, 1e-9);
+    EXPECT_GT(std::abs(h1), 1e-3) << "cascade 1 takes part";
     EXPECT_NEAR(a[0].height, sea.cascades()[0]->displacementAt(x, t).z, 1e-9);
     EXPECT_GE(a[0].up, 0.0);
     EXPECT_GE(a[0].down, 0.0);

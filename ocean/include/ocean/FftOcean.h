@@ -183,9 +183,10 @@ private:
 /// (mixWeights), A and B two draws (seeds seed + c and seed + 64 + c). The derivatives are w_A dA + w_B dB:
 /// theta's own gradient (RMS 6.4 / L_c rad/m) is left out, a few percent of the slopes, so the normal is the
 /// one the GPU lights.
-/// The living whitecaps follow the largest cascade (its crests are the ones that break): foamHeightAt is
-/// max(h, w_A M_A + w_B M_B) of cascade 0, with h = w_A h_A + w_B h_B and M the draw's decayed memory of the
-/// crests of +h for a positive weight, of -h for a negative one (FftOcean::crestMemoriesAt; |w| multiplies).
+/// The living whitecaps follow the largest cascade (its crests are the ones that break) with the next one's
+/// waves riding on them: foamHeightAt is max(h, w_A M_A + w_B M_B) of cascade 0, with h = w_A h_A + w_B h_B
+/// and M the draw's decayed memory of the crests of +h for a positive weight, of -h for a negative one
+/// (FftOcean::crestMemoriesAt; |w| multiplies), plus cascade 1's mixed height (no memory of its own).
 class FftCascades final : public SurfaceModel {
 public:
     /// Validates `desc` (std::invalid_argument naming the field) and draws every cascade.
