@@ -17,6 +17,8 @@
 //   2. auto sea = std::make_shared<const FftOcean>(d);   // validates, draws h0(k) (deterministic per seed)
 //   3. CPU queries: sea->displacementAt(xy, t), normalAt, jacobianAt, heightAt (any t: time loops with T)
 //   4. GPU: FftGpu gpu(sea) (ocean/src/gpu/FftGpu.h); per frame gpu.update(t, camera); gpu.bind(program, ...)
+// The sea an OceanDesc asks for is FftCascades (below): several such tiles, each its band of the spectrum
+// and two draws mixed so that no tile repeats; FftOcean is one of its tiles (and the single-tile reference).
 //
 // Conventions (shared with the GPU, ocean/shaders/fft_*.comp):
 //   - Lattice index (n, m) in [0, N)^2 stands for the wave vector k = 2 pi (n - N/2, m - N/2) / L;
