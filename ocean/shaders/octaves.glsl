@@ -179,13 +179,38 @@ float combinedHeight(vec2 rel) {
 // (LEAN mapping, Olano & Baker 2010), which the lighting adds to the specular roughness. The same fetches
 // give the living whitecaps' foam height: a displaced octave's map carries its foam memory in the channel the
 // lighting does not read (OctaveMap::foam, HeightOctaves::foamHeightAt), summed into gOctaveFoam.
+// The lighting-only octaves' aperiodic mix (HeightOctavesDesc::aperiodic): w = (cos theta, sin theta),
+// theta = FFT_MIX_AMPLITUDE sum_j sin(psi_j + k_j . rel) with psi_j formed in double about the camera
+// (aperiodicMixWeights, SurfaceModel.h); B is the map shifted by OCTAVE_MIX_SHIFT tiles.
+uniform bool uOctaveAperiodic;
+uniform vec3 uOctaveMix[MAX_OCTAVES * FFT_MIX_TERMS]; // (k_x, k_y, psi) per octave and term
+vec2 octaveMixWeights(int i, vec2 rel) {
+    float theta = 0.0;
+    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+        vec3 m = uOctaveMix[i * FFT_MIX_TERMS + j];
+        theta += sin(m.z + dot(m.xy, rel));
+    }
+    theta *= FFT_MIX_AMPLITUDE;
+    return vec2(cos(theta), sin(theta));
+}
+
 float gOctaveFoam = 0.0;
 vec3 filteredGradient(vec2 rel) {
     vec3 g = vec3(0.0);
     float foam = 0.0;
     for (int i = 0; i < uOctaveCount; ++i) {
-        vec4 d = GRID_TEXTURE(uLightNow, vec3(octaveUv(i, rel), float(i)), uInvTile[i]);
+        vec2 uv = octaveUv(i, rel);
+        vec4 d = GRID_TEXTURE(uLightNow, vec3(uv, float(i)), uInvTile[i]);
         float scale = uAmplitude[i] * uInvTile[i];
+        if (uOctaveAperiodic && i >= uDisplacedCount) {
+            vec4 e = GRID_TEXTURE(uLightNow, vec3(uv + vec2(OCTAVE_MIX_SHIFT_U, OCTAVE_MIX_SHIFT_V), float(i)),
+                                  uInvTile[i]);
+            vec2 w = octaveMixWeights(i, rel);
+            g.xy += scale * (w.x * d.yz + w.y * e.yz);
+            g.z += scale * scale *
+                   (w.x * w.x * max(d.w - dot(d.yz, d.yz), 0.0) + w.y * w.y * max(e.w - dot(e.yz, e.yz), 0.0));
+            continue; // a lighting-only octave carries no foam
+        }
         g.xy += scale * d.yz;
         g.z += scale * scale * max(d.w - dot(d.yz, d.yz), 0.0);
         foam += i < uDisplacedCount ? uAmplitude[i] * d.x : 0.0;

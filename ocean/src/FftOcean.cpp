@@ -416,24 +416,13 @@ FftCascades::FftCascades(const FftDesc& desc) : mDesc(desc) {
 }
 
 glm::dvec3 FftCascades::mixTerm(int c, int j) const {
-    const double tile = mCascades.at(static_cast<size_t>(c))->desc().tileSize;
-    const double k = kTwoPi / (FFT_MIX_WAVELENGTHS[j] * tile);
-    const double a = FFT_MIX_DIRECTIONS_DEG[j] * std::numbers::pi / 180.0;
-    // Phases from the golden ratio's fractional parts, a different set per cascade.
-    const double phase = kTwoPi * std::fmod(0.5 + 0.6180339887498949 * (j + FFT_MIX_TERMS * c), 1.0);
-    return {k * std::sin(a), k * std::cos(a), phase};
+    return aperiodicMixTerm(mCascades.at(static_cast<size_t>(c))->desc().tileSize, c, j);
 }
 
 glm::dvec2 FftCascades::mixWeights(int c, const glm::dvec2& xy) const {
     if (!mDesc.aperiodic)
         return {1.0, 0.0};
-    double theta = 0.0;
-    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
-        const glm::dvec3 m = mixTerm(c, j);
-        theta += std::sin(m.x * xy.x + m.y * xy.y + m.z); // the argument's rounding: ~1e-16 of it
-    }
-    theta *= FFT_MIX_AMPLITUDE;
-    return {std::cos(theta), std::sin(theta)};
+    return aperiodicMixWeights(mCascades.at(static_cast<size_t>(c))->desc().tileSize, c, xy);
 }
 
 glm::dvec3 FftCascades::displacementAt(const glm::dvec2& xy, double t) const {

@@ -87,7 +87,9 @@ std::string shaderConstantDefines() {
     // The FFT sea's cascades (fft.glsl's sampler arrays and mix).
     d.add("FFT_MAX_CASCADES", FFT_MAX_CASCADES)
         .add("FFT_MIX_TERMS", FFT_MIX_TERMS)
-        .add("FFT_MIX_AMPLITUDE", FFT_MIX_AMPLITUDE);
+        .add("FFT_MIX_AMPLITUDE", FFT_MIX_AMPLITUDE)
+        .add("OCTAVE_MIX_SHIFT_U", OCTAVE_MIX_SHIFT_U)
+        .add("OCTAVE_MIX_SHIFT_V", OCTAVE_MIX_SHIFT_V);
     return d.text;
 }
 

@@ -4,6 +4,7 @@
 #include "ocean/OceanConstants.h"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 namespace pacifica::ocean {
@@ -28,6 +29,25 @@ int64_t foamStepIndex(double t) {
 
 double foamStepTime(int64_t j) {
     return static_cast<double>(j) * FOAM_MEMORY_STEP;
+}
+
+glm::dvec3 aperiodicMixTerm(double tile, int set, int j) {
+    const double twoPi = 2.0 * std::numbers::pi;
+    const double k = twoPi / (FFT_MIX_WAVELENGTHS[j] * tile);
+    const double a = FFT_MIX_DIRECTIONS_DEG[j] * std::numbers::pi / 180.0;
+    // Phases from the golden ratio's fractional parts, a different set per tiled field.
+    const double phase = twoPi * std::fmod(0.5 + 0.6180339887498949 * (j + FFT_MIX_TERMS * set), 1.0);
+    return {k * std::sin(a), k * std::cos(a), phase};
+}
+
+glm::dvec2 aperiodicMixWeights(double tile, int set, const glm::dvec2& xy) {
+    double theta = 0.0;
+    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+        const glm::dvec3 m = aperiodicMixTerm(tile, set, j);
+        theta += std::sin(m.x * xy.x + m.y * xy.y + m.z); // the argument's rounding: ~1e-16 of it
+    }
+    theta *= FFT_MIX_AMPLITUDE;
+    return {std::cos(theta), std::sin(theta)};
 }
 
 double SurfaceModel::heightAt(const glm::dvec2& xy, double t) const {

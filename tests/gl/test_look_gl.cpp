@@ -340,6 +340,43 @@ TEST_F(LookGl, NoLatticeInTheGlitter) {
     }
 }
 
+// The octave sea's cross-hatch in the glitter at 50 m (the view): its lighting-only octaves (13.7 m
+// and 3.1 m tiles under a 9 m/s sea state) repeated along every row, 0.66 / 0.63 (high-passed repetition,
+// the glitter test's measure; 50 m, 10 degrees down, into the sun). With the aperiodic mix
+// (HeightOctavesDesc::aperiodic) 0.040 / 0.012 at 10 degrees and 0.047 / -0.012 at 20 degrees (llvmpipe): the
+// second copy is the octave's own 48 waves shifted, which correlate a little with the first (the mix of two
+// independent FFT draws reaches 0.02), so the bound is 0.06; without the mix the test requires > 0.3.
+TEST_F(LookGl, NoOctaveCrossHatchInTheGlitter) {
+    for (bool aperiodic : {false, true}) {
+        ocean::OceanDesc base;
+        base.octaves.aperiodic = aperiodic;
+        const ocean::OceanDesc withState = ocean::applySeaState(base, {9.0, 60.0});
+        for (const double pitch : {-10.0, -20.0}) {
+            const double altitude = 50.0;
+            const std::vector<double> img = obliqueLuminance(altitude, pitch, true, base, 9.0);
+            int measured = 0;
+            for (int i = withState.octaves.displacedOctaves;
+                 i < static_cast<int>(withState.octaves.octaves.size()); ++i) {
+                const double period = withState.octaves.octaves[static_cast<size_t>(i)].tileSize;
+                int rows = 0;
+                const double r = repetition(img, altitude, pitch, period, rows, true);
+                std::printf(
+                    "octaves, mix %s, 50 m, pitch %3.0f: lighting octave tile %6.2f m: repetition %.3f "
+                    "over %d rows\n",
+                    aperiodic ? "on " : "off", pitch, period, r, rows);
+                if (rows < 20)
+                    continue;
+                ++measured;
+                if (aperiodic)
+                    EXPECT_LT(r, 0.06) << "tile " << period << " m, pitch " << pitch;
+                else
+                    EXPECT_GT(r, 0.3) << "without the mix the tile must show (tile " << period << " m)";
+            }
+            EXPECT_GE(measured, 2);
+        }
+    }
+}
+
 namespace {
 
 /// The luminance step where the sea crosses `radius` (the displaced grid's outer ring, then the undisplaced

@@ -131,6 +131,14 @@ std::vector<Setting> settings(bool quick) {
          [](ocean::OceanDesc& d) {
              d = ocean::applySeaState(d, {9.0, d.octaves.windDirectionDeg});
          });
+    high("high/sea-state-9-no-octave-mix",
+         "the near sea without the lighting octaves' aperiodic mix (HeightOctavesDesc::aperiodic off)",
+         [](ocean::OceanDesc& d) {
+             d.octaves.aperiodic = false;
+             d = ocean::applySeaState(d, {9.0, d.octaves.windDirectionDeg});
+         });
+    high("high/no-octave-mix", "the high preset without the lighting octaves' aperiodic mix",
+         [](ocean::OceanDesc& d) { d.octaves.aperiodic = false; });
     high("high/fft", "FFT sea: 4 cascades (256^2, 3 x 128^2), 2 draws each, living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Fft; });
     high("high/fft-sea-state-9", "the FFT sea under applySeaState at U10 = 9 m/s", [](ocean::OceanDesc& d) {

@@ -110,6 +110,11 @@ struct HeightOctavesDesc {
     /// crests. false: to their current height, per pixel (the §18.3 threshold; a knob of `pacifica bench
     /// accuracy`).
     bool foamMemory = true;
+    /// The lighting-only octaves (index >= displacedOctaves) light the sea as cos(theta) A + sin(theta) B,
+    /// A the octave's map and B the same map shifted by OCTAVE_MIX_SHIFT_U/V tiles, theta the never-repeating
+    /// angle of aperiodicMixWeights (SurfaceModel.h): their tiles no longer show as a cross-hatch in the
+    /// glitter. The slope variance is unchanged (cos^2 + sin^2 = 1). Twice their fetches.
+    bool aperiodic = true;
     int mapSize = 128;              ///< texels per side of each height map (power of two)
     int frames = 32;                ///< time slices per loop
     int wavesPerOctave = 48;        ///< cosine components generated per map

@@ -27,6 +27,12 @@ inline constexpr int FFT_MIX_TERMS = 4;
 inline constexpr double FFT_MIX_AMPLITUDE = 1.5;
 inline constexpr double FFT_MIX_WAVELENGTHS[FFT_MIX_TERMS] = {1.37, 2.11, 2.97, 4.43};
 inline constexpr double FFT_MIX_DIRECTIONS_DEG[FFT_MIX_TERMS] = {17.0, 79.0, 133.0, 211.0};
+/// The octave sea's lighting-only octaves take the same mix (HeightOctavesDesc::aperiodic) with B = the
+/// octave's own map shifted by (OCTAVE_MIX_SHIFT_U, OCTAVE_MIX_SHIFT_V) tiles (the golden ratio's parts: no
+/// lattice vector, and far beyond the maps' correlation length) and phase set OCTAVE_MIX_SET + octave.
+inline constexpr double OCTAVE_MIX_SHIFT_U = 0.381966011250105;
+inline constexpr double OCTAVE_MIX_SHIFT_V = 0.618033988749895;
+inline constexpr int OCTAVE_MIX_SET = 16;
 inline constexpr double EARTH_RADIUS = 6371000.0; ///< m, mean radius (IUGG) for the curvature drop
 
 // Shading (ocean.frag, sky.glsl; docs/ARCHITECTURE.md "Shading").

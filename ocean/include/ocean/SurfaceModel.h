@@ -27,6 +27,15 @@ const char* toString(SurfaceKind kind);
 int64_t foamStepIndex(double t);
 double foamStepTime(int64_t j);
 
+/// The aperiodic mix of a tiled field (FFT_MIX_*, OceanConstants.h): over a tile of `tile` metres, two
+/// uncorrelated copies A, B of the field are mixed as cos(theta) A + sin(theta) B with theta(x) =
+/// FFT_MIX_AMPLITUDE sum_j sin(k_j . x + phase_j), so the mix has the field's variance everywhere but no
+/// period (a lattice shift s correlates as E[cos(theta(x + s) - theta(x))] <= 0.02). Term j of mix `set` (a
+/// different set of phases per tiled field) as (k_x, k_y, phase), k in rad/m, phase in [0, 2 pi).
+glm::dvec3 aperiodicMixTerm(double tile, int set, int j);
+/// (cos theta(xy), sin theta(xy)) of that mix; theta summed in double.
+glm::dvec2 aperiodicMixWeights(double tile, int set, const glm::dvec2& xy);
+
 class SurfaceModel {
 public:
     virtual ~SurfaceModel() = default;

@@ -4,6 +4,7 @@
 
 #include <epoxy/gl.h>
 
+#include "engine/Time.h"
 #include "engine/gl/Shader.h"
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanShaders.h"
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <stdexcept>
 
 namespace pacifica::ocean {
@@ -238,6 +240,19 @@ void OctavesGpu::bindOctaves(unsigned prog, int firstUnit, double time, const gl
     glProgramUniform1i(prog, location(prog, "uDisplacedCount"), d.displacedOctaves);
     glProgramUniform1i(prog, location(prog, "uMapSize"), d.mapSize);
     glProgramUniform1i(prog, location(prog, "uFrames"), d.frames);
+    // The lighting-only octaves' aperiodic mix: psi = wrap(k.camera + phase, 2 pi) in double, so the float
+    // sees only k.rel.
+    glProgramUniform1i(prog, location(prog, "uOctaveAperiodic"), d.aperiodic ? 1 : 0);
+    for (int i = d.displacedOctaves; d.aperiodic && i < n; ++i) {
+        const double tile = d.octaves[static_cast<size_t>(i)].tileSize;
+        for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+            const glm::dvec3 m = aperiodicMixTerm(tile, OCTAVE_MIX_SET + i, j);
+            const double psi =
+                wrapPhase(m.x * cameraWorld.x + m.y * cameraWorld.y + m.z, 2.0 * std::numbers::pi);
+            glProgramUniform3f(prog, arrayLocation(prog, "uOctaveMix", i * FFT_MIX_TERMS + j),
+                               static_cast<float>(m.x), static_cast<float>(m.y), static_cast<float>(psi));
+        }
+    }
 
     // The filter's texture and uniforms (absent from programs whose variant does not declare them: -1).
     if (filterTexture && mFilterMaps)
