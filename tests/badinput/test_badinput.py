@@ -142,6 +142,8 @@ def make_cases(inputs, demo):
          ["--fft-spectrum must be phillips or jonswap; got 'foo'"], []),
         ("--choppiness nan", [demo], QUICK + ["--model", "fft", "--choppiness", "nan"], {}, 2,
          ["--choppiness must be in [0, 3], got nan"], []),
+        ("--fft-cascades 5", [demo], QUICK + ["--model", "fft", "--fft-cascades", "5"], {}, 2,
+         ["--fft-cascades must be in [1, 4], got 5"], []),
         ("--sun-elevation with --env", [demo], QUICK + ["--sun-elevation", "30", "--env", missing_map], {}, 2,
          ["--sun-elevation/--sun-azimuth cannot be combined with --env"], []),
         # Painted height maps: the message names the file; nothing is written.

@@ -536,6 +536,11 @@ def case_ocean_options(c, exe, source_dir, tmp):
                                        "--choppiness", "0.5"])
     c.check(frame_ph["exr_pixel_hash"] != frame_fft["exr_pixel_hash"],
             "FFT spectrum options change the EXR pixels", frame_ph["exr_pixel_hash"])
+    print("[fft cascades] --model fft --fft-cascades 2, and --no-fft-mix")
+    _, frame_c2 = run("fft_cascades", ["--model", "fft", "--fft-cascades", "2"])
+    _, frame_nm = run("fft_no_mix", ["--model", "fft", "--no-fft-mix"])
+    c.check(len({frame_c2["exr_pixel_hash"], frame_nm["exr_pixel_hash"], frame_fft["exr_pixel_hash"]}) == 3,
+            "--fft-cascades and --no-fft-mix change the EXR pixels", frame_c2["exr_pixel_hash"])
 
     print("[sea state] --sea-state 20, --beaufort 3, and a bad value")
     out_ss, frame_ss = run("sea_state", ["--sea-state", "20"])

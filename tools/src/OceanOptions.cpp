@@ -3,6 +3,7 @@
 
 #include "HeightMapFile.h"
 #include "Replay.h"
+#include "ocean/OceanConstants.h"
 #include "ocean/Presets.h"
 #include "ocean/SeaState.h"
 
@@ -216,6 +217,11 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--choppiness", o.choppiness,
                    "FFT: horizontal displacement scale lambda, 0..3 (default 1)");
     app.add_option("--fft-tile", o.fftTile, "FFT: metres per tile of the largest cascade (default 2000)");
+    app.add_option("--fft-cascades", o.fftCascades,
+                   "FFT: tiles of tile / 7.37^c, each its band of the spectrum, 1..4 (default 4)");
+    app.add_flag(
+        "--no-fft-mix", o.noFftMix,
+        "FFT: one draw per cascade instead of two mixed so that no tile repeats (FftDesc::aperiodic)");
     app.add_option("--height-map", o.heightMaps,
                    "octaves: painted height map image for the next octave (repeat: octave 0, 1, ...); W x W, "
                    "or W x (W * frames) for an animated map")
@@ -347,6 +353,15 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     }
     if (o.fftSize != 0)
         d.fft.size = o.fftSize;
+    // The FFT sea's make-up before the sea state, whose foam thresholds are solved over that sea.
+    if (o.fftCascades) {
+        if (*o.fftCascades < 1 || *o.fftCascades > ocean::FFT_MAX_CASCADES)
+            throw UsageError("--fft-cascades must be in [1, " + std::to_string(ocean::FFT_MAX_CASCADES) +
+                             "], got " + std::to_string(*o.fftCascades));
+        d.fft.cascades = *o.fftCascades;
+    }
+    if (o.noFftMix)
+        d.fft.aperiodic = false;
     if (o.seaState && o.beaufort)
         throw UsageError("--sea-state and --beaufort both set the wind: give one");
     if (o.beaufort && (*o.beaufort < 1 || *o.beaufort > 11))

@@ -42,6 +42,8 @@ struct OceanOptions {
     std::optional<double> fetch;            ///< metres, > 0 (JONSWAP)
     std::optional<double> choppiness;       ///< lambda, [0, 3]
     std::optional<double> fftTile;          ///< metres per FFT tile, > 0
+    std::optional<int> fftCascades;         ///< FFT tiles, [1, FFT_MAX_CASCADES] (FftDesc::cascades)
+    bool noFftMix = false;                  ///< one draw per FFT cascade (FftDesc::aperiodic off)
     /// octaves: painted height maps, one file per octave from octave 0 (the swell) on (HeightMapFile.h)
     std::vector<std::string> heightMaps;
 
