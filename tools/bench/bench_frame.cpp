@@ -77,6 +77,40 @@ struct Setting {
     double headingDeg = HEADING_DEG, pitchDeg = PITCH_DEG;
 };
 
+/// Adds one row of the high preset changed by `change`.
+using AddHighRow = std::function<void(const std::string&, const std::string&,
+                                      const std::function<void(ocean::OceanDesc&)>&)>;
+
+/// The FFT sea's rows: its cascades and their variants (docs/LOOK.md, "The FFT sea").
+void fftSettings(const AddHighRow& high) {
+    auto fft = [&](const std::string& name, const std::string& knob,
+                   const std::function<void(ocean::OceanDesc&)>& change) {
+        high(name, knob, [change](ocean::OceanDesc& d) {
+            d.model = ocean::SurfaceKind::Fft;
+            change(d);
+        });
+    };
+    fft("high/fft", "FFT sea: 4 cascades (256^2, 3 x 128^2), 2 draws each, living whitecaps",
+        [](ocean::OceanDesc&) {});
+    fft("high/fft-sea-state-9", "the FFT sea under applySeaState at U10 = 9 m/s", [](ocean::OceanDesc& d) {
+        d = ocean::applySeaState(d, {9.0, d.fft.windDirectionDeg});
+    });
+    fft("high/fft-no-mix", "FFT cascades with one draw each (FftDesc::aperiodic off)",
+        [](ocean::OceanDesc& d) { d.fft.aperiodic = false; });
+    fft("high/fft-detail-64", "FFT cascades 1-3 of 64^2 (FftDesc::detailSize 128 -> 64)",
+        [](ocean::OceanDesc& d) { d.fft.detailSize = 64; });
+    fft("high/fft-128-64", "FFT cascade 0 of 128^2, cascades 1-3 of 64^2", [](ocean::OceanDesc& d) {
+        d.fft.size = 128;
+        d.fft.detailSize = 64;
+    });
+    fft("high/fft-one-tile", "one 500 m FFT tile, no mix (the FFT sea before its cascades)",
+        [](ocean::OceanDesc& d) {
+            d.fft.cascades = 1;
+            d.fft.aperiodic = false;
+            d.fft.tileSize = 500.0;
+        });
+}
+
 std::vector<Setting> settings(bool quick) {
     using ocean::Quality;
     std::vector<Setting> out;
@@ -139,34 +173,7 @@ std::vector<Setting> settings(bool quick) {
          });
     high("high/no-octave-mix", "the high preset without the lighting octaves' aperiodic mix",
          [](ocean::OceanDesc& d) { d.octaves.aperiodic = false; });
-    high("high/fft", "FFT sea: 4 cascades (256^2, 3 x 128^2), 2 draws each, living whitecaps",
-         [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Fft; });
-    high("high/fft-sea-state-9", "the FFT sea under applySeaState at U10 = 9 m/s", [](ocean::OceanDesc& d) {
-        d.model = ocean::SurfaceKind::Fft;
-        d = ocean::applySeaState(d, {9.0, d.fft.windDirectionDeg});
-    });
-    high("high/fft-no-mix", "FFT cascades with one draw each (FftDesc::aperiodic off)",
-         [](ocean::OceanDesc& d) {
-             d.model = ocean::SurfaceKind::Fft;
-             d.fft.aperiodic = false;
-         });
-    high("high/fft-detail-64", "FFT cascades 1-3 of 64^2 (FftDesc::detailSize 128 -> 64)",
-         [](ocean::OceanDesc& d) {
-             d.model = ocean::SurfaceKind::Fft;
-             d.fft.detailSize = 64;
-         });
-    high("high/fft-128-64", "FFT cascade 0 of 128^2, cascades 1-3 of 64^2", [](ocean::OceanDesc& d) {
-        d.model = ocean::SurfaceKind::Fft;
-        d.fft.size = 128;
-        d.fft.detailSize = 64;
-    });
-    high("high/fft-one-tile", "one 500 m FFT tile, no mix (the FFT sea before its cascades)",
-         [](ocean::OceanDesc& d) {
-             d.model = ocean::SurfaceKind::Fft;
-             d.fft.cascades = 1;
-             d.fft.aperiodic = false;
-             d.fft.tileSize = 500.0;
-         });
+    fftSettings(high);
     high("high/gerstner", "Gerstner sum (8 waves) with its living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Gerstner; });
     high("high/gerstner-no-foam-memory",

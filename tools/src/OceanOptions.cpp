@@ -287,6 +287,53 @@ void applyFftSpectrum(const OceanOptions& o, ocean::OceanDesc& d) {
         d.fft.tileSize = requireRange(o.fftTile, "--fft-tile", 0.0, 1.0e5, true);
 }
 
+/// --octaves, --displaced-octaves.
+void applyOctaveCounts(const OceanOptions& o, ocean::OceanDesc& d) {
+    if (o.octaveCount != 0) {
+        const int available = static_cast<int>(d.octaves.octaves.size());
+        if (o.octaveCount < 1 || o.octaveCount > available)
+            throw UsageError("--octaves must be in [1, " + std::to_string(available) + "], got " +
+                             std::to_string(o.octaveCount));
+        d.octaves.octaves.resize(static_cast<size_t>(o.octaveCount));
+        d.octaves.displacedOctaves = std::min(d.octaves.displacedOctaves, o.octaveCount);
+    }
+    if (o.displacedOctaves >= 0) {
+        const int count = static_cast<int>(d.octaves.octaves.size());
+        if (o.displacedOctaves > count)
+            throw UsageError("--displaced-octaves must be in [0, " + std::to_string(count) + "], got " +
+                             std::to_string(o.displacedOctaves));
+        d.octaves.displacedOctaves = o.displacedOctaves;
+    }
+}
+
+/// --fft-size, --fft-cascades, --no-fft-mix.
+void applyFftMakeUp(const OceanOptions& o, ocean::OceanDesc& d) {
+    if (o.fftSize != 0)
+        d.fft.size = o.fftSize;
+    if (o.fftCascades) {
+        if (*o.fftCascades < 1 || *o.fftCascades > ocean::FFT_MAX_CASCADES)
+            throw UsageError("--fft-cascades must be in [1, " + std::to_string(ocean::FFT_MAX_CASCADES) +
+                             "], got " + std::to_string(*o.fftCascades));
+        d.fft.cascades = *o.fftCascades;
+    }
+    if (o.noFftMix)
+        d.fft.aperiodic = false;
+}
+
+/// --sea-state or --beaufort: ocean::applySeaState.
+void applySeaStateOption(const OceanOptions& o, ocean::OceanDesc& d) {
+    if (o.seaState && o.beaufort)
+        throw UsageError("--sea-state and --beaufort both set the wind: give one");
+    if (o.beaufort && (*o.beaufort < 1 || *o.beaufort > 11))
+        throw UsageError("--beaufort must be a force in [1, 11], got " + std::to_string(*o.beaufort));
+    if (o.seaState || o.beaufort) {
+        const double u = o.seaState ? *o.seaState : ocean::beaufortWindSpeed(*o.beaufort);
+        if (!(std::isfinite(u) && u >= ocean::SEA_STATE_MIN_WIND && u <= ocean::SEA_STATE_MAX_WIND))
+            throw UsageError("--sea-state must be a wind speed in [1, 30] m/s, got " + std::to_string(u));
+        d = ocean::applySeaState(d, {u, o.windDirectionDeg.value_or(d.octaves.windDirectionDeg)});
+    }
+}
+
 } // namespace
 
 ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
@@ -336,42 +383,10 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     else
         throw UsageError("--shade-tiles must be auto, on or off; got '" + o.shadeTiles + "'");
     d.viewSector = !o.noViewSector;
-    if (o.octaveCount != 0) {
-        const int available = static_cast<int>(d.octaves.octaves.size());
-        if (o.octaveCount < 1 || o.octaveCount > available)
-            throw UsageError("--octaves must be in [1, " + std::to_string(available) + "], got " +
-                             std::to_string(o.octaveCount));
-        d.octaves.octaves.resize(static_cast<size_t>(o.octaveCount));
-        d.octaves.displacedOctaves = std::min(d.octaves.displacedOctaves, o.octaveCount);
-    }
-    if (o.displacedOctaves >= 0) {
-        const int count = static_cast<int>(d.octaves.octaves.size());
-        if (o.displacedOctaves > count)
-            throw UsageError("--displaced-octaves must be in [0, " + std::to_string(count) + "], got " +
-                             std::to_string(o.displacedOctaves));
-        d.octaves.displacedOctaves = o.displacedOctaves;
-    }
-    if (o.fftSize != 0)
-        d.fft.size = o.fftSize;
+    applyOctaveCounts(o, d);
     // The FFT sea's make-up before the sea state, whose foam thresholds are solved over that sea.
-    if (o.fftCascades) {
-        if (*o.fftCascades < 1 || *o.fftCascades > ocean::FFT_MAX_CASCADES)
-            throw UsageError("--fft-cascades must be in [1, " + std::to_string(ocean::FFT_MAX_CASCADES) +
-                             "], got " + std::to_string(*o.fftCascades));
-        d.fft.cascades = *o.fftCascades;
-    }
-    if (o.noFftMix)
-        d.fft.aperiodic = false;
-    if (o.seaState && o.beaufort)
-        throw UsageError("--sea-state and --beaufort both set the wind: give one");
-    if (o.beaufort && (*o.beaufort < 1 || *o.beaufort > 11))
-        throw UsageError("--beaufort must be a force in [1, 11], got " + std::to_string(*o.beaufort));
-    if (o.seaState || o.beaufort) {
-        const double u = o.seaState ? *o.seaState : ocean::beaufortWindSpeed(*o.beaufort);
-        if (!(std::isfinite(u) && u >= ocean::SEA_STATE_MIN_WIND && u <= ocean::SEA_STATE_MAX_WIND))
-            throw UsageError("--sea-state must be a wind speed in [1, 30] m/s, got " + std::to_string(u));
-        d = ocean::applySeaState(d, {u, o.windDirectionDeg.value_or(d.octaves.windDirectionDeg)});
-    }
+    applyFftMakeUp(o, d);
+    applySeaStateOption(o, d);
     applyFftSpectrum(o, d);
     if (o.rings != 0)
         d.grid.rings = o.rings;
