@@ -13,6 +13,7 @@
 #include "Input.h"
 #include "Options.h"
 
+#include <engine/AtomicFile.h>
 #include <engine/Ecs.h>
 #include <engine/Log.h>
 #include <engine/Space.h>
@@ -45,7 +46,6 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -79,6 +79,7 @@ struct Sortie {
     ecs::EventQueue events;
     ecs::Entity ocean;
     std::unique_ptr<ocean::EffectsSystem> effects;
+    std::unique_ptr<ocean::EffectsTimeline> timeline; ///< no tracks: the world moves the ships
     std::unique_ptr<game::World> world;
     game::Autopilot autopilot;
     std::deque<std::pair<double, Pose>> history;
@@ -92,17 +93,16 @@ struct Sortie {
         ocean = registry.create();
         registry.emplace<ocean::OceanComponent>(ocean, buildOcean(sea));
         effects = std::make_unique<ocean::EffectsSystem>(registry, events);
+        timeline = std::make_unique<ocean::EffectsTimeline>(registry, events, *effects);
         world = std::make_unique<game::World>(registry, events, ocean);
     }
     /// The ships' wakes before the first frame (their routes run backwards in time).
     void prehistory(game::SessionRecorder* rec) {
-        for (double t = -PREHISTORY_S; t < 0.0; t += 0.5) {
+        timeline->warmUp(-PREHISTORY_S, 0.0, world->player().pose.position, [&](double t) {
             world->placeShips(t);
-            events.dispatch();
-            effects->update(t, world->player().pose.position);
             if (rec)
                 rec->recordShips(*world, t);
-        }
+        });
         world->placeShips(0.0);
         history.emplace_back(0.0, world->player().pose);
     }
@@ -394,8 +394,7 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
                       [&](const game::GameEvent& e) { return world.time() - e.time > SPLASH_S; });
         orbitAzimuth += 12.0 * realDt * scale;
         const Pose camPose = cameraPose(*sortie, gs.camera, world.time(), orbitAzimuth);
-        sortie->events.dispatch();
-        sortie->effects->update(world.time(), camPose.position);
+        sortie->timeline->step(world.time(), camPose.position);
 
         const glm::ivec2 size = opt.headless ? glm::ivec2(opt.width, opt.height) : ctx->framebufferSize();
         if (size.x <= 0 || size.y <= 0)
@@ -403,13 +402,9 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
         if (!targets || targets->width() != size.x || targets->height() != size.y)
             targets = std::make_unique<gl::FrameTargets>(size.x, size.y);
         gpuTimer.begin();
-        ocean::OceanFrame f;
-        f.camera = makeCameraFrame(camPose, static_cast<float>(gs.fovDeg * std::numbers::pi / 180.0),
-                                   float(size.x) / float(size.y), 0.05f);
-        f.time = world.time();
-        f.targetFramebuffer = targets->sceneFramebuffer().id();
-        f.width = size.x;
-        f.height = size.y;
+        const ocean::OceanFrame f =
+            ocean::makeOceanFrame(camPose, static_cast<float>(gs.fovDeg * std::numbers::pi / 180.0), size.x,
+                                  size.y, world.time(), targets->sceneFramebuffer().id());
         renderer->render(sortie->registry, f);
         const ocean::OceanComponent& oc = sortie->registry.get<ocean::OceanComponent>(sortie->ocean);
         gs.objectsDrawn = objects.draw(sceneObjects(*sortie, gs.camera), f.camera, f.targetFramebuffer,
@@ -532,10 +527,7 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
             ships.push_back(x);
         }
         j["ships"] = ships;
-        std::ofstream out(opt.summary);
-        out << j.dump(2) << "\n";
-        if (!out)
-            throw std::runtime_error(opt.summary + ": cannot write the summary");
+        writeFileAtomically(opt.summary, j.dump(2) + "\n");
     }
     if (!screenshots.empty())
         std::fprintf(stderr,
@@ -586,10 +578,7 @@ int runBench(game::Options opt) {
         std::printf("pacifica-game bench: %s %dx%d: frame %.2f ms (%.1f fps), GPU %.2f ms (%s)\n", q,
                     opt.width, opt.height, cpu, cpu > 0.0 ? 1000.0 / cpu : 0.0, gpu, r.gpuClock.c_str());
     }
-    std::ofstream out(opt.bench);
-    out << j.dump(2) << "\n";
-    if (!out)
-        throw std::runtime_error(opt.bench + ": cannot write the benchmark");
+    writeFileAtomically(opt.bench, j.dump(2) + "\n");
     return 0;
 }
 

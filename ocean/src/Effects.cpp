@@ -551,4 +551,42 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
     mCounters.totalDroppedExplosions = mTotalDropped;
 }
 
+EffectsTimeline::EffectsTimeline(ecs::Registry& registry, ecs::EventQueue& events, EffectsSystem& system)
+    : mRegistry(registry), mEvents(events), mSystem(system) {}
+
+ecs::Entity EffectsTimeline::addShip(const glm::dvec2& position, double length, Track track,
+                                     WakeParams wake) {
+    const ecs::Entity e = mRegistry.create();
+    mRegistry.emplace<Ship>(e, Ship{position, length});
+    mEvents.enqueue(AttachShipTrail{e, wake});
+    mShips.push_back(e);
+    mTracks.push_back(std::move(track));
+    return e;
+}
+
+void EffectsTimeline::scheduleExplosions(std::vector<SpawnExplosion> explosions) {
+    std::stable_sort(explosions.begin(), explosions.end(),
+                     [](const SpawnExplosion& a, const SpawnExplosion& b) { return a.time < b.time; });
+    mExplosions = std::move(explosions);
+    mNextExplosion = 0;
+}
+
+void EffectsTimeline::step(double time, const glm::dvec3& cameraWorld) {
+    for (size_t i = 0; i < mShips.size(); ++i)
+        mRegistry.get<Ship>(mShips[i]).position = mTracks[i](time);
+    for (; mNextExplosion < mExplosions.size() && mExplosions[mNextExplosion].time <= time; ++mNextExplosion)
+        mEvents.enqueue(mExplosions[mNextExplosion]);
+    mEvents.dispatch();
+    mSystem.update(time, cameraWorld);
+}
+
+void EffectsTimeline::warmUp(double from, double to, const glm::dvec3& cameraWorld,
+                             const std::function<void(double)>& beforeStep) {
+    for (double t = from; t < to; t += WARM_UP_STEP) {
+        if (beforeStep)
+            beforeStep(t);
+        step(t, cameraWorld);
+    }
+}
+
 } // namespace pacifica::ocean

@@ -33,6 +33,18 @@
 
 namespace pacifica::ocean {
 
+OceanFrame makeOceanFrame(const Pose& pose, float fovYRadians, int width, int height, double time,
+                          unsigned framebuffer, float nearPlane) {
+    OceanFrame f;
+    f.camera =
+        makeCameraFrame(pose, fovYRadians, static_cast<float>(width) / static_cast<float>(height), nearPlane);
+    f.time = time;
+    f.targetFramebuffer = framebuffer;
+    f.width = width;
+    f.height = height;
+    return f;
+}
+
 namespace {
 
 void validateEffectGrids(const EffectGridDesc& g) {

@@ -17,14 +17,8 @@ inline ocean::OceanFrame oceanFrameAt(const glm::dvec3& camera, double headingDe
     pose.position = camera;
     pose.headingDeg = headingDeg;
     pose.pitchDeg = pitchDeg;
-    ocean::OceanFrame f;
-    f.camera = makeCameraFrame(pose, static_cast<float>(60.0 * std::numbers::pi / 180.0),
-                               static_cast<float>(width) / static_cast<float>(height), 0.05f);
-    f.time = t;
-    f.targetFramebuffer = framebuffer;
-    f.width = width;
-    f.height = height;
-    return f;
+    return ocean::makeOceanFrame(pose, static_cast<float>(60.0 * std::numbers::pi / 180.0), width, height, t,
+                                 framebuffer);
 }
 
 } // namespace pacifica::gltest

@@ -176,12 +176,7 @@ TEST_F(GameGl, OceanAndObjectsLeaveTheHostsStateAndPixelsAlone) {
     cam.position = {1.0e6, -2.0e6, 30.0};
     cam.headingDeg = 80.0;
     cam.pitchDeg = -5.0;
-    ocean::OceanFrame f;
-    f.camera = makeCameraFrame(cam, 1.0f, float(W) / H, 0.05f);
-    f.time = 12.5;
-    f.targetFramebuffer = targets.sceneFramebuffer().id();
-    f.width = W;
-    f.height = H;
+    const ocean::OceanFrame f = ocean::makeOceanFrame(cam, 1.0f, W, H, 12.5, targets.sceneFramebuffer().id());
     for (int frame = 0; frame < 2; ++frame) {
         renderer.render(scene.registry, f);
         gl::DrawnObject ship;

@@ -75,12 +75,8 @@ public:
     std::vector<float> render(const ocean::LightingDesc& lighting, const Pose& p, const std::string& name) {
         ocean::validateLighting(lighting);
         mRegistry.get<ocean::OceanComponent>(mEntity).desc.lighting = lighting;
-        ocean::OceanFrame frame;
-        frame.camera = makeCameraFrame(p, FOV_Y, static_cast<float>(W) / H, 0.05f);
-        frame.time = 17.25;
-        frame.targetFramebuffer = mTargets.sceneFramebuffer().id();
-        frame.width = W;
-        frame.height = H;
+        const ocean::OceanFrame frame =
+            ocean::makeOceanFrame(p, FOV_Y, W, H, 17.25, mTargets.sceneFramebuffer().id());
         mRenderer.render(mRegistry, frame);
         std::vector<float> rgba;
         mTargets.readScene(rgba);

@@ -332,6 +332,66 @@ TEST(EffectsSystem, EventsCreateExplosionsThatEndWithAnEvent) {
     EXPECT_EQ(reg.view<Explosion>().begin(), reg.view<Explosion>().end());
 }
 
+// The host loop's effects step (EffectsTimeline): ships follow their tracks, explosions spawn at the first
+// step at or after their time and in time order whatever order they were given, and the warm-up lays a
+// ship's wake before the first frame, one recorded point per 0.5 s step.
+TEST(EffectsTimeline, MovesShipsSpawnsDueExplosionsAndWarmsUpWakes) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    EffectsTimeline timeline(reg, events, fx);
+    const ecs::Entity ship =
+        timeline.addShip({-100.0, 0.0}, 60.0, [](double t) { return glm::dvec2(10.0 * t, 0.0); });
+    timeline.scheduleExplosions({SpawnExplosion{{5.0, 5.0}, 7.0, 1.0}, SpawnExplosion{{1.0, 1.0}, 2.0, 1.0},
+                                 SpawnExplosion{{2.0, 2.0}, 2.0, 1.5}});
+    std::vector<double> spawnedAt; // the explosions' centres' x, in the order they were created
+    timeline.warmUp(-10.0, 0.0, {0.0, 0.0, 100.0});
+    ASSERT_TRUE(reg.has<ShipTrail>(ship));
+    EXPECT_EQ(reg.get<Ship>(ship).position, glm::dvec2(-5.0, 0.0)); // the last warm-up step, t = -0.5
+    EXPECT_EQ(timeline.explosionsSpawned(), 0u);
+    EXPECT_EQ(reg.view<Explosion>().begin(), reg.view<Explosion>().end());
+    // 20 steps of 0.5 s at 10 m/s: the trail holds points along the 95 m sailed, the newest at x = -5.
+    const ShipTrail& trail = reg.get<ShipTrail>(ship);
+    ASSERT_GE(trail.history.size(), 2u);
+    EXPECT_EQ(trail.history.front().position, glm::dvec2(-5.0, 0.0));
+    EXPECT_EQ(trail.history.front().time, -0.5);
+
+    timeline.step(1.9, {0.0, 0.0, 100.0});
+    EXPECT_EQ(reg.get<Ship>(ship).position, glm::dvec2(19.0, 0.0));
+    EXPECT_EQ(timeline.explosionsSpawned(), 0u);
+    timeline.step(2.0, {0.0, 0.0, 100.0}); // both t = 2 explosions, in the order given, not the t = 7 one
+    EXPECT_EQ(timeline.explosionsSpawned(), 2u);
+    EXPECT_EQ(fx.counters().spawned, 2);
+    reg.view<Explosion>().each([&](ecs::Entity, Explosion& e) { spawnedAt.push_back(e.center.x); });
+    ASSERT_EQ(spawnedAt.size(), 2u);
+    EXPECT_EQ(spawnedAt[0] + spawnedAt[1], 3.0);
+    timeline.step(6.99, {0.0, 0.0, 100.0});
+    EXPECT_EQ(timeline.explosionsSpawned(), 2u);
+    timeline.step(7.5, {0.0, 0.0, 100.0});
+    EXPECT_EQ(timeline.explosionsSpawned(), 3u);
+    EXPECT_EQ(fx.counters().spawned, 1);
+    ASSERT_EQ(timeline.ships().size(), 1u);
+    EXPECT_EQ(timeline.ships()[0], ship);
+}
+
+// A host that moves its ships itself (the game) runs its own placement before each warm-up step.
+TEST(EffectsTimeline, WarmUpRunsTheHostsStepFirst) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    EffectsTimeline timeline(reg, events, fx);
+    const ecs::Entity ship = reg.create();
+    reg.emplace<Ship>(ship, Ship{{0.0, 0.0}, 40.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    std::vector<double> times;
+    timeline.warmUp(-2.0, 0.0, {0.0, 0.0, 50.0}, [&](double t) {
+        times.push_back(t);
+        reg.get<Ship>(ship).position = {0.0, 8.0 * t};
+    });
+    EXPECT_EQ(times, (std::vector<double>{-2.0, -1.5, -1.0, -0.5}));
+    EXPECT_EQ(reg.get<ShipTrail>(ship).history.front().position, glm::dvec2(0.0, -4.0));
+}
+
 TEST(EffectsSystem, CapDropsTheLeastVisibleAndCountsIt) {
     ecs::Registry reg;
     ecs::EventQueue events;

@@ -228,14 +228,9 @@ std::vector<Setting> sweep(bool quick) {
 }
 
 ocean::OceanFrame makeFrame(const Pose& pose, const gl::FrameTargets& targets, double time) {
-    ocean::OceanFrame f;
-    f.camera = makeCameraFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
-                               float(targets.width()) / float(targets.height()), 0.5f);
-    f.time = time;
-    f.targetFramebuffer = targets.sceneFramebuffer().id();
-    f.width = targets.width();
-    f.height = targets.height();
-    return f;
+    return ocean::makeOceanFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
+                                 targets.width(), targets.height(), time, targets.sceneFramebuffer().id(),
+                                 0.5f);
 }
 
 bool inFrustum(const glm::mat4& viewProj, const glm::vec3& rel) {

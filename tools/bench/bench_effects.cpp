@@ -64,7 +64,6 @@ constexpr double PITCH_DEG = -20.0;
 // Ships: 10 m/s on parallel courses along +x; their paths are built for 120 s in 0.5 s steps first.
 constexpr double SHIP_SPEED = 10.0;
 constexpr double HISTORY_SECONDS = 120.0;
-constexpr double HISTORY_STEP = 0.5;
 
 enum class Kind { None, Explosion, Wake };
 
@@ -147,14 +146,9 @@ ocean::OceanFrame makeFrame(const gl::FrameTargets& targets, double time) {
     pose.position = CAMERA;
     pose.headingDeg = HEADING_DEG;
     pose.pitchDeg = PITCH_DEG;
-    ocean::OceanFrame f;
-    f.camera = makeCameraFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
-                               float(targets.width()) / float(targets.height()), 0.5f);
-    f.time = time;
-    f.targetFramebuffer = targets.sceneFramebuffer().id();
-    f.width = targets.width();
-    f.height = targets.height();
-    return f;
+    return ocean::makeOceanFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
+                                 targets.width(), targets.height(), time, targets.sceneFramebuffer().id(),
+                                 0.5f);
 }
 
 // One setting: its own registry, events, effects system, renderer and sim clock, so the settings can be
@@ -163,29 +157,28 @@ struct Scene {
     Row row;
     ecs::Registry registry;
     ecs::EventQueue events;
-    std::unique_ptr<ocean::EffectsSystem> fx; // null: the plain ocean
-    std::vector<ecs::Entity> ships;
-    std::unique_ptr<ocean::OceanRenderer> renderer; // one per scene: its cache is keyed by entity
-    double origin = T0, time = T0;                  // sim time of the first frame, of the next frame
+    std::unique_ptr<ocean::EffectsSystem> fx;         // null: the plain ocean
+    std::unique_ptr<ocean::EffectsTimeline> timeline; // moves the ships, dispatches, updates fx
+    std::unique_ptr<ocean::OceanRenderer> renderer;   // one per scene: its cache is keyed by entity
+    double origin = T0, time = T0;                    // sim time of the first frame, of the next frame
     std::vector<double> ms, updateUs, renderCpuMs;
 
     Scene(std::string setting, Kind kind, int count, bool withSystem) : row{std::move(setting), kind, count} {
         row.active = row.drawn = std::numeric_limits<int>::max();
         registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean({}));
-        if (withSystem)
+        if (withSystem) {
             fx = std::make_unique<ocean::EffectsSystem>(registry, events);
+            timeline = std::make_unique<ocean::EffectsTimeline>(registry, events, *fx);
+        }
         renderer = std::make_unique<ocean::OceanRenderer>();
     }
 
-    // One frame: move the ships, dispatch the events and run fx->update() (timed on the CPU), then render +
-    // glFinish inside the GPU timer. Untimed frames warm up (shader variants, grid meshes).
+    // One frame: the effects step (ships moved, events dispatched, fx->update(); timed on the CPU), then
+    // render + glFinish inside the GPU timer. Untimed frames warm up (shader variants, grid meshes).
     void frame(gl::GpuTimer& timer, const gl::FrameTargets& targets, bool timed) {
-        for (size_t s = 0; s < ships.size(); ++s)
-            registry.get<ocean::Ship>(ships[s]).position = shipPosition(static_cast<int>(s), time - origin);
-        if (fx) {
-            events.dispatch();
+        if (timeline) {
             const auto u0 = std::chrono::steady_clock::now();
-            fx->update(time, CAMERA);
+            timeline->step(time, CAMERA);
             const auto u1 = std::chrono::steady_clock::now();
             if (timed)
                 updateUs.push_back(std::chrono::duration<double, std::micro>(u1 - u0).count());
@@ -249,21 +242,11 @@ std::unique_ptr<Scene> explosionScene(int n) {
 // (update() only: the renderer never sees that earlier time).
 std::unique_ptr<Scene> wakeScene(int n) {
     auto scene = std::make_unique<Scene>("wakes", Kind::Wake, n, true);
-    ecs::Registry& reg = scene->registry;
-    for (int i = 0; i < n; ++i) {
-        const ecs::Entity ship = reg.create();
-        reg.emplace<ocean::Ship>(ship, ocean::Ship{shipPosition(i, -HISTORY_SECONDS), 60.0});
-        scene->events.enqueue(ocean::AttachShipTrail{ship, ocean::WakeParams{}});
-        scene->ships.push_back(ship);
-    }
-    const int steps = static_cast<int>(HISTORY_SECONDS / HISTORY_STEP);
-    for (int step = 0; step < steps; ++step) {
-        const double since = -HISTORY_SECONDS + step * HISTORY_STEP;
-        for (int i = 0; i < n; ++i)
-            reg.get<ocean::Ship>(scene->ships[size_t(i)]).position = shipPosition(i, since);
-        scene->events.dispatch();
-        scene->fx->update(scene->origin + since, CAMERA);
-    }
+    const double origin = scene->origin;
+    for (int i = 0; i < n; ++i)
+        scene->timeline->addShip(shipPosition(i, -HISTORY_SECONDS), 60.0,
+                                 [i, origin](double t) { return shipPosition(i, t - origin); });
+    scene->timeline->warmUp(origin - HISTORY_SECONDS, origin, CAMERA);
     return scene;
 }
 

@@ -234,15 +234,8 @@ struct Scene {
         pose.position = setting.camera;
         pose.headingDeg = setting.headingDeg;
         pose.pitchDeg = setting.pitchDeg;
-        ocean::OceanFrame f;
-        f.camera = makeCameraFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
-                                   static_cast<float>(targets.width()) / static_cast<float>(targets.height()),
-                                   0.05f);
-        f.time = t;
-        f.targetFramebuffer = targets.sceneFramebuffer().id();
-        f.width = targets.width();
-        f.height = targets.height();
-        return f;
+        return ocean::makeOceanFrame(pose, static_cast<float>(FOV_Y_DEG * std::numbers::pi / 180.0),
+                                     targets.width(), targets.height(), t, targets.sceneFramebuffer().id());
     }
 
     void frame(const gl::FrameTargets& targets, double t, bool record) {

@@ -126,13 +126,9 @@ struct ReplayScene {
     uint64_t renderFrame(long long k, const fs::path* imageDir) {
         const double t = timeOfFrame(k);
         const Pose pose = flight.poseAt(t);
-        ocean::OceanFrame frame;
-        frame.camera = makeCameraFrame(pose, FOV_Y_DEG * static_cast<float>(std::numbers::pi / 180.0),
-                                       static_cast<float>(WIDTH) / static_cast<float>(HEIGHT), 0.05f);
-        frame.time = t;
-        frame.targetFramebuffer = targets.sceneFramebuffer().id();
-        frame.width = WIDTH;
-        frame.height = HEIGHT;
+        const ocean::OceanFrame frame =
+            ocean::makeOceanFrame(pose, FOV_Y_DEG * static_cast<float>(std::numbers::pi / 180.0), WIDTH,
+                                  HEIGHT, t, targets.sceneFramebuffer().id());
 
         gpuTimer.begin();
         renderer.render(registry, frame);

@@ -4,6 +4,7 @@
 #include "FlightPath.h"
 #include "Replay.h"
 
+#include <engine/AtomicFile.h>
 #include <engine/capture/Capture.h>
 #include <engine/color/ColorPipeline.h>
 #include <engine/color/Tonemapper.h>
@@ -205,13 +206,6 @@ std::string base64(const std::string& bytes) {
         out += {A[v >> 18], A[(v >> 12) & 63], A[(v >> 6) & 63], '='};
     }
     return out;
-}
-
-void writeText(const fs::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out.flush())
-        throw std::runtime_error(path.string() + ": cannot write");
 }
 
 std::string fmt(double v, int precision = 3) {
@@ -615,7 +609,7 @@ json lutAccuracyAndCost(const fs::path& out, const std::vector<Input>& inputs) {
 }
 
 void writeReports(const fs::path& out, const json& report) {
-    writeText(out / "metrics.json", report.dump(2) + "\n");
+    writeFileAtomically(out / "metrics.json", report.dump(2) + "\n");
     // Ranking over every input that is scene-linear: mean clipped fraction and mean hue shift per transform.
     std::set<std::string> srgbLabels;
     for (const json& t : report["transforms"])
@@ -733,7 +727,7 @@ void writeReports(const fs::path& out, const json& report) {
             md << s.get<std::string>() << "; ";
         md << "\n";
     }
-    writeText(out / "report.md", md.str());
+    writeFileAtomically(out / "report.md", md.str());
 
     // HTML: the same tables, the sheets embedded as data URIs (one self-contained file).
     std::string body;
@@ -777,13 +771,14 @@ void writeReports(const fs::path& out, const json& report) {
     }
     if (inTable)
         body += "</table>\n";
-    writeText(out / "report.html",
-              "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>Tonemapping comparison</title>\n"
-              "<style>body{font-family:sans-serif;background:#1e1e1e;color:#ddd;margin:2em}"
-              "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #555;padding:2px 8px;"
-              "text-align:right}td:first-child,th:first-child{text-align:left}img{max-width:100%}</style>"
-              "</head><body>\n" +
-                  body + "</body></html>\n");
+    writeFileAtomically(
+        out / "report.html",
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>Tonemapping comparison</title>\n"
+        "<style>body{font-family:sans-serif;background:#1e1e1e;color:#ddd;margin:2em}"
+        "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #555;padding:2px 8px;"
+        "text-align:right}td:first-child,th:first-child{text-align:left}img{max-width:100%}</style>"
+        "</head><body>\n" +
+            body + "</body></html>\n");
     std::fprintf(stderr, "pacifica: least clipping: %s (%.2f%%); least hue shift: %s (%.2f deg)\n",
                  leastClip.c_str(), 100 * bestClip, leastHue.c_str(), bestHue);
 }

@@ -9,6 +9,7 @@
 #include "Replay.h"
 #include "ReplayInput.h"
 #include "TonemapCompare.h"
+#include "engine/AtomicFile.h"
 
 #include <recording/AcmiWriter.h>
 #include <recording/Recording.h>
@@ -18,9 +19,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
-#include <fstream>
 #include <string>
-#include <unistd.h>
 
 int main(int argc, char** argv) {
     std::signal(SIGPIPE, SIG_IGN); // a dying ffmpeg (--video) must give an error, not kill the process
@@ -135,22 +134,8 @@ int main(int argc, char** argv) {
         if (cv->parsed()) {
             const pacifica::recording::Recording rec = pacifica::recording::readRecording(convertIn);
             // Written beside the target and renamed on success: never a half-written file.
-            const std::string tmp = convertOut + ".tmp-" + std::to_string(getpid());
-            {
-                std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-                if (!out)
-                    throw std::runtime_error(convertOut + ": cannot write");
-                pacifica::recording::writeAcmi(rec, out);
-                out.flush();
-                if (!out) {
-                    std::remove(tmp.c_str());
-                    throw std::runtime_error(convertOut + ": write failed");
-                }
-            }
-            if (std::rename(tmp.c_str(), convertOut.c_str()) != 0) {
-                std::remove(tmp.c_str());
-                throw std::runtime_error(convertOut + ": cannot move the file into place");
-            }
+            pacifica::writeFileAtomically(
+                convertOut, [&](std::ostream& out) { pacifica::recording::writeAcmi(rec, out); });
             std::fprintf(stderr, "pacifica: wrote %zu objects (%lld samples) to %s\n", rec.objects.size(),
                          rec.samples, convertOut.c_str());
             return 0;

@@ -24,6 +24,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pacifica::ocean {
@@ -245,6 +246,40 @@ private:
     ecs::EventQueue::SubscriptionId mSubExplosion = 0, mSubTrail = 0;
     EffectCounters mCounters;
     long long mTotalDropped = 0;
+};
+
+/// The effects step of a host's frame, the same in every host (replay, game, benches): step(t) moves the
+/// ships it tracks to where their tracks put them at t, spawns the scheduled explosions whose time has come
+/// (in time order), dispatches the event queue and updates the system. A host that moves its ships itself
+/// (the game's world) adds none and calls step() after moving them. warmUp() steps the time before the first
+/// frame, so that ships which sailed before it have their wakes.
+class EffectsTimeline {
+public:
+    static constexpr double WARM_UP_STEP = 0.5; ///< s between warm-up steps (a wake point every 0.5 s)
+    using Track = std::function<glm::dvec2(double time)>;
+
+    EffectsTimeline(ecs::Registry& registry, ecs::EventQueue& events, EffectsSystem& system);
+    /// A ship of `length` metres at `position` whose centre follows `track` from the next step on; its trail
+    /// is attached (AttachShipTrail) by the next dispatch.
+    ecs::Entity addShip(const glm::dvec2& position, double length, Track track, WakeParams wake = {});
+    /// Explosions spawned by the first step at or after their time; any order (kept stable within a time).
+    void scheduleExplosions(std::vector<SpawnExplosion> explosions);
+    void step(double time, const glm::dvec3& cameraWorld);
+    /// Steps from `from` (included) to `to` (excluded) every WARM_UP_STEP seconds; `beforeStep(t)`, when
+    /// given, runs first at each (the game places its ships and records them there).
+    void warmUp(double from, double to, const glm::dvec3& cameraWorld,
+                const std::function<void(double)>& beforeStep = {});
+    const std::vector<ecs::Entity>& ships() const { return mShips; }
+    size_t explosionsSpawned() const { return mNextExplosion; }
+
+private:
+    ecs::Registry& mRegistry;
+    ecs::EventQueue& mEvents;
+    EffectsSystem& mSystem;
+    std::vector<ecs::Entity> mShips;
+    std::vector<Track> mTracks;
+    std::vector<SpawnExplosion> mExplosions;
+    size_t mNextExplosion = 0;
 };
 
 /// Sum of every active effect at world point xy, time t: (height, dh/dx, dh/dy), saturated as the GPU

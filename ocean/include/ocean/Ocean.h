@@ -115,6 +115,12 @@ struct OceanFrame {
     int width = 0, height = 0;
 };
 
+/// The frame every host builds from its camera: `pose` seen through a perspective camera of vertical field
+/// of view fovYRadians and the target's aspect (width / height) with its near plane at `nearPlane` metres
+/// (makeCameraFrame, engine/Space.h), at simulation time `time`, into `framebuffer` (0 = the default).
+OceanFrame makeOceanFrame(const Pose& pose, float fovYRadians, int width, int height, double time,
+                          unsigned framebuffer, float nearPlane = 0.05f);
+
 /// What the last render() did for one kind of effect.
 struct EffectKindStats {
     int active = 0;         ///< effects of this kind in the frame's buffers (their field is evaluated)

@@ -1,12 +1,12 @@
 // The shipped tonemappers as a generated OCIO config (ConfigWriter.h).
 #include "tonemap/ConfigWriter.h"
 
+#include "engine/AtomicFile.h"
 #include "tonemap/Curves.h"
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -27,20 +27,6 @@ float halfToFloat(uint16_t h) {
     else
         v = std::ldexp(static_cast<float>(mantissa | 0x400), exponent - 25);
     return sign ? -v : v;
-}
-
-void writeAtomically(const fs::path& path, const std::string& text) {
-    const fs::path tmp = path.string() + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out.flush())
-            throw std::runtime_error(tmp.string() + ": cannot write");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec)
-        throw std::runtime_error(path.string() + ": cannot rename into place: " + ec.message());
 }
 
 /// A CLF LUT1D over the half domain: entry i is curve(half bits i); NaN inputs map to 0.
@@ -111,14 +97,14 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
     if (ec)
         throw std::runtime_error((dir / "luts").string() + ": cannot create: " + ec.message());
 
-    writeAtomically(dir / "luts" / "hable.clf", halfDomainClf("hable", tonemapper("hable").name, hable));
-    writeAtomically(dir / "luts" / "reinhard.clf",
-                    halfDomainClf("reinhard", tonemapper("reinhard").name, reinhardExtended));
-    writeAtomically(dir / "luts" / "clamp.clf", halfDomainClf("clamp", "clamp to [0, 1]", clampCurve));
-    writeAtomically(dir / "luts" / "agx-sigmoid.clf",
-                    halfDomainClf("agx-sigmoid", "AgX log2 encoding and sigmoid", agxSigmoid));
+    writeFileAtomically(dir / "luts" / "hable.clf", halfDomainClf("hable", tonemapper("hable").name, hable));
+    writeFileAtomically(dir / "luts" / "reinhard.clf",
+                        halfDomainClf("reinhard", tonemapper("reinhard").name, reinhardExtended));
+    writeFileAtomically(dir / "luts" / "clamp.clf", halfDomainClf("clamp", "clamp to [0, 1]", clampCurve));
+    writeFileAtomically(dir / "luts" / "agx-sigmoid.clf",
+                        halfDomainClf("agx-sigmoid", "AgX log2 encoding and sigmoid", agxSigmoid));
     const std::string cube = "pbr-neutral-" + std::to_string(lut3dSize) + ".spi3d";
-    writeAtomically(dir / "luts" / cube, pbrNeutralSpi3d(lut3dSize));
+    writeFileAtomically(dir / "luts" / cube, pbrNeutralSpi3d(lut3dSize));
 
     GeneratedConfig g;
     g.path = dir / "pacifica-tonemappers.ocio";
@@ -206,7 +192,7 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
         }
         fixed += line + "\n";
     }
-    writeAtomically(g.path, fixed);
+    writeFileAtomically(g.path, fixed);
     return g;
 }
 
