@@ -6,6 +6,7 @@
 #include "ReplayInput.h"
 #include "VideoWriter.h"
 #include "WorkerQueue.h"
+#include "engine/AtomicFile.h"
 #include "engine/Ecs.h"
 #include "engine/Log.h"
 #include "engine/Space.h"
@@ -115,7 +116,7 @@ public:
                 fs::rename(mStaging / n, mDir / n);
                 moved.push_back(n);
             }
-            writeJsonAtomic(mDir / "summary.json", summary);
+            writeFileAtomically(mDir / "summary.json", summary.dump(2) + "\n");
         } catch (...) {
             for (const std::string& n : moved)
                 fs::remove(mDir / n, ec);
@@ -127,27 +128,10 @@ public:
     }
 
 private:
-    static void writeJsonAtomic(const fs::path& path, const nlohmann::json& j);
     fs::path mDir, mStaging, mCreatedRoot;
     std::vector<std::string> mNames;
     bool mCommitted = false;
 };
-
-void OutputTransaction::writeJsonAtomic(const fs::path& path, const nlohmann::json& j) {
-    const fs::path tmp =
-        path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(getpid()));
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out << j.dump(2) << '\n';
-        out.flush();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            throw std::runtime_error(path.string() + ": cannot write summary");
-        }
-    }
-    fs::rename(tmp, path);
-}
 
 /// --env: reads an HDR lat-long image and validates it into an EnvironmentMap (alpha dropped). Errors name
 /// the file: "FILE: pixel (x,y) is NaN", "FILE: expected 3 (RGB) or 4 (RGBA) channels, got 1".
@@ -193,8 +177,16 @@ void parseSize(const std::string& text, int& width, int& height) {
         throw bad();
 }
 
-void runReplay(const ReplayOptions& o) {
-    const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+/// The options that need nothing but themselves.
+void checkOptions(const ReplayOptions& o) {
     if (!std::isfinite(o.fps) || o.fps <= 0.0 || o.fps > 1000.0)
         throw UsageError("--fps must be in (0, 1000], got " + std::to_string(o.fps));
     if (!std::isfinite(o.fovYDeg) || o.fovYDeg < 1.0f || o.fovYDeg > 170.0f)
@@ -205,49 +197,64 @@ void runReplay(const ReplayOptions& o) {
         throw UsageError("--max-frames must be >= 1, got " + std::to_string(o.maxFrames));
     if (o.outDir.empty() && !o.video)
         throw UsageError("--out: an output directory is required (or --video FILE alone)");
-    const bool writeImages = o.writeImages && !o.outDir.empty(); // --video without --out: the video only
+}
 
-    // 1. Everything that can be checked without touching the output directory.
-    const ReplayInput input = loadReplayInput(o.flight, o.rigs, o.width, o.height, o.fovYDeg);
-    const double start =
-        o.start ? parseTimeArgument(*o.start, input.referenceUnix, "--start") : input.startTime;
-    const double end = o.end ? parseTimeArgument(*o.end, input.referenceUnix, "--end") : input.endTime;
-    if (!std::isfinite(start) || start < input.startTime || start > input.endTime)
-        throw UsageError("--start " + std::to_string(start) + " is outside the flight [" +
+/// The frames of a run: frame k is at start + k * speed / fps, from the index (never accumulated), the last
+/// one clamped to end.
+struct FramePlan {
+    double start = 0.0, end = 0.0;
+    double step = 0.0; ///< recording seconds per frame
+    long long count = 0;
+    double timeOf(long long k) const { return std::min(end, start + static_cast<double>(k) * step); }
+};
+
+FramePlan planFrames(const ReplayOptions& o, const ReplayInput& input) {
+    FramePlan p;
+    p.start = o.start ? parseTimeArgument(*o.start, input.referenceUnix, "--start") : input.startTime;
+    p.end = o.end ? parseTimeArgument(*o.end, input.referenceUnix, "--end") : input.endTime;
+    if (!std::isfinite(p.start) || p.start < input.startTime || p.start > input.endTime)
+        throw UsageError("--start " + std::to_string(p.start) + " is outside the flight [" +
                          std::to_string(input.startTime) + ", " + std::to_string(input.endTime) + "]");
-    if (!std::isfinite(end) || end < start || end > input.endTime)
-        throw UsageError("--end " + std::to_string(end) + " must be within [--start, " +
+    if (!std::isfinite(p.end) || p.end < p.start || p.end > input.endTime)
+        throw UsageError("--end " + std::to_string(p.end) + " must be within [--start, " +
                          std::to_string(input.endTime) + "]");
-    const double frameStep = o.speed / o.fps; // recording seconds per frame
-    const double frameCountD = std::floor((end - start) / frameStep + 1e-9) + 1.0;
-    if (frameCountD > static_cast<double>(o.maxFrames))
-        throw UsageError("the run would render " + std::to_string(static_cast<long long>(frameCountD)) +
-                         " frames (" + shortNumber(end - start) + " s at --fps " + shortNumber(o.fps) +
+    p.step = o.speed / o.fps;
+    const double count = std::floor((p.end - p.start) / p.step + 1e-9) + 1.0;
+    if (count > static_cast<double>(o.maxFrames))
+        throw UsageError("the run would render " + std::to_string(static_cast<long long>(count)) +
+                         " frames (" + shortNumber(p.end - p.start) + " s at --fps " + shortNumber(o.fps) +
                          ", --speed " + shortNumber(o.speed) + "), more than --max-frames " +
                          std::to_string(o.maxFrames) +
                          "; shorten --start/--end, lower --fps, raise --speed, or "
                          "allow it with --max-frames");
-    const long long frameCount = static_cast<long long>(frameCountD);
-    if (o.video)
-        VideoWriter::findFfmpeg(*o.video); // extension and ffmpeg checked before anything is written
-    ocean::OceanDesc oceanDesc = o.ocean;
-    nlohmann::json environmentJson = nullptr; // summary.json: null = the procedural sky
-    if (o.environment) {
-        oceanDesc.lighting.environment = loadEnvironment(*o.environment);
-        const glm::dvec3 sun = ocean::environmentBrightestDirection(*oceanDesc.lighting.environment);
-        if (sun.z > 0.0) // a sun below the horizon would leave the sea unlit: keep the default then
-            oceanDesc.lighting.sunDirection = sun;
-        environmentJson = {{"file", o.environment->string()},
-                           {"width", oceanDesc.lighting.environment->width},
-                           {"height", oceanDesc.lighting.environment->height},
-                           {"sun_direction",
-                            {oceanDesc.lighting.sunDirection.x, oceanDesc.lighting.sunDirection.y,
-                             oceanDesc.lighting.sunDirection.z}}};
-    }
-    const std::string environmentName = o.environment ? o.environment->filename().string() : "procedural";
+    p.count = static_cast<long long>(count);
+    return p;
+}
+
+/// The ocean to render: the options' description with --env's map, whose brightest region becomes the sun
+/// (unless it is below the horizon). `environmentJson`: summary.json's entry, null for the procedural sky.
+ocean::OceanDesc oceanWithEnvironment(const ReplayOptions& o, nlohmann::json& environmentJson) {
+    ocean::OceanDesc d = o.ocean;
+    environmentJson = nullptr;
+    if (!o.environment)
+        return d;
+    d.lighting.environment = loadEnvironment(*o.environment);
+    const glm::dvec3 sun = ocean::environmentBrightestDirection(*d.lighting.environment);
+    if (sun.z > 0.0) // a sun below the horizon would leave the sea unlit: keep the default then
+        d.lighting.sunDirection = sun;
+    environmentJson = {
+        {"file", o.environment->string()},
+        {"width", d.lighting.environment->width},
+        {"height", d.lighting.environment->height},
+        {"sun_direction", {d.lighting.sunDirection.x, d.lighting.sunDirection.y, d.lighting.sunDirection.z}}};
+    return d;
+}
+
+/// The OCIO pipeline of the run. The renderer's frames are linear Rec.709: a config whose scene_linear role
+/// is another space (ACEScg in the ACES studio and CG configs) is entered through its linear Rec.709 colour
+/// space when it has one.
+color::ColorPipeline replayColour(const ReplayOptions& o) {
     color::ColorPipeline colour = color::ColorPipeline::fromEnvironmentOr(o.ocioConfig);
-    // The renderer's frames are linear Rec.709: a config whose scene_linear role is another space (ACEScg in
-    // the ACES studio and CG configs) is entered through its linear Rec.709 colour space when it has one.
     if (const std::string rec709 = colour.linearRec709ColorSpace(); !rec709.empty())
         colour.setInput(rec709);
     else
@@ -255,22 +262,16 @@ void runReplay(const ReplayOptions& o) {
                      "pacifica: warning: the OCIO config has no linear Rec.709 colour space; frames enter it "
                      "as its scene_linear role\n");
     colour.select(o.display, o.view);
-    std::unique_ptr<gl::GlContext> context = gl::createHeadlessContext();
+    return colour;
+}
 
-    // 2. Scene: one ocean entity; the GL resources (one set of frame targets per view).
-    ecs::Registry registry;
-    const ecs::Entity oceanEntity = registry.create();
-    registry.emplace<ocean::OceanComponent>(oceanEntity, ocean::makeOcean(oceanDesc));
-    ocean::OceanRenderer renderer;
-    std::vector<std::unique_ptr<gl::FrameTargets>> targets;
-    for (const ReplayView& v : input.views)
-        targets.push_back(std::make_unique<gl::FrameTargets>(v.width, v.height));
-    color::Tonemapper tonemapper(colour);
-    // Extra views: one more tonemap pass each over the same rendered scene (no scene pass is repeated).
-    struct ExtraView {
-        std::string view, suffix;
-        std::unique_ptr<color::Tonemapper> pass;
-    };
+/// An extra view: one more tonemap pass over the same rendered scene (no scene pass is repeated).
+struct ExtraView {
+    std::string view, suffix;
+    std::unique_ptr<color::Tonemapper> pass;
+};
+
+std::vector<ExtraView> makeExtraViews(const ReplayOptions& o, const color::ColorPipeline& colour) {
     std::vector<ExtraView> extraViews;
     for (const std::string& v : o.extraViews) {
         color::ColorPipeline other = colour;
@@ -283,325 +284,425 @@ void runReplay(const ReplayOptions& o) {
                 throw std::runtime_error("--view '" + v + "' is given twice");
         extraViews.push_back({v, suffix, std::make_unique<color::Tonemapper>(other)});
     }
-    gl::GpuTimer gpuTimer(context->info());
-    // --profile: the ocean's passes (OceanRenderer::setPassTiming), the replay's own GPU passes (objects,
-    // extra and main tonemaps) with the same clock, readback and encoding on the CPU's steady_clock.
-    enum ReplayPass { PassObjects, PassTonemap, ReplayPassCount };
-    std::unique_ptr<gl::PassTimer> passTimer;
-    if (o.profile) {
-        renderer.setPassTiming(gpuTimer.clock());
-        passTimer = std::make_unique<gl::PassTimer>(gpuTimer.clock(), ReplayPassCount);
-    }
-    std::map<std::string, std::vector<double>> passSamples; // per pass name, one value per view frame
-    const std::vector<ReplayObject> objects =
-        o.objects ? replayObjects(input, start, end) : std::vector<ReplayObject>{};
-    std::unique_ptr<ObjectRenderer> objectRenderer;
-    if (!objects.empty())
-        objectRenderer = std::make_unique<ObjectRenderer>();
-    const double drawEarthRadius = oceanDesc.earthCurvature ? ocean::EARTH_RADIUS : 0.0;
+    return extraViews;
+}
 
-    // Events (Effects.h): ships are entities whose position follows their track; explosions are spawned
-    // by events when the clock passes them. The ships' wakes are built from their path before the first
-    // frame (0.5 s steps from the earliest ship sample), so a ship that sailed before --start has a wake.
-    // The simulation advances once per frame; every view renders that same state.
-    ecs::EventQueue events;
-    ocean::EffectsSystem effects(registry, events);
-    std::vector<ecs::Entity> shipEntities;
-    size_t nextExplosion = 0;
-    const std::vector<ExplosionEvent> noExplosions;
-    const std::vector<ShipTrack> noShips;
-    const std::vector<ExplosionEvent>& explosionEvents = o.events ? input.explosions : noExplosions;
-    const std::vector<ShipTrack>& shipTracks = o.events ? input.ships : noShips;
-    for (size_t i = 0; i < shipTracks.size(); ++i) {
-        const ShipTrack& track = shipTracks[i];
-        const ecs::Entity e = registry.create();
-        registry.emplace<ocean::Ship>(e,
-                                      ocean::Ship{track.positionAt(track.startTime()), input.shipLengths[i]});
-        events.enqueue(ocean::AttachShipTrail{e, ocean::WakeParams{}});
-        shipEntities.push_back(e);
+/// The flight's events on the effects timeline (Effects.h): ships follow their tracks, explosions are
+/// spawned when the clock passes them. The wakes are built from the ships' paths before the first frame
+/// (0.5 s steps from the earliest ship sample, at most 600 s: older wakes have faded), so a ship that sailed
+/// before --start has a wake.
+void scheduleEvents(ocean::EffectsTimeline& timeline, const ReplayInput& input, double start) {
+    for (size_t i = 0; i < input.ships.size(); ++i) {
+        const ShipTrack* track = &input.ships[i];
+        timeline.addShip(track->positionAt(track->startTime()), input.shipLengths[i],
+                         [track](double t) { return track->positionAt(t); });
     }
-    auto advanceEffects = [&](double t, const glm::dvec3& camera) {
-        for (size_t i = 0; i < shipTracks.size(); ++i)
-            registry.get<ocean::Ship>(shipEntities[i]).position = shipTracks[i].positionAt(t);
-        for (; nextExplosion < explosionEvents.size() && explosionEvents[nextExplosion].time <= t;
-             ++nextExplosion) {
-            const ExplosionEvent& x = explosionEvents[nextExplosion];
-            events.enqueue(ocean::SpawnExplosion{{x.x, x.y}, x.time, x.strength});
-        }
-        events.dispatch();
-        effects.update(t, camera);
-    };
-    {
-        double warm = start;
-        for (const ShipTrack& track : shipTracks)
-            warm = std::min(warm, track.startTime());
-        // Wakes older than their foam life are gone anyway: warm up at most 600 s of ship history.
-        warm = std::max(warm, start - 600.0);
-        const glm::dvec3 camera = input.views.front().camera(start).position;
-        for (double tw = warm; tw < start; tw += 0.5)
-            advanceEffects(tw, camera);
-    }
+    std::vector<ocean::SpawnExplosion> spawns;
+    for (const ExplosionEvent& x : input.explosions)
+        spawns.push_back({{x.x, x.y}, x.time, x.strength});
+    timeline.scheduleExplosions(std::move(spawns));
+    double warm = start;
+    for (const ShipTrack& track : input.ships)
+        warm = std::min(warm, track.startTime());
+    timeline.warmUp(std::max(warm, start - 600.0), start, input.views.front().camera(start).position);
+}
 
-    std::optional<OutputTransaction> out;
-    if (!o.outDir.empty())
-        out.emplace(o.outDir);
-    std::unique_ptr<VideoWriter> video;
-    if (o.video)
-        video = std::make_unique<VideoWriter>(*o.video, input.views.front().width, input.views.front().height,
-                                              o.fps);
-    // Image encoding (EXR ZIP + PNG) runs on a worker thread while the next frame renders; at most two
-    // frames wait (WorkerQueue.h). Declared after `out`: it finishes its jobs before the staging directory
-    // goes. Each frame's EXR hash comes back through a future and is filled into its JSON entry.
-    std::optional<WorkerQueue<uint64_t>> encoder;
-    if (writeImages)
-        encoder.emplace(2);
-    struct PendingImage {
-        size_t view, frame; // viewFrames[view][frame]; frame == npos: an extra view's PNG (no hash)
-        std::future<uint64_t> hash;
-    };
-    std::deque<PendingImage> pendingImages;
-    std::vector<nlohmann::json> viewFrames(input.views.size(), nlohmann::json::array());
-    auto collectImages = [&](bool wait) { // rethrows a failed write as soon as it is seen
-        while (!pendingImages.empty() && (wait || pendingImages.front().hash.wait_for(std::chrono::seconds(
-                                                      0)) == std::future_status::ready)) {
-            PendingImage p = std::move(pendingImages.front());
-            pendingImages.pop_front();
+/// Image encoding (EXR ZIP + PNG) on a worker thread while the next frame renders; at most two frames wait
+/// (WorkerQueue.h). Each frame's EXR hash comes back through a future and is filled into its JSON entry.
+class ImageWriter {
+public:
+    explicit ImageWriter(bool enabled) {
+        if (enabled)
+            mEncoder.emplace(2);
+    }
+    /// Frame `frame` of view `view`: its EXR (whose hash goes into viewFrames[view][frame]) and PNG.
+    void frame(size_t view, size_t frame, fs::path exr, fs::path png, int w, int h,
+               const std::vector<float>& scene, const std::vector<float>& display,
+               const capture::Metadata& meta, capture::Compression c) {
+        mPending.push_back({view, frame, mEncoder->submit([=, sceneCopy = scene, displayCopy = display] {
+                                const uint64_t hash =
+                                    capture::writeExrHalf(exr, w, h, 4, sceneCopy.data(), meta, c);
+                                capture::writePng8(png, w, h, 4, displayCopy.data(), c);
+                                return hash;
+                            })});
+    }
+    /// An extra view's PNG (no hash).
+    void png(size_t view, fs::path path, int w, int h, const std::vector<float>& display,
+             capture::Compression c) {
+        mPending.push_back({view, std::string::npos, mEncoder->submit([=, displayCopy = display] {
+                                capture::writePng8(path, w, h, 4, displayCopy.data(), c);
+                                return uint64_t{0};
+                            })});
+    }
+    /// Fills the hashes of the finished images (all of them with `wait`); rethrows a failed write as soon
+    /// as it is seen.
+    void collect(bool wait, std::vector<nlohmann::json>& viewFrames) {
+        while (!mPending.empty() && (wait || mPending.front().hash.wait_for(std::chrono::seconds(0)) ==
+                                                 std::future_status::ready)) {
+            Pending p = std::move(mPending.front());
+            mPending.pop_front();
             const uint64_t h = p.hash.get();
             if (p.frame != std::string::npos)
                 viewFrames[p.view][p.frame]["exr_pixel_hash"] = hex64(h);
         }
+    }
+
+private:
+    struct Pending {
+        size_t view, frame; // viewFrames[view][frame]; frame == npos: an extra view's PNG (no hash)
+        std::future<uint64_t> hash;
     };
+    std::deque<Pending> mPending;
+    std::optional<WorkerQueue<uint64_t>> mEncoder;
+};
+
+/// What one view of one frame cost and did (OceanStats, EffectCounters): absent effects show zeros.
+nlohmann::json countersJson(const ocean::OceanStats& st, const ocean::EffectCounters& fx, int objectsDrawn,
+                            size_t tonemapPasses) {
+    auto kindJson = [](const ocean::EffectKindStats& ks) {
+        return nlohmann::json{{"active", ks.active}, {"drawn", ks.drawn},     {"passes", ks.passes},
+                              {"draws", ks.draws},   {"uploads", ks.uploads}, {"vertices", ks.vertices}};
+    };
+    return {{"passes", st.passes},
+            {"draws", st.draws},
+            {"uploads", st.uploads},
+            {"vertices", st.vertices},
+            {"programs_built", st.programsBuilt},
+            {"compute_shaded", st.computeShaded},
+            {"shade_tiled", st.shadeTiled},
+            {"explosions", kindJson(st.explosions)},
+            {"wakes", kindJson(st.wakes)},
+            {"explosions_spawned", fx.spawned},
+            {"effects_ended", fx.ended},
+            {"explosions_dropped", fx.droppedExplosions},
+            {"wakes_dropped", fx.droppedWakes},
+            {"events_rejected", fx.rejected},
+            {"objects_drawn", objectsDrawn},
+            {"tonemap_passes", tonemapPasses}};
+}
+
+nlohmann::json poseJson(const Pose& pose) {
+    return {{"x_m", pose.position.x},         {"y_m", pose.position.y},     {"z_m", pose.position.z},
+            {"heading_deg", pose.headingDeg}, {"pitch_deg", pose.pitchDeg}, {"roll_deg", pose.rollDeg}};
+}
+
+/// The objects alive at t, posed once per frame and drawn by every view (by id: a view may hide one).
+using AliveObjects = std::vector<std::pair<uint64_t, DrawnObject>>;
+
+/// One run of `pacifica replay`. The members are built in declaration order: everything that can fail
+/// without touching the output directory first (colour, GL, scene, extra views), then the output
+/// transaction, the video and the image writer (declared after the transaction: it finishes its jobs
+/// before the staging directory goes). renderFrame() advances the simulation once per frame; every view
+/// renders that same state.
+class ReplayRun {
+public:
+    ReplayRun(const ReplayOptions& o, const ReplayInput& input, const FramePlan& plan, Clock::time_point t0);
+    void renderFrame(long long k);
+    /// Waits for every image (or the first failure), finishes the video, writes summary.json last.
+    void finish();
+
+private:
+    // --profile: the replay's own GPU passes, timed with the ocean's clock.
+    enum ReplayPass { PassObjects, PassTonemap, ReplayPassCount };
+    struct ViewTimes {
+        Clock::time_point readStart, readEnd, encodeEnd;
+        double extraTonemapMs = 0.0; // extra views: their tonemap + readback, timed on the CPU
+    };
+    int drawView(size_t vi, const ocean::OceanFrame& frame, const AliveObjects& alive);
+    nlohmann::json renderView(long long k, size_t vi, double t, const AliveObjects& alive);
+    capture::Metadata frameMetadata(long long k, double t, const Pose& pose, const ReplayView& view) const;
+    nlohmann::json extraViewPasses(size_t vi, const std::string& name, ViewTimes& times);
+    nlohmann::json passJson(const ViewTimes& times);
+    void progress(long long k, double t, Clock::time_point now) const;
+    nlohmann::json summary(double totalSeconds) const;
+
+    const ReplayOptions& o;
+    const ReplayInput& input;
+    const FramePlan plan;
+    const Clock::time_point t0;
+    const bool writeImages; // --video without --out: the video only
+    nlohmann::json environmentJson;
+    const ocean::OceanDesc oceanDesc;
+    const std::string environmentName;
+    color::ColorPipeline colour;
+    std::unique_ptr<gl::GlContext> context;
+    ecs::Registry registry; // the ocean entity, then the ships
+    const ecs::Entity oceanEntity;
+    ocean::OceanRenderer renderer;
+    std::vector<std::unique_ptr<gl::FrameTargets>> targets; // one set per view
+    color::Tonemapper tonemapper;
+    std::vector<ExtraView> extraViews;
+    gl::GpuTimer gpuTimer;
+    std::unique_ptr<gl::PassTimer> passTimer;
+    std::map<std::string, std::vector<double>> passSamples; // per pass name, one value per view frame
+    std::vector<ReplayObject> objects;
+    std::unique_ptr<ObjectRenderer> objectRenderer;
+    ecs::EventQueue events;
+    ocean::EffectsSystem effects;
+    ocean::EffectsTimeline timeline;
+    std::optional<OutputTransaction> out;
+    std::unique_ptr<VideoWriter> video;
+    ImageWriter images;
+    std::vector<nlohmann::json> viewFrames;
     std::vector<float> scene, display;
     std::vector<double> frameWallMs;
     double firstFrameSeconds = 0.0;
-    const bool tty = o.progress && isatty(STDERR_FILENO);
+    const bool tty;
+};
 
-    for (long long k = 0; k < frameCount; ++k) {
-        const auto f0 = std::chrono::steady_clock::now();
-        // Frame time from the index (not accumulated): frame k is exactly start + k * speed / fps.
-        const double t = std::min(end, start + static_cast<double>(k) * frameStep);
-        advanceEffects(t, input.views.front().camera(t).position);
-        std::vector<std::pair<uint64_t, DrawnObject>> alive; // posed once per frame, drawn by every view
-        for (const ReplayObject& obj : objects)
-            if (t >= obj.start && t <= obj.end)
-                alive.push_back({obj.id, {obj.shape, obj.length, obj.track->poseAt(t)}});
-        for (size_t vi = 0; vi < input.views.size(); ++vi) {
-            const ReplayView& view = input.views[vi];
-            gl::FrameTargets& target = *targets[vi];
-            const Pose pose = view.camera(t);
-            ocean::OceanFrame frame;
-            frame.camera =
-                makeCameraFrame(pose, view.fovYDeg * static_cast<float>(std::numbers::pi / 180.0),
-                                static_cast<float>(view.width) / static_cast<float>(view.height), 0.05f);
-            frame.time = t;
-            frame.targetFramebuffer = target.sceneFramebuffer().id();
-            frame.width = view.width;
-            frame.height = view.height;
+std::vector<std::unique_ptr<gl::FrameTargets>> makeTargets(const std::vector<ReplayView>& views) {
+    std::vector<std::unique_ptr<gl::FrameTargets>> targets;
+    for (const ReplayView& v : views)
+        targets.push_back(std::make_unique<gl::FrameTargets>(v.width, v.height));
+    return targets;
+}
 
-            std::vector<DrawnObject> drawn;
-            for (const auto& [id, object] : alive)
-                if (id != view.hiddenObject.value_or(~uint64_t(0)))
-                    drawn.push_back(object);
-            gpuTimer.begin();
-            renderer.render(registry, frame);
-            if (passTimer)
-                passTimer->beginFrame();
-            const int objectsDrawn =
-                objectRenderer
-                    ? objectRenderer->draw(drawn, frame.camera, target.sceneFramebuffer().id(), view.width,
-                                           view.height, oceanDesc.lighting.sunDirection, drawEarthRadius)
-                    : 0;
-            if (passTimer)
-                passTimer->mark(PassObjects);
-            tonemapper.run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
-            if (passTimer) {
-                passTimer->mark(PassTonemap);
-                passTimer->endFrame();
-            }
-            gpuTimer.end();
-            const auto r0 = std::chrono::steady_clock::now();
-            target.readScene(scene);
+ecs::Entity addOcean(ecs::Registry& registry, const ocean::OceanDesc& desc) {
+    const ecs::Entity e = registry.create();
+    registry.emplace<ocean::OceanComponent>(e, ocean::makeOcean(desc));
+    return e;
+}
+
+ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const FramePlan& plan_,
+                     Clock::time_point t0_)
+    : o(o_), input(input_), plan(plan_), t0(t0_), writeImages(o.writeImages && !o.outDir.empty()),
+      oceanDesc(oceanWithEnvironment(o, environmentJson)),
+      environmentName(o.environment ? o.environment->filename().string() : "procedural"),
+      colour(replayColour(o)), context(gl::createHeadlessContext()),
+      oceanEntity(addOcean(registry, oceanDesc)), targets(makeTargets(input.views)), tonemapper(colour),
+      extraViews(makeExtraViews(o, colour)), gpuTimer(context->info()), effects(registry, events),
+      timeline(registry, events, effects), images(writeImages),
+      viewFrames(input.views.size(), nlohmann::json::array()), tty(o.progress && isatty(STDERR_FILENO)) {
+    if (o.profile) { // the ocean's passes (OceanRenderer::setPassTiming) and the replay's, one clock
+        renderer.setPassTiming(gpuTimer.clock());
+        passTimer = std::make_unique<gl::PassTimer>(gpuTimer.clock(), ReplayPassCount);
+    }
+    if (o.objects)
+        objects = replayObjects(input, plan.start, plan.end);
+    if (!objects.empty())
+        objectRenderer = std::make_unique<ObjectRenderer>();
+    if (o.events)
+        scheduleEvents(timeline, input, plan.start);
+    if (!o.outDir.empty())
+        out.emplace(o.outDir);
+    if (o.video)
+        video = std::make_unique<VideoWriter>(*o.video, input.views.front().width, input.views.front().height,
+                                              o.fps);
+}
+
+void ReplayRun::renderFrame(long long k) {
+    const auto f0 = Clock::now();
+    const double t = plan.timeOf(k);
+    timeline.step(t, input.views.front().camera(t).position);
+    AliveObjects alive;
+    for (const ReplayObject& obj : objects)
+        if (t >= obj.start && t <= obj.end)
+            alive.push_back({obj.id, {obj.shape, obj.length, obj.track->poseAt(t)}});
+    for (size_t vi = 0; vi < input.views.size(); ++vi) {
+        nlohmann::json fj = renderView(k, vi, t, alive);
+        viewFrames[vi].push_back(std::move(fj));
+    }
+    images.collect(false, viewFrames);
+    const auto f1 = Clock::now();
+    frameWallMs.push_back(msBetween(f0, f1));
+    if (k == 0)
+        firstFrameSeconds = std::chrono::duration<double>(f1 - t0).count();
+    if (tty)
+        progress(k, t, f1);
+}
+
+/// The sea, the objects and the main tonemap of one view, inside the GPU timer (and the pass timer with
+/// --profile). Returns the objects drawn.
+int ReplayRun::drawView(size_t vi, const ocean::OceanFrame& frame, const AliveObjects& alive) {
+    const ReplayView& view = input.views[vi];
+    gl::FrameTargets& target = *targets[vi];
+    std::vector<DrawnObject> drawn;
+    for (const auto& [id, object] : alive)
+        if (id != view.hiddenObject.value_or(~uint64_t(0)))
+            drawn.push_back(object);
+    const double drawEarthRadius = oceanDesc.earthCurvature ? ocean::EARTH_RADIUS : 0.0;
+    gpuTimer.begin();
+    renderer.render(registry, frame);
+    if (passTimer)
+        passTimer->beginFrame();
+    const int objectsDrawn =
+        objectRenderer ? objectRenderer->draw(drawn, frame.camera, target.sceneFramebuffer().id(), view.width,
+                                              view.height, oceanDesc.lighting.sunDirection, drawEarthRadius)
+                       : 0;
+    if (passTimer)
+        passTimer->mark(PassObjects);
+    tonemapper.run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
+    if (passTimer) {
+        passTimer->mark(PassTonemap);
+        passTimer->endFrame();
+    }
+    gpuTimer.end();
+    return objectsDrawn;
+}
+
+capture::Metadata ReplayRun::frameMetadata(long long k, double t, const Pose& pose,
+                                           const ReplayView& view) const {
+    capture::Metadata meta;
+    meta.numbers = {{"frame", static_cast<double>(k)},   {"time_s", t},
+                    {"camera_x_m", pose.position.x},     {"camera_y_m", pose.position.y},
+                    {"camera_z_m", pose.position.z},     {"camera_heading_deg", pose.headingDeg},
+                    {"camera_pitch_deg", pose.pitchDeg}, {"camera_roll_deg", pose.rollDeg}};
+    meta.strings = {{"ocio_config", colour.configDescription()},
+                    {"ocio_display", colour.selectedDisplay()},
+                    {"ocio_view", colour.selectedView()},
+                    {"gl_renderer", context->info().renderer},
+                    {"flight", o.flight.filename().string()},
+                    {"rig", view.rig},
+                    {"environment", environmentName}};
+    return meta;
+}
+
+/// One view of frame k: drawn, read back, its images queued (or its pixels hashed), the extra views
+/// tonemapped; returns the frame's summary.json entry.
+nlohmann::json ReplayRun::renderView(long long k, size_t vi, double t, const AliveObjects& alive) {
+    const ReplayView& view = input.views[vi];
+    gl::FrameTargets& target = *targets[vi];
+    const Pose pose = view.camera(t);
+    const ocean::OceanFrame frame =
+        ocean::makeOceanFrame(pose, view.fovYDeg * static_cast<float>(std::numbers::pi / 180.0), view.width,
+                              view.height, t, target.sceneFramebuffer().id());
+    const int objectsDrawn = drawView(vi, frame, alive);
+    ViewTimes times;
+    times.readStart = Clock::now();
+    target.readScene(scene);
+    target.readDisplay(display);
+    times.readEnd = Clock::now();
+
+    char name[96];
+    std::snprintf(name, sizeof name, "%s%sframe_%05lld", view.name.c_str(), view.name.empty() ? "" : "_", k);
+    const std::string exrName = std::string(name) + ".exr", pngName = std::string(name) + ".png";
+    nlohmann::json fj;
+    fj["index"] = k;
+    fj["time_s"] = t;
+    fj["pose"] = poseJson(pose);
+    if (writeImages) {
+        images.frame(vi, viewFrames[vi].size(), out->staged(exrName), out->staged(pngName), view.width,
+                     view.height, scene, display, frameMetadata(k, t, pose, view), o.imageCompression);
+        fj["exr"] = exrName;
+        fj["png"] = pngName;
+        fj["exr_pixel_hash"] = nullptr; // filled by ImageWriter::collect
+    } else {
+        const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
+        fj["exr_pixel_hash"] = hex64(capture::hashHalfPixels(half.data(), half.size()));
+    }
+    if (video && vi == 0)
+        video->addFrame(display.data());
+    nlohmann::json extraPngs = extraViewPasses(vi, name, times);
+    if (writeImages && !extraViews.empty())
+        fj["extra_views"] = std::move(extraPngs);
+    times.encodeEnd = Clock::now();
+    fj["counters"] =
+        countersJson(renderer.lastStats(), effects.counters(), objectsDrawn, 1 + extraViews.size());
+    if (passTimer)
+        fj["pass_ms"] = passJson(times);
+    return fj;
+}
+
+/// The extra views' tonemaps of view vi (and their PNGs); returns their entries for summary.json.
+nlohmann::json ReplayRun::extraViewPasses(size_t vi, const std::string& name, ViewTimes& times) {
+    const ReplayView& view = input.views[vi];
+    gl::FrameTargets& target = *targets[vi];
+    nlohmann::json extraPngs = nlohmann::json::array();
+    for (ExtraView& e : extraViews) {
+        const auto e0 = Clock::now();
+        e.pass->run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
+        if (writeImages)
             target.readDisplay(display);
-            const auto r1 = std::chrono::steady_clock::now();
-
-            char name[96];
-            std::snprintf(name, sizeof name, "%s%sframe_%05lld", view.name.c_str(),
-                          view.name.empty() ? "" : "_", k);
-            const std::string exrName = std::string(name) + ".exr", pngName = std::string(name) + ".png";
-            uint64_t hash = 0;
-            double extraTonemapMs = 0.0; // extra views: their tonemap + readback, timed on the CPU
-            if (writeImages) {
-                capture::Metadata meta;
-                meta.numbers = {{"frame", static_cast<double>(k)},   {"time_s", t},
-                                {"camera_x_m", pose.position.x},     {"camera_y_m", pose.position.y},
-                                {"camera_z_m", pose.position.z},     {"camera_heading_deg", pose.headingDeg},
-                                {"camera_pitch_deg", pose.pitchDeg}, {"camera_roll_deg", pose.rollDeg}};
-                meta.strings = {{"ocio_config", colour.configDescription()},
-                                {"ocio_display", colour.selectedDisplay()},
-                                {"ocio_view", colour.selectedView()},
-                                {"gl_renderer", context->info().renderer},
-                                {"flight", o.flight.filename().string()},
-                                {"rig", view.rig},
-                                {"environment", environmentName}};
-                pendingImages.push_back(
-                    {vi, viewFrames[vi].size(),
-                     encoder->submit([exr = out->staged(exrName), png = out->staged(pngName), w = view.width,
-                                      h = view.height, sceneCopy = scene, displayCopy = display, meta,
-                                      compression = o.imageCompression] {
-                         const uint64_t exrHash =
-                             capture::writeExrHalf(exr, w, h, 4, sceneCopy.data(), meta, compression);
-                         capture::writePng8(png, w, h, 4, displayCopy.data(), compression);
-                         return exrHash;
-                     })});
-            } else {
-                const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
-                hash = capture::hashHalfPixels(half.data(), half.size());
-            }
-            if (video && vi == 0)
-                video->addFrame(display.data());
-            nlohmann::json extraPngs = nlohmann::json::array();
-            for (ExtraView& e : extraViews) {
-                const auto e0 = std::chrono::steady_clock::now();
-                e.pass->run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);
-                if (writeImages)
-                    target.readDisplay(display);
-                extraTonemapMs +=
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - e0).count();
-                if (writeImages) {
-                    const std::string png = std::string(name) + "." + e.suffix + ".png";
-                    pendingImages.push_back(
-                        {vi, std::string::npos,
-                         encoder->submit([path = out->staged(png), w = view.width, h = view.height,
-                                          displayCopy = display, compression = o.imageCompression] {
-                             capture::writePng8(path, w, h, 4, displayCopy.data(), compression);
-                             return uint64_t{0};
-                         })});
-                    extraPngs.push_back({{"view", e.view}, {"png", png}});
-                }
-            }
-            const auto r2 = std::chrono::steady_clock::now();
-
-            nlohmann::json fj;
-            fj["index"] = k;
-            fj["time_s"] = t;
-            fj["pose"] = {{"x_m", pose.position.x},     {"y_m", pose.position.y},
-                          {"z_m", pose.position.z},     {"heading_deg", pose.headingDeg},
-                          {"pitch_deg", pose.pitchDeg}, {"roll_deg", pose.rollDeg}};
-            if (writeImages) {
-                fj["exr"] = exrName;
-                fj["png"] = pngName;
-                if (!extraViews.empty())
-                    fj["extra_views"] = extraPngs;
-            }
-            fj["exr_pixel_hash"] = writeImages
-                                       ? nlohmann::json(nullptr)
-                                       : nlohmann::json(hex64(hash)); // images: filled by collectImages
-            // What the frame cost and did (OceanStats, EffectCounters): absent effects show zeros.
-            const ocean::OceanStats& st = renderer.lastStats();
-            const ocean::EffectCounters& fx = effects.counters();
-            auto kindJson = [](const ocean::EffectKindStats& ks) {
-                return nlohmann::json{{"active", ks.active},   {"drawn", ks.drawn},
-                                      {"passes", ks.passes},   {"draws", ks.draws},
-                                      {"uploads", ks.uploads}, {"vertices", ks.vertices}};
-            };
-            fj["counters"] = {{"passes", st.passes},
-                              {"draws", st.draws},
-                              {"uploads", st.uploads},
-                              {"vertices", st.vertices},
-                              {"programs_built", st.programsBuilt},
-                              {"compute_shaded", st.computeShaded},
-                              {"shade_tiled", st.shadeTiled},
-                              {"explosions", kindJson(st.explosions)},
-                              {"wakes", kindJson(st.wakes)},
-                              {"explosions_spawned", fx.spawned},
-                              {"effects_ended", fx.ended},
-                              {"explosions_dropped", fx.droppedExplosions},
-                              {"wakes_dropped", fx.droppedWakes},
-                              {"events_rejected", fx.rejected},
-                              {"objects_drawn", objectsDrawn},
-                              {"tonemap_passes", 1 + extraViews.size()}};
-            if (passTimer) {
-                // The ocean's and the replay's pass timers: on hardware the newest frame whose timestamps
-                // have arrived (a few frames behind), on llvmpipe this one.
-                const ocean::OceanPassTimes& pt = st.passTimes;
-                auto ms = [](std::chrono::steady_clock::duration d) {
-                    return std::chrono::duration<double, std::milli>(d).count();
-                };
-                nlohmann::json pj;
-                if (pt.measured)
-                    pj = {{"compute", pt.computeMs},
-                          {"sky", pt.skyMs},
-                          {"sea", pt.seaMs},
-                          {"effects", pt.effectsMs},
-                          {"shade", pt.shadeMs}};
-                if (auto own = passTimer->poll()) {
-                    pj["objects"] = (*own)[PassObjects];
-                    pj["tonemap"] = (*own)[PassTonemap];
-                }
-                pj["readback"] = ms(r1 - r0);
-                // Main-thread time handing the images to the encoder (copies; waits when two frames are
-                // queued) or hashing them, and the video frame; the encoding itself overlaps rendering.
-                pj["encode"] = ms(r2 - r1) - extraTonemapMs;
-                if (!extraViews.empty())
-                    pj["extra_views"] = extraTonemapMs;
-                for (const auto& [pass, value] : pj.items())
-                    passSamples[pass].push_back(value.get<double>());
-                fj["pass_ms"] = std::move(pj);
-            }
-            viewFrames[vi].push_back(std::move(fj));
-        }
-        collectImages(false);
-        const auto f1 = std::chrono::steady_clock::now();
-        frameWallMs.push_back(std::chrono::duration<double, std::milli>(f1 - f0).count());
-        if (k == 0)
-            firstFrameSeconds = std::chrono::duration<double>(f1 - t0).count();
-        if (tty) {
-            const double elapsed = std::chrono::duration<double>(f1 - t0).count() - firstFrameSeconds;
-            const double eta =
-                k > 0 ? elapsed / static_cast<double>(k) * static_cast<double>(frameCount - k - 1) : 0.0;
-            const int width = 24;
-            const int filled = static_cast<int>(width * (k + 1) / frameCount);
-            std::fprintf(stderr, "\rpacifica replay [%.*s%*s] %lld/%lld  t=%.2f s  ETA %d:%02d   ", filled,
-                         "########################", width - filled, "", k + 1, frameCount, t,
-                         static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+        times.extraTonemapMs += msBetween(e0, Clock::now());
+        if (writeImages) {
+            const std::string png = name + "." + e.suffix + ".png";
+            images.png(vi, out->staged(png), view.width, view.height, display, o.imageCompression);
+            extraPngs.push_back({{"view", e.view}, {"png", png}});
         }
     }
+    return extraPngs;
+}
+
+/// --profile: the ocean's and the replay's pass timers (on hardware the newest frame whose timestamps have
+/// arrived, a few frames behind; on llvmpipe this one), readback, and the main thread's time handing the
+/// images to the encoder (copies; waits when two frames are queued) or hashing them, and the video frame
+/// (the encoding itself overlaps rendering).
+nlohmann::json ReplayRun::passJson(const ViewTimes& times) {
+    const ocean::OceanPassTimes& pt = renderer.lastStats().passTimes;
+    nlohmann::json pj;
+    if (pt.measured)
+        pj = {{"compute", pt.computeMs},
+              {"sky", pt.skyMs},
+              {"sea", pt.seaMs},
+              {"effects", pt.effectsMs},
+              {"shade", pt.shadeMs}};
+    if (auto own = passTimer->poll()) {
+        pj["objects"] = (*own)[PassObjects];
+        pj["tonemap"] = (*own)[PassTonemap];
+    }
+    pj["readback"] = msBetween(times.readStart, times.readEnd);
+    pj["encode"] = msBetween(times.readEnd, times.encodeEnd) - times.extraTonemapMs;
+    if (!extraViews.empty())
+        pj["extra_views"] = times.extraTonemapMs;
+    for (const auto& [pass, value] : pj.items())
+        passSamples[pass].push_back(value.get<double>());
+    return pj;
+}
+
+void ReplayRun::progress(long long k, double t, Clock::time_point now) const {
+    const double elapsed = std::chrono::duration<double>(now - t0).count() - firstFrameSeconds;
+    const double eta =
+        k > 0 ? elapsed / static_cast<double>(k) * static_cast<double>(plan.count - k - 1) : 0.0;
+    const int width = 24;
+    const int filled = static_cast<int>(width * (k + 1) / plan.count);
+    std::fprintf(stderr, "\rpacifica replay [%.*s%*s] %lld/%lld  t=%.2f s  ETA %d:%02d   ", filled,
+                 "########################", width - filled, "", k + 1, plan.count, t,
+                 static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+}
+
+void ReplayRun::finish() {
     if (tty)
         std::fprintf(stderr, "\n");
-    collectImages(true); // every image written (or the first failure thrown) before the summary
+    images.collect(true, viewFrames); // every image written (or the first failure thrown) before the summary
     if (video)
         video->finish(); // the video is in place only now; a failure before leaves none
+    gpuTimer.drain();    // timer queries of the last frames are still in flight on real GPUs
+    const double totalSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (out)
+        out->commit(summary(totalSeconds));
+    logInfo("replay: " + std::to_string(plan.count) + " frames in " + std::to_string(totalSeconds) +
+            " s -> " + (o.outDir.empty() ? o.video->string() : o.outDir.string()));
+}
 
-    gpuTimer.drain(); // timer queries of the last frames are still in flight on real GPUs
-    const double totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    nlohmann::json summary;
-    summary["flight"] = o.flight.string();
-    summary["format"] = input.format;
-    summary["recording"] = input.summary;
-    summary["gl"] = {{"vendor", context->info().vendor},
-                     {"renderer", context->info().renderer},
-                     {"version", context->info().version},
-                     {"platform", context->info().platform}};
-    summary["ocio"] = {{"config", colour.configDescription()},
-                       {"input", colour.input().empty() ? std::string("scene_linear") : colour.input()},
-                       {"display", colour.selectedDisplay()},
-                       {"view", colour.selectedView()},
-                       {"extra_views", o.extraViews}};
-    summary["environment"] = environmentJson;
-    summary["size"] = {input.views.front().width, input.views.front().height};
-    summary["fps"] = o.fps;
-    summary["speed"] = o.speed;
-    summary["start_s"] = start;
-    summary["end_s"] = end;
-    summary["images_written"] = writeImages;
-    summary["video"] = o.video ? nlohmann::json{{"file", o.video->string()}, {"frames", video->frames()}}
-                               : nlohmann::json(nullptr);
-    summary["hash"] = "XXH64 of the scene-linear half-float RGBA pixels, rows top-down";
-    summary["events"] = {{"applied", o.events},
-                         {"explosions", explosionEvents.size()},
-                         {"ships", shipTracks.size()},
-                         {"explosions_dropped_total", effects.counters().totalDroppedExplosions}};
-    // One entry per view with its frames; "frames" repeats the first view's, for single-view readers.
+/// summary.json: the run's inputs, GL and OCIO, one entry per view with its frames ("frames" repeats the
+/// first view's, for single-view readers), and the timings.
+nlohmann::json ReplayRun::summary(double totalSeconds) const {
+    const gl::ContextInfo& gl = context->info();
+    nlohmann::json s;
+    s["flight"] = o.flight.string();
+    s["format"] = input.format;
+    s["recording"] = input.summary;
+    s["gl"] = {
+        {"vendor", gl.vendor}, {"renderer", gl.renderer}, {"version", gl.version}, {"platform", gl.platform}};
+    s["ocio"] = {{"config", colour.configDescription()},
+                 {"input", colour.input().empty() ? std::string("scene_linear") : colour.input()},
+                 {"display", colour.selectedDisplay()},
+                 {"view", colour.selectedView()},
+                 {"extra_views", o.extraViews}};
+    s["environment"] = environmentJson;
+    s["size"] = {input.views.front().width, input.views.front().height};
+    s["fps"] = o.fps;
+    s["speed"] = o.speed;
+    s["start_s"] = plan.start;
+    s["end_s"] = plan.end;
+    s["images_written"] = writeImages;
+    s["video"] = o.video ? nlohmann::json{{"file", o.video->string()}, {"frames", video->frames()}}
+                         : nlohmann::json(nullptr);
+    s["hash"] = "XXH64 of the scene-linear half-float RGBA pixels, rows top-down";
+    s["events"] = {{"applied", o.events},
+                   {"explosions", o.events ? input.explosions.size() : 0},
+                   {"ships", o.events ? input.ships.size() : 0},
+                   {"explosions_dropped_total", effects.counters().totalDroppedExplosions}};
     nlohmann::json views = nlohmann::json::array();
     for (size_t vi = 0; vi < input.views.size(); ++vi) {
         const ReplayView& v = input.views[vi];
@@ -611,29 +712,43 @@ void runReplay(const ReplayOptions& o) {
                          {"fov_deg", v.fovYDeg},
                          {"frames", viewFrames[vi]}});
     }
-    summary["views"] = std::move(views);
-    summary["frames"] = std::move(viewFrames.front());
-    summary["timings"] = {
+    s["views"] = std::move(views);
+    s["frames"] = viewFrames.front();
+    s["timings"] = {
         {"gpu_clock", gpuTimer.clockName()},
         {"gpu_ms_median", median(gpuTimer.samples())},
         {"frame_wall_clock", "steady_clock, whole frame (all views) incl. readback and image writes"},
         {"frame_wall_ms_median", median(frameWallMs)},
         {"time_to_first_frame_s", firstFrameSeconds},
         {"total_s", totalSeconds},
-        {"frames_per_second_overall", static_cast<double>(frameCount) / totalSeconds},
+        {"frames_per_second_overall", static_cast<double>(plan.count) / totalSeconds},
         {"frames_per_second_steady", 1000.0 / std::max(median(frameWallMs), 1e-9)}};
     if (passTimer) {
         nlohmann::json medians;
         for (const auto& [name, v] : passSamples)
             medians[name] = median(v);
-        summary["timings"]["passes_ms_median"] = std::move(medians);
-        summary["timings"]["pass_clock"] = std::string(renderer.passTimingClock()) +
-                                           " (GPU passes); steady_clock (readback, encode, extra_views)";
+        s["timings"]["passes_ms_median"] = std::move(medians);
+        s["timings"]["pass_clock"] = std::string(renderer.passTimingClock()) +
+                                     " (GPU passes); steady_clock (readback, encode, extra_views)";
     }
-    if (out)
-        out->commit(summary);
-    logInfo("replay: " + std::to_string(frameCount) + " frames in " + std::to_string(totalSeconds) +
-            " s -> " + (o.outDir.empty() ? o.video->string() : o.outDir.string()));
+    return s;
+}
+
+} // namespace
+
+/// Validate everything first (options, the flight, the frames, ffmpeg), then build the run and render it
+/// frame by frame; a failure anywhere removes what the run wrote.
+void runReplay(const ReplayOptions& o) {
+    const auto t0 = Clock::now();
+    checkOptions(o);
+    const ReplayInput input = loadReplayInput(o.flight, o.rigs, o.width, o.height, o.fovYDeg);
+    const FramePlan plan = planFrames(o, input);
+    if (o.video)
+        VideoWriter::findFfmpeg(*o.video); // extension and ffmpeg checked before anything is written
+    ReplayRun run(o, input, plan, t0);
+    for (long long k = 0; k < plan.count; ++k)
+        run.renderFrame(k);
+    run.finish();
 }
 
 } // namespace pacifica::tools
