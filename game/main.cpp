@@ -262,10 +262,9 @@ std::unique_ptr<gl::GlContext> makeContext(const game::Options& opt) {
                                                    .vsync = !opt.scripted()});
 }
 
-/// One session in the context ctx (the window or headless context, kept across the benchmark's runs).
-RunResult run(const game::Options& opt, gl::GlContext* ctx) {
-    color::ColorPipeline colour = color::ColorPipeline::fromEnvironmentOr(std::nullopt);
-    Tonemappers tonemappers(colour);
+/// The game state a session starts from: the options' sea, camera, OCIO views (checked against the config)
+/// and HUD.
+game::GameState initialState(const game::Options& opt, const Tonemappers& tonemappers) {
     game::GameState gs;
     gs.sea = opt.sea;
     gs.camera = opt.camera;
@@ -282,253 +281,285 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
                 list += (list.empty() ? "" : ", ") + x;
             throw game::UsageError("--view/--wipe: no OCIO view '" + v + "' (this config has: " + list + ")");
         }
+    return gs;
+}
 
-    // Scripted runs take every step of a long frame (--fps 4: 30 steps); play caps catch-up at 0.25 s.
-    const int maxSteps = opt.scripted() ? static_cast<int>(std::ceil(1.0 / (opt.fps * STEP))) + 1 : 30;
-    auto sortie = std::make_unique<Sortie>(gs.sea);
+nlohmann::json eventsJson(const game::World& world, const game::SessionRecorder* recorder) {
+    nlohmann::json ev = nlohmann::json::array();
+    for (const game::GameEvent& e : world.history()) {
+        nlohmann::json x = {{"kind", game::toString(e.kind)},
+                            {"time_s", e.time},
+                            {"x", e.position.x},
+                            {"y", e.position.y},
+                            {"ship", e.ship},
+                            {"weapon", e.weapon},
+                            {"strength", e.strength}};
+        if (recorder) { // where and when the recording has it
+            const glm::dvec3 g = recorder->geodetic(e.position);
+            x["latitude_deg"] = g.x;
+            x["longitude_deg"] = g.y;
+            x["record_time_s"] = recorder->recordTime(e.time);
+        }
+        ev.push_back(x);
+    }
+    return ev;
+}
+
+nlohmann::json shipsJson(const game::World& world, const game::SessionRecorder* recorder) {
+    nlohmann::json ships = nlohmann::json::array();
+    for (const game::ShipState& sh : world.ships()) {
+        nlohmann::json x = {{"name", sh.spec.name},
+                            {"id", sh.id},
+                            {"sunk", sh.sunkAt.has_value()},
+                            {"x", sh.pose.position.x},
+                            {"y", sh.pose.position.y}};
+        if (recorder) {
+            const glm::dvec3 g = recorder->geodetic(glm::dvec3(glm::dvec2(sh.pose.position), 0.0));
+            x["latitude_deg"] = g.x;
+            x["longitude_deg"] = g.y;
+        }
+        ships.push_back(x);
+    }
+    return ships;
+}
+
+/// A sortie on `sea` whose ships have sailed their prehistory (recorded by `recorder` when given).
+std::unique_ptr<Sortie> newSortie(const game::SeaSettings& sea, int maxSteps,
+                                  game::SessionRecorder* recorder) {
+    auto sortie = std::make_unique<Sortie>(sea);
     sortie->clock.setMaxStepsPerAdvance(maxSteps);
+    sortie->prehistory(recorder);
+    return sortie;
+}
+
+/// One session in the context ctx (the window or headless context, kept across the benchmark's runs):
+/// frame() polls the input, steps the sortie, draws and takes the screenshots due; finish() ends the
+/// recording, prints the result line and writes --summary.
+class Session {
+public:
+    Session(const game::Options& opt, gl::GlContext* ctx);
+    /// One frame; false when the session ends (quit, window closed, --frames reached).
+    bool frame();
+    RunResult finish();
+
+private:
+    void applyInput(const game::InputState& in);
+    void restartSortie();
+    /// The fixed steps of this frame's game time, then the world's events (banners, splashes, recording).
+    void simulate(const game::InputState& in, double realDt, double scale);
+    void draw(const Pose& camPose, const glm::ivec2& size);
+    void takeScreenshots(const gl::Framebuffer& display, const glm::ivec2& size);
+    nlohmann::json summary() const;
+
+    const game::Options& opt;
+    gl::GlContext* ctx;
+    Tonemappers tonemappers;
+    game::GameState gs;
+    int maxSteps; // scripted runs take every step of a long frame (--fps 4: 30 steps); play caps at 30
     std::unique_ptr<game::SessionRecorder> recorder;
-    if (!opt.record.empty())
-        recorder = std::make_unique<game::SessionRecorder>(opt.record);
-    sortie->prehistory(recorder.get());
-
-    auto renderer = std::make_unique<ocean::OceanRenderer>();
+    std::unique_ptr<Sortie> sortie;
+    std::unique_ptr<ocean::OceanRenderer> renderer;
     gl::ObjectRenderer objects;
-    game::Input input(*ctx);
-    game::Hud hud(*ctx);
-    gl::GpuTimer gpuTimer(ctx->info());
+    game::Input input;
+    game::Hud hud;
+    gl::GpuTimer gpuTimer;
     std::unique_ptr<gl::FrameTargets> targets, wipeTargets;
-
-    std::vector<std::pair<double, std::string>> screenshots = opt.screenshots;
-    ctx->makeCurrent();
-    std::sort(screenshots.begin(), screenshots.end());
+    std::vector<std::pair<double, std::string>> screenshots;
     nlohmann::json shots = nlohmann::json::array();
-    std::vector<double> cpuMs, gpuMs;
-    long long frame = 0;
+    std::vector<double> cpuMs;
+    long long frames = 0;
     int glErrors = 0;
     double lastRecord = -1e9;
     std::vector<std::string> messages; // every banner shown, for the summary
     double orbitAzimuth = 200.0;
-    auto last = std::chrono::steady_clock::now();
+    std::chrono::steady_clock::time_point last;
+};
 
-    while (!ctx->shouldClose()) {
-        const auto frameStart = std::chrono::steady_clock::now();
-        ctx->pollEvents();
-        const game::InputState in = opt.autopilot || opt.headless
-                                        ? game::InputState{}
-                                        : input.poll(hud.wantsKeyboard(), hud.wantsMouse());
-        if (in.quit)
-            break;
-        if (in.pause)
-            gs.paused = !gs.paused;
-        if (in.slowMotion)
-            gs.slowMotion = !gs.slowMotion;
-        if (in.nextCamera)
-            gs.camera = game::CameraMode((static_cast<int>(gs.camera) + 1) % game::CAMERA_MODES);
-        if (in.toggleHud)
-            gs.hud = !gs.hud;
-        if (in.restart || gs.restartRequested) {
-            gs.restartRequested = false;
-            std::string note = "New sortie";
-            if (recorder) { // a recording holds one sortie: it is finished here, the new one is not recorded
-                recorder->record(*sortie->world, sortie->world->takeEvents());
-                recorder->finish();
-                recorder.reset();
-                note += " (" + opt.record + " saved; this sortie is not recorded)";
-            }
-            messages.push_back(note);
-            sortie = std::make_unique<Sortie>(gs.sea);
-            sortie->clock.setMaxStepsPerAdvance(maxSteps);
-            sortie->prehistory(nullptr);
-            // The renderer stays (its programs are built): the new registry's ocean entity gets the same
-            // handle, and the renderer rebuilds that ocean's surface state for the new surface.
-            gs.banner = note;
-            gs.bannerUntil = 3.0;
-        }
-        if (gs.seaChanged) { // a live switch: the same sortie on the new sea
-            gs.seaChanged = false;
-            sortie->registry.emplaceOrReplace<ocean::OceanComponent>(sortie->ocean, buildOcean(gs.sea));
-        }
+Session::Session(const game::Options& o, gl::GlContext* c)
+    : opt(o), ctx(c), tonemappers(color::ColorPipeline::fromEnvironmentOr(std::nullopt)),
+      gs(initialState(opt, tonemappers)),
+      maxSteps(opt.scripted() ? static_cast<int>(std::ceil(1.0 / (opt.fps * STEP))) + 1 : 30),
+      recorder(opt.record.empty() ? nullptr : std::make_unique<game::SessionRecorder>(opt.record)),
+      sortie(newSortie(gs.sea, maxSteps, recorder.get())), renderer(std::make_unique<ocean::OceanRenderer>()),
+      input(*ctx), hud(*ctx), gpuTimer(ctx->info()), screenshots(opt.screenshots) {
+    ctx->makeCurrent();
+    std::sort(screenshots.begin(), screenshots.end());
+    last = std::chrono::steady_clock::now();
+}
 
-        const double realDt =
-            opt.scripted() ? 1.0 / opt.fps : std::chrono::duration<double>(frameStart - last).count();
-        last = frameStart;
-        const double scale = gs.paused ? 0.0 : (gs.slowMotion ? 0.25 : 1.0);
-        game::World& world = *sortie->world;
-        const int steps = sortie->clock.advance((opt.scripted() ? realDt : std::min(realDt, 0.25)) * scale);
-        for (int s = 0; s < steps; ++s) {
-            game::FlightControls c = in.controls;
-            if (opt.autopilot || gs.autopilot) {
-                const game::AutopilotDecision d = sortie->autopilot.decide(world);
-                c = d.controls;
-                gs.autopilotPhase = d.phase;
-                if (d.releaseBomb)
-                    sortie->autopilot.released(world.fire(game::WeaponKind::Bomb), world.time());
-            } else {
-                if (in.bomb && s == 0)
-                    world.fire(game::WeaponKind::Bomb);
-                if (in.rocket)
-                    world.fire(game::WeaponKind::Rocket);
-            }
-            world.step(c, STEP);
-            sortie->history.emplace_back(world.time(), world.player().pose);
-            while (sortie->history.size() > 2 && sortie->history.front().first < world.time() - HISTORY_S)
-                sortie->history.pop_front();
-        }
-        const std::vector<game::GameEvent> events = world.takeEvents();
-        for (const game::GameEvent& e : events) {
-            game::announce(gs, world, e, messages);
-            if (e.kind == game::GameEvent::Kind::Impact || e.kind == game::GameEvent::Kind::Ditched) {
-                sortie->lastImpact = e;
-                sortie->splashes.push_back(e);
-                const double h = world.player().pose.headingDeg * std::numbers::pi / 180.0;
-                sortie->impactFrom = glm::dvec2(std::sin(h), std::cos(h)); // the way the player flew in
-            }
-        }
-        if (recorder && (!events.empty() || world.time() - lastRecord >= 1.0 / SCRIPTED_RECORD_HZ - 1e-9)) {
-            recorder->record(world, events);
-            lastRecord = world.time();
-        }
+bool Session::frame() {
+    if (ctx->shouldClose())
+        return false;
+    const auto frameStart = std::chrono::steady_clock::now();
+    ctx->pollEvents();
+    const game::InputState in = opt.autopilot || opt.headless
+                                    ? game::InputState{}
+                                    : input.poll(hud.wantsKeyboard(), hud.wantsMouse());
+    if (in.quit)
+        return false;
+    applyInput(in);
+    const double realDt =
+        opt.scripted() ? 1.0 / opt.fps : std::chrono::duration<double>(frameStart - last).count();
+    last = frameStart;
+    const double scale = gs.paused ? 0.0 : (gs.slowMotion ? 0.25 : 1.0);
+    simulate(in, realDt, scale);
+    const game::World& world = *sortie->world;
+    orbitAzimuth += 12.0 * realDt * scale;
+    const Pose camPose = cameraPose(*sortie, gs.camera, world.time(), orbitAzimuth);
+    sortie->timeline->step(world.time(), camPose.position);
 
-        std::erase_if(sortie->splashes,
-                      [&](const game::GameEvent& e) { return world.time() - e.time > SPLASH_S; });
-        orbitAzimuth += 12.0 * realDt * scale;
-        const Pose camPose = cameraPose(*sortie, gs.camera, world.time(), orbitAzimuth);
-        sortie->timeline->step(world.time(), camPose.position);
+    const glm::ivec2 size = opt.headless ? glm::ivec2(opt.width, opt.height) : ctx->framebufferSize();
+    if (size.x <= 0 || size.y <= 0)
+        return true; // minimised
+    draw(camPose, size);
+    ctx->swapBuffers();
+    cpuMs.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count());
+    ++frames;
+    return opt.frames <= 0 || frames < opt.frames;
+}
 
-        const glm::ivec2 size = opt.headless ? glm::ivec2(opt.width, opt.height) : ctx->framebufferSize();
-        if (size.x <= 0 || size.y <= 0)
-            continue; // minimised
-        if (!targets || targets->width() != size.x || targets->height() != size.y)
-            targets = std::make_unique<gl::FrameTargets>(size.x, size.y);
-        gpuTimer.begin();
-        const ocean::OceanFrame f =
-            ocean::makeOceanFrame(camPose, static_cast<float>(gs.fovDeg * std::numbers::pi / 180.0), size.x,
-                                  size.y, world.time(), targets->sceneFramebuffer().id());
-        renderer->render(sortie->registry, f);
-        const ocean::OceanComponent& oc = sortie->registry.get<ocean::OceanComponent>(sortie->ocean);
-        gs.objectsDrawn = objects.draw(sceneObjects(*sortie, gs.camera), f.camera, f.targetFramebuffer,
-                                       size.x, size.y, oc.desc.lighting.sunDirection, ocean::EARTH_RADIUS);
-        // The display: the host's default framebuffer (window) or its own display target (headless).
-        const gl::Framebuffer display = opt.headless
-                                            ? gl::Framebuffer::wrap(targets->displayFramebuffer().id())
-                                            : gl::Framebuffer::wrap(0);
-        tonemappers.get(gs.view).run(targets->sceneColor(), display, size.x, size.y);
-        if (gs.wipe && !gs.wipeView.empty()) {
-            // Split screen: the second OCIO view right of the wipe line.
-            if (!wipeTargets || wipeTargets->width() != size.x || wipeTargets->height() != size.y)
-                wipeTargets = std::make_unique<gl::FrameTargets>(size.x, size.y);
-            tonemappers.get(gs.wipeView)
-                .run(targets->sceneColor(), wipeTargets->displayFramebuffer(), size.x, size.y);
-            const int x0 = std::clamp(static_cast<int>(gs.wipePosition * size.x), 0, size.x);
-            glBlitNamedFramebuffer(wipeTargets->displayFramebuffer().id(), display.id(), x0, 0, size.x,
-                                   size.y, x0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-        }
-        gs.stats = renderer->lastStats();
-        gs.frameCpuMs = cpuMs.empty() ? 0.0 : cpuMs.back();
-        if (const auto g = gpuTimer.poll())
-            gs.frameGpuMs = *g;
-        gs.gpuClock = gpuTimer.clockName();
-        gs.gamepad = input.gamepadName();
-        if (gs.hud)
-            hud.draw(gs, world, display.id(), size.x, size.y);
-        gpuTimer.end();
-        for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError())
-            ++glErrors;
-
-        while (!screenshots.empty() && world.time() >= screenshots.front().first - 1e-9) {
-            const std::vector<float> px = readPixels(display.id(), !opt.headless, size.x, size.y);
-#if PACIFICA_GAME_SCREENSHOTS
-            capture::writePng8(screenshots.front().second, size.x, size.y, 4, px.data());
-#else
-            throw std::runtime_error(
-                "--screenshot: this build has no image writing (PACIFICA_WITH_OIIO=OFF)");
-#endif
-            shots.push_back(
-                {{"file", screenshots.front().second}, {"time_s", world.time()}, {"frame", frame}});
-            screenshots.erase(screenshots.begin());
-        }
-        ctx->swapBuffers();
-        cpuMs.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count());
-        ++frame;
-        if (opt.frames > 0 && frame >= opt.frames)
-            break;
+void Session::applyInput(const game::InputState& in) {
+    if (in.pause)
+        gs.paused = !gs.paused;
+    if (in.slowMotion)
+        gs.slowMotion = !gs.slowMotion;
+    if (in.nextCamera)
+        gs.camera = game::CameraMode((static_cast<int>(gs.camera) + 1) % game::CAMERA_MODES);
+    if (in.toggleHud)
+        gs.hud = !gs.hud;
+    if (in.restart || gs.restartRequested)
+        restartSortie();
+    if (gs.seaChanged) { // a live switch: the same sortie on the new sea
+        gs.seaChanged = false;
+        sortie->registry.emplaceOrReplace<ocean::OceanComponent>(sortie->ocean, buildOcean(gs.sea));
     }
+}
+
+void Session::restartSortie() {
+    gs.restartRequested = false;
+    std::string note = "New sortie";
+    if (recorder) { // a recording holds one sortie: it is finished here, the new one is not recorded
+        recorder->record(*sortie->world, sortie->world->takeEvents());
+        recorder->finish();
+        recorder.reset();
+        note += " (" + opt.record + " saved; this sortie is not recorded)";
+    }
+    messages.push_back(note);
+    // The renderer stays (its programs are built): the new registry's ocean entity gets the same handle,
+    // and the renderer rebuilds that ocean's surface state for the new surface.
+    sortie = newSortie(gs.sea, maxSteps, nullptr);
+    gs.banner = note;
+    gs.bannerUntil = 3.0;
+}
+
+void Session::simulate(const game::InputState& in, double realDt, double scale) {
+    game::World& world = *sortie->world;
+    const int steps = sortie->clock.advance((opt.scripted() ? realDt : std::min(realDt, 0.25)) * scale);
+    for (int s = 0; s < steps; ++s) {
+        game::FlightControls c = in.controls;
+        if (opt.autopilot || gs.autopilot) {
+            const game::AutopilotDecision d = sortie->autopilot.decide(world);
+            c = d.controls;
+            gs.autopilotPhase = d.phase;
+            if (d.releaseBomb)
+                sortie->autopilot.released(world.fire(game::WeaponKind::Bomb), world.time());
+        } else {
+            if (in.bomb && s == 0)
+                world.fire(game::WeaponKind::Bomb);
+            if (in.rocket)
+                world.fire(game::WeaponKind::Rocket);
+        }
+        world.step(c, STEP);
+        sortie->history.emplace_back(world.time(), world.player().pose);
+        while (sortie->history.size() > 2 && sortie->history.front().first < world.time() - HISTORY_S)
+            sortie->history.pop_front();
+    }
+    const std::vector<game::GameEvent> events = world.takeEvents();
+    for (const game::GameEvent& e : events) {
+        game::announce(gs, world, e, messages);
+        if (e.kind == game::GameEvent::Kind::Impact || e.kind == game::GameEvent::Kind::Ditched) {
+            sortie->lastImpact = e;
+            sortie->splashes.push_back(e);
+            const double h = world.player().pose.headingDeg * std::numbers::pi / 180.0;
+            sortie->impactFrom = glm::dvec2(std::sin(h), std::cos(h)); // the way the player flew in
+        }
+    }
+    if (recorder && (!events.empty() || world.time() - lastRecord >= 1.0 / SCRIPTED_RECORD_HZ - 1e-9)) {
+        recorder->record(world, events);
+        lastRecord = world.time();
+    }
+    std::erase_if(sortie->splashes,
+                  [&](const game::GameEvent& e) { return world.time() - e.time > SPLASH_S; });
+}
+
+/// The sea, the objects, the tonemap (and the wipe's second view), the HUD; then the screenshots due.
+void Session::draw(const Pose& camPose, const glm::ivec2& size) {
+    const game::World& world = *sortie->world;
+    if (!targets || targets->width() != size.x || targets->height() != size.y)
+        targets = std::make_unique<gl::FrameTargets>(size.x, size.y);
+    gpuTimer.begin();
+    const ocean::OceanFrame f =
+        ocean::makeOceanFrame(camPose, static_cast<float>(gs.fovDeg * std::numbers::pi / 180.0), size.x,
+                              size.y, world.time(), targets->sceneFramebuffer().id());
+    renderer->render(sortie->registry, f);
+    const ocean::OceanComponent& oc = sortie->registry.get<ocean::OceanComponent>(sortie->ocean);
+    gs.objectsDrawn = objects.draw(sceneObjects(*sortie, gs.camera), f.camera, f.targetFramebuffer, size.x,
+                                   size.y, oc.desc.lighting.sunDirection, ocean::EARTH_RADIUS);
+    // The display: the host's default framebuffer (window) or its own display target (headless).
+    const gl::Framebuffer display =
+        opt.headless ? gl::Framebuffer::wrap(targets->displayFramebuffer().id()) : gl::Framebuffer::wrap(0);
+    tonemappers.get(gs.view).run(targets->sceneColor(), display, size.x, size.y);
+    if (gs.wipe && !gs.wipeView.empty()) {
+        // Split screen: the second OCIO view right of the wipe line.
+        if (!wipeTargets || wipeTargets->width() != size.x || wipeTargets->height() != size.y)
+            wipeTargets = std::make_unique<gl::FrameTargets>(size.x, size.y);
+        tonemappers.get(gs.wipeView)
+            .run(targets->sceneColor(), wipeTargets->displayFramebuffer(), size.x, size.y);
+        const int x0 = std::clamp(static_cast<int>(gs.wipePosition * size.x), 0, size.x);
+        glBlitNamedFramebuffer(wipeTargets->displayFramebuffer().id(), display.id(), x0, 0, size.x, size.y,
+                               x0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    gs.stats = renderer->lastStats();
+    gs.frameCpuMs = cpuMs.empty() ? 0.0 : cpuMs.back();
+    if (const auto g = gpuTimer.poll())
+        gs.frameGpuMs = *g;
+    gs.gpuClock = gpuTimer.clockName();
+    gs.gamepad = input.gamepadName();
+    if (gs.hud)
+        hud.draw(gs, world, display.id(), size.x, size.y);
+    gpuTimer.end();
+    for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError())
+        ++glErrors;
+    takeScreenshots(display, size);
+}
+
+void Session::takeScreenshots(const gl::Framebuffer& display, const glm::ivec2& size) {
+    const double time = sortie->world->time();
+    while (!screenshots.empty() && time >= screenshots.front().first - 1e-9) {
+        const std::vector<float> px = readPixels(display.id(), !opt.headless, size.x, size.y);
+#if PACIFICA_GAME_SCREENSHOTS
+        capture::writePng8(screenshots.front().second, size.x, size.y, 4, px.data());
+#else
+        throw std::runtime_error("--screenshot: this build has no image writing (PACIFICA_WITH_OIIO=OFF)");
+#endif
+        shots.push_back({{"file", screenshots.front().second}, {"time_s", time}, {"frame", frames}});
+        screenshots.erase(screenshots.begin());
+    }
+}
+
+RunResult Session::finish() {
     gpuTimer.drain();
-    gpuMs = gpuTimer.samples();
     if (recorder) {
         recorder->record(*sortie->world, sortie->world->takeEvents());
         recorder->finish();
     }
-
     const game::World& world = *sortie->world;
     std::printf("pacifica-game: %lld frames, t = %.3f s, %s, targets left %d, score %d, GL errors %d, %s\n",
-                frame, world.time(), game::toString(world.state()), world.targetsLeft(), world.score(),
+                frames, world.time(), game::toString(world.state()), world.targetsLeft(), world.score(),
                 glErrors, ctx->info().renderer.c_str());
-    if (!opt.summary.empty()) {
-        nlohmann::json j;
-        j["frames"] = frame;
-        j["time_s"] = world.time();
-        j["state"] = game::toString(world.state());
-        j["targets_left"] = world.targetsLeft();
-        j["score"] = world.score();
-        j["gl_errors"] = glErrors;
-        j["gl_renderer"] = ctx->info().renderer;
-        j["gamepad"] =
-            input.gamepadName().empty() ? nlohmann::json(nullptr) : nlohmann::json(input.gamepadName());
-        j["hud"] = {{"shown", gs.hud}, {"vertices", hud.lastVertexCount()}};
-        j["screenshots"] = shots;
-        j["messages"] = messages;
-        j["cpu_ms_median"] = median(cpuMs);
-        j["objects_drawn"] = gs.objectsDrawn;
-        j["camera"] = game::toString(gs.camera);
-        j["paused"] = gs.paused;
-        j["slow_motion"] = gs.slowMotion;
-        j["throttle"] = world.player().throttle;
-        j["speed_over_deck_mps"] =
-            glm::length(glm::dvec2(world.player().velocity) - world.ships()[0].velocity);
-        j["counters"] = {{"passes", gs.stats.passes},
-                         {"draws", gs.stats.draws},
-                         {"explosions", gs.stats.explosions.active},
-                         {"wakes", gs.stats.wakes.active}};
-        const glm::dvec3 p = world.player().pose.position;
-        j["player"] = {{"x", p.x}, {"y", p.y}, {"z", p.z}, {"on_deck", world.player().onDeck}};
-        nlohmann::json ev = nlohmann::json::array();
-        for (const game::GameEvent& e : world.history()) {
-            nlohmann::json x = {{"kind", game::toString(e.kind)},
-                                {"time_s", e.time},
-                                {"x", e.position.x},
-                                {"y", e.position.y},
-                                {"ship", e.ship},
-                                {"weapon", e.weapon},
-                                {"strength", e.strength}};
-            if (recorder) { // where and when the recording has it
-                const glm::dvec3 g = recorder->geodetic(e.position);
-                x["latitude_deg"] = g.x;
-                x["longitude_deg"] = g.y;
-                x["record_time_s"] = recorder->recordTime(e.time);
-            }
-            ev.push_back(x);
-        }
-        j["events"] = ev;
-        nlohmann::json ships = nlohmann::json::array();
-        for (const game::ShipState& sh : world.ships()) {
-            nlohmann::json x = {{"name", sh.spec.name},
-                                {"id", sh.id},
-                                {"sunk", sh.sunkAt.has_value()},
-                                {"x", sh.pose.position.x},
-                                {"y", sh.pose.position.y}};
-            if (recorder) {
-                const glm::dvec3 g = recorder->geodetic(glm::dvec3(glm::dvec2(sh.pose.position), 0.0));
-                x["latitude_deg"] = g.x;
-                x["longitude_deg"] = g.y;
-            }
-            ships.push_back(x);
-        }
-        j["ships"] = ships;
-        writeFileAtomically(opt.summary, j.dump(2) + "\n");
-    }
+    if (!opt.summary.empty())
+        writeFileAtomically(opt.summary, summary().dump(2) + "\n");
     if (!screenshots.empty())
         std::fprintf(stderr,
                      "pacifica-game: warning: %zu screenshot(s) after the last frame were not taken\n",
@@ -536,10 +567,51 @@ RunResult run(const game::Options& opt, gl::GlContext* ctx) {
     RunResult r;
     r.exitCode = glErrors == 0 ? 0 : 1;
     r.cpuMs = std::move(cpuMs);
-    r.gpuMs = std::move(gpuMs);
+    r.gpuMs = gpuTimer.samples();
     r.renderer = ctx->info().renderer;
     r.gpuClock = gs.gpuClock;
     return r;
+}
+
+/// --summary: what happened (state, score, events, ships), what was shown and what it cost.
+nlohmann::json Session::summary() const {
+    const game::World& world = *sortie->world;
+    nlohmann::json j;
+    j["frames"] = frames;
+    j["time_s"] = world.time();
+    j["state"] = game::toString(world.state());
+    j["targets_left"] = world.targetsLeft();
+    j["score"] = world.score();
+    j["gl_errors"] = glErrors;
+    j["gl_renderer"] = ctx->info().renderer;
+    j["gamepad"] =
+        input.gamepadName().empty() ? nlohmann::json(nullptr) : nlohmann::json(input.gamepadName());
+    j["hud"] = {{"shown", gs.hud}, {"vertices", hud.lastVertexCount()}};
+    j["screenshots"] = shots;
+    j["messages"] = messages;
+    j["cpu_ms_median"] = median(cpuMs);
+    j["objects_drawn"] = gs.objectsDrawn;
+    j["camera"] = game::toString(gs.camera);
+    j["paused"] = gs.paused;
+    j["slow_motion"] = gs.slowMotion;
+    j["throttle"] = world.player().throttle;
+    j["speed_over_deck_mps"] = glm::length(glm::dvec2(world.player().velocity) - world.ships()[0].velocity);
+    j["counters"] = {{"passes", gs.stats.passes},
+                     {"draws", gs.stats.draws},
+                     {"explosions", gs.stats.explosions.active},
+                     {"wakes", gs.stats.wakes.active}};
+    const glm::dvec3 p = world.player().pose.position;
+    j["player"] = {{"x", p.x}, {"y", p.y}, {"z", p.z}, {"on_deck", world.player().onDeck}};
+    j["events"] = eventsJson(world, recorder.get());
+    j["ships"] = shipsJson(world, recorder.get());
+    return j;
+}
+
+RunResult run(const game::Options& opt, gl::GlContext* ctx) {
+    Session session(opt, ctx);
+    while (session.frame()) {
+    }
+    return session.finish();
 }
 
 /// --bench FILE: the autopilot's sortie for --frames frames (after 10 unmeasured) at each quality preset;
