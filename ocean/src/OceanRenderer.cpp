@@ -415,6 +415,281 @@ void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
     mStats.passTimes = mPassTimes;
 }
 
+namespace {
+
+/// Pass timing (setPassTiming): a mark at the end of each pass; a pass left out adds ~0 to its slot.
+struct FrameMarks {
+    gl::PassTimer* timer;
+    explicit FrameMarks(gl::PassTimer* t) : timer(t) {
+        if (timer)
+            timer->beginFrame();
+    }
+    ~FrameMarks() {
+        if (timer)
+            timer->endFrame();
+    }
+    FrameMarks(const FrameMarks&) = delete;
+    FrameMarks& operator=(const FrameMarks&) = delete;
+    void mark(int pass) const {
+        if (timer)
+            timer->mark(pass);
+    }
+};
+
+} // namespace
+
+/// One ocean's frame as a fixed list of passes: compute (the surface model's update and the effects'
+/// buffers), sea (the base grid, lit or into the G-buffer), effects (the secondary grids), then shade (the
+/// compute pass lights every pixel, the sky's included) or sky. Each pass reads the frame's inputs and the
+/// decisions compute() made from here and adds what it did to the renderer's stats.
+struct OceanRenderer::FramePasses {
+    OceanRenderer& r;
+    ecs::Registry& registry;
+    const OceanFrame& frame;
+    const OceanComponent& ocean;
+    Gpu& gpu;
+    const glm::mat4 invViewProj;
+    const FrameMarks& marks;
+    // Decided by compute():
+    bool holes = false;     ///< effects in the frame: the sea has holes, the secondary grids draw
+    bool displaced = false; ///< the surface moves sideways (Gerstner, FFT)
+    bool deferred = false;  ///< compute shading (OceanDesc::computeShading) is attached
+    bool tiled = false;     ///< ... by tiles (OceanDesc::shadeTiles)
+    std::string fxDefines;
+
+    void compute();
+    /// The base grid; false when no sea is in view (nothing drawn).
+    bool sea();
+    void effects();
+    void sky();
+    void shade();
+    /// The frame's last pass: shade under compute shading, else the sky.
+    void last() { deferred ? shade() : sky(); }
+
+private:
+    GLuint shadeProgram(int kind);
+    gl::Program& seaProgram();
+    void drawSeaGrid();
+};
+
+void OceanRenderer::FramePasses::compute() {
+    const SurfaceGpuStats work = gpu.model->update(frame.time, frame.camera.origin);
+    r.mStats.passes += work.computePasses;
+    r.mStats.uploads += work.uploads;
+    marks.mark(PassCompute);
+    // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
+    if (hasEffects(registry)) {
+        r.mEffects->prepare(registry, frame, effectHeightBound(ocean), ocean.desc.effectGrids);
+        countEffectUploads(*r.mEffects, r.mStats);
+        holes = r.mEffects->any();
+    }
+    fxDefines = holes ? r.mEffects->defines() : std::string();
+    // Compute shading: the grids only fill a G-buffer sharing the host's depth (ComputeShading.h).
+    displaced = horizontalGuard(ocean) > 0.0;
+    deferred = ocean.desc.computeShading &&
+               r.mCompute->attach(frame.targetFramebuffer, frame.width, frame.height, displaced, holes);
+    r.mStats.computeShaded = deferred;
+    // Tiles (OceanDesc::shadeTiles): Auto asks the renderer's name once.
+    if (r.mPrograms->softwareRenderer < 0) {
+        const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        r.mPrograms->softwareRenderer = gl::isSoftwareRenderer(name ? name : "");
+    }
+    tiled = deferred &&
+            (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::On ||
+             (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::Auto && r.mPrograms->softwareRenderer == 1));
+    r.mStats.shadeTiled = tiled;
+}
+
+/// The sky after the sea and its effects (no overdraw): its fullscreen triangle lies at depth 0 (infinitely
+/// far in reverse-Z) and GL_GEQUAL passes only where nothing nearer was drawn, so the early depth test
+/// spares the sky's shading on every sea pixel. (A host's 24-bit depth buffer rounds the skirt's depth to 0
+/// beyond ~840 km; there the sky pass draws its own flat distant sea.)
+void OceanRenderer::FramePasses::sky() {
+    if (!ocean.desc.drawSky)
+        return;
+    Programs& programs = *r.mPrograms;
+    if (!programs.sky) {
+        ++r.mStats.programsBuilt;
+        programs.sky = gl::buildProgram({{gl::ShaderStage::Vertex, sources({"sky.vert"})},
+                                         {gl::ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
+                                        "ocean sky");
+        programs.emptyVao = gl::VertexArray::create();
+    }
+    const GLuint sky = programs.sky.id();
+    glUseProgram(sky);
+    r.mLighting->bind(sky, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    glProgramUniformMatrix4fv(sky, glGetUniformLocation(sky, "uInvViewProj"), 1, GL_FALSE,
+                              glm::value_ptr(invViewProj));
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GEQUAL);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(programs.emptyVao.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    r.mStats.passes += 1;
+    r.mStats.draws += 1;
+    r.mStats.vertices += 3;
+    marks.mark(PassSky);
+}
+
+/// One lighting program: all of it (untiled, kind < 0), or one kind of tile's part. The sky's kinds need
+/// neither the surface model nor the sea's lighting: one program each for every model and effect.
+GLuint OceanRenderer::FramePasses::shadeProgram(int kind) {
+    // Every shading program's defines; the sea's add the model's G-buffer layers.
+    const std::string base = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
+                             r.mCompute->outputFormat() + "\n" + ComputeShading::tileDefines();
+    const std::string seaDefines =
+        base + (holes ? "#define EFFECT_GRID\n" : "") + (displaced ? "#define GBUFFER_DISPLACED\n" : "");
+    const bool skyOnly = ComputeShading::skyOnly(kind);
+    const std::string variant =
+        (skyOnly ? base : seaDefines) + (kind < 0 ? std::string()
+                                                  : "#define SHADE_TILES\n#define SHADE_TILE_ACCESS "
+                                                    "readonly\n#define SHADE_TILE_KIND " +
+                                                        std::to_string(kind) + "\n");
+    const std::string owner = skyOnly ? std::string("sky") : gpu.programKey;
+    gl::Program& program = r.mPrograms->shade[owner + variant];
+    if (!program) {
+        ++r.mStats.programsBuilt;
+        std::vector<std::string> files{"shade_compute.glsl"};
+        if (!skyOnly)
+            for (const std::string& f : gpu.model->glslFiles())
+                files.push_back(f);
+        files.insert(files.end(), {"sky.glsl", "sky.frag", "shade_pixels.glsl"});
+        if (!skyOnly)
+            files.push_back("ocean.frag");
+        files.push_back("ocean_shade.comp");
+        program =
+            gl::buildProgram({{gl::ShaderStage::Compute, sources(files, variant)}},
+                             "ocean compute shading (" + owner +
+                                 (kind < 0 ? std::string() : ", tile kind " + std::to_string(kind)) + ")");
+    }
+    const GLuint prog = program.id();
+    setSurfaceUniforms(prog, ocean, gpu, frame);
+    r.mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
+                              glm::value_ptr(invViewProj));
+    return prog;
+}
+
+/// Compute shading: one pass over every pixel, or the tile sort and one pass per kind of tile.
+void OceanRenderer::FramePasses::shade() {
+    Programs& programs = *r.mPrograms;
+    if (tiled) {
+        if (!programs.shadeTileSort) {
+            ++r.mStats.programsBuilt;
+            programs.shadeTileSort = gl::buildProgram(
+                {{gl::ShaderStage::Compute,
+                  sources({"shade_compute.glsl", "sky.glsl", "sky.frag", "shade_pixels.glsl",
+                           "ocean_shade_tiles.comp"},
+                          ComputeShading::tileDefines() +
+                              "#define SHADE_COMPUTE\n#define SHADE_TILES\n#define SHADE_TILE_ACCESS\n")}},
+                "ocean compute shading tiles");
+        }
+        const GLuint sort = programs.shadeTileSort.id();
+        glProgramUniformMatrix4fv(sort, glGetUniformLocation(sort, "uInvViewProj"), 1, GL_FALSE,
+                                  glm::value_ptr(invViewProj));
+        unsigned kinds[ComputeShading::TILE_KINDS];
+        for (int k = 0; k < ComputeShading::TILE_KINDS; ++k)
+            kinds[k] = shadeProgram(k);
+        r.mCompute->shadeTiles(sort, kinds, ocean.desc.drawSky);
+        r.mStats.passes += 1 + ComputeShading::TILE_KINDS;
+    } else {
+        r.mCompute->shade(shadeProgram(-1), ocean.desc.drawSky);
+        r.mStats.passes += 1;
+    }
+    marks.mark(PassShade);
+}
+
+/// The base grid's program: lit, or into the G-buffer; with holes where the effect grids draw.
+gl::Program& OceanRenderer::FramePasses::seaProgram() {
+    const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
+    gl::Program& program =
+        (deferred ? r.mPrograms->seaGeometry : r.mPrograms->sea)[gpu.programKey + vert + fxDefines];
+    if (!program) {
+        ++r.mStats.programsBuilt;
+        const std::vector<std::string> model = gpu.model->glslFiles();
+        std::vector<std::string> frag = deferred ? std::vector<std::string>{} : model;
+        if (holes)
+            frag.emplace_back("effects.glsl");
+        program = gl::buildProgram(
+            {{gl::ShaderStage::Vertex, sources(concat(model, {vert}))},
+             {gl::ShaderStage::Fragment, sources(deferred ? concat(frag, {"ocean_gbuffer.frag"})
+                                                          : concat(frag, {"sky.glsl", "ocean.frag"}),
+                                                 holes ? fxDefines + "#define EFFECT_HOLES\n" : "")}},
+            std::string(deferred ? "ocean sea geometry (" : "ocean sea (") + gpu.programKey +
+                (holes ? ", effect holes" : "") + ")");
+    }
+    return program;
+}
+
+bool OceanRenderer::FramePasses::sea() {
+    const GLuint sea = seaProgram().id();
+    glUseProgram(sea);
+    if (deferred)
+        r.mCompute->beginGeometry();
+    if (!setSeaUniforms(sea, ocean, gpu, frame))
+        return false;
+    if (!deferred)
+        r.mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    if (holes)
+        r.mEffects->bind(sea);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    drawSeaGrid();
+    marks.mark(PassSea);
+    return true;
+}
+
+/// The grid's index ranges in view (the view sector, the ring cut), in one draw call.
+void OceanRenderer::FramePasses::drawSeaGrid() {
+    long long seaVertices = 0;
+    const std::vector<RadialGrid::IndexRange> ranges = seaIndices(gpu, ocean, frame, r.mStats, seaVertices);
+    glBindVertexArray(gpu.mesh.vao.id());
+    if (ranges.size() == 1) {
+        glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(ranges[0].count), GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(ranges[0].first * sizeof(uint32_t)));
+    } else if (!ranges.empty()) { // one call for the blocks of columns (RadialGrid::rangesFrom)
+        std::vector<GLsizei> counts;
+        std::vector<const void*> offsets;
+        for (const RadialGrid::IndexRange& range : ranges) {
+            counts.push_back(static_cast<GLsizei>(range.count));
+            offsets.push_back(reinterpret_cast<const void*>(range.first * sizeof(uint32_t)));
+        }
+        glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(),
+                            static_cast<GLsizei>(ranges.size()));
+    }
+    r.mStats.passes += 1;
+    r.mStats.draws += 1;
+    r.mStats.vertices += seaVertices;
+}
+
+/// The secondary grids, one instanced draw per kind in view (after the base grid: the same depth test).
+void OceanRenderer::FramePasses::effects() {
+    if (deferred)
+        r.mCompute->drawEffects(true);
+    const GLuint fx = r.effectProgram(gpu, false, deferred);
+    glUseProgram(fx);
+    setSurfaceUniforms(fx, ocean, gpu, frame);
+    // The effect grids' guard adds the effect field's reach; the feedback programs (tests) leave the test
+    // off: every vertex evaluated.
+    setCullUniform(fx, ocean, frame, effectHeightBound(ocean));
+    r.mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    r.mEffects->bind(fx);
+    for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {
+        EffectKindStats& ks = kind == EffectKind::Explosion ? r.mStats.explosions : r.mStats.wakes;
+        const long long vertices = r.mEffects->draw(fx, kind);
+        if (vertices == 0)
+            continue;
+        ks.passes += 1;
+        ks.draws += 1;
+        ks.vertices += vertices;
+        r.mStats.passes += 1;
+        r.mStats.draws += 1;
+        r.mStats.vertices += vertices;
+    }
+    marks.mark(PassEffects);
+}
+
 void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& frame) {
     // Drop GPU resources of oceans that no longer exist.
     for (auto it = mGpu.begin(); it != mGpu.end();) {
@@ -438,246 +713,16 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
     glClearDepth(0.0);
     glClear(GL_DEPTH_BUFFER_BIT);
 
-    const glm::mat4 invViewProj = glm::inverse(frame.camera.viewProj);
-    // Pass timing (setPassTiming): a mark at the end of each pass; a pass left out adds ~0 to its slot.
-    struct FrameMarks {
-        gl::PassTimer* timer;
-        explicit FrameMarks(gl::PassTimer* t) : timer(t) {
-            if (timer)
-                timer->beginFrame();
-        }
-        ~FrameMarks() {
-            if (timer)
-                timer->endFrame();
-        }
-        void mark(int pass) const {
-            if (timer)
-                timer->mark(pass);
-        }
-    } marks(mPassTimer.get());
+    const FrameMarks marks(mPassTimer.get());
     view.each([&](ecs::Entity e, OceanComponent& ocean) {
         if (!ocean.surface)
             return;
-        Gpu& gpu = prepare(e, ocean);
-        const SurfaceGpuStats work = gpu.model->update(frame.time, frame.camera.origin);
-        mStats.passes += work.computePasses;
-        mStats.uploads += work.uploads;
-        marks.mark(PassCompute);
-
-        // The sky after the sea and its effects (no overdraw): its fullscreen triangle lies at depth 0
-        // (infinitely far in reverse-Z) and GL_GEQUAL passes only where nothing nearer was drawn, so the
-        // early depth test spares the sky's shading on every sea pixel. (A host's 24-bit depth buffer rounds
-        // the skirt's depth to 0 beyond ~840 km; there the sky pass draws its own flat distant sea.)
-        auto drawSky = [&] {
-            if (!ocean.desc.drawSky)
-                return;
-            if (!mPrograms->sky) {
-                ++mStats.programsBuilt;
-                mPrograms->sky =
-                    gl::buildProgram({{gl::ShaderStage::Vertex, sources({"sky.vert"})},
-                                      {gl::ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
-                                     "ocean sky");
-                mPrograms->emptyVao = gl::VertexArray::create();
-            }
-            const GLuint sky = mPrograms->sky.id();
-            glUseProgram(sky);
-            mLighting->bind(sky, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-            glProgramUniformMatrix4fv(sky, glGetUniformLocation(sky, "uInvViewProj"), 1, GL_FALSE,
-                                      glm::value_ptr(invViewProj));
-            glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_GEQUAL);
-            glDepthMask(GL_FALSE);
-            glBindVertexArray(mPrograms->emptyVao.id());
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-            mStats.passes += 1;
-            mStats.draws += 1;
-            mStats.vertices += 3;
-            marks.mark(PassSky);
-        };
-
-        // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
-        const bool effects = hasEffects(registry);
-        if (effects) {
-            mEffects->prepare(registry, frame, effectHeightBound(ocean), ocean.desc.effectGrids);
-            countEffectUploads(*mEffects, mStats);
-        }
-        const bool holes = effects && mEffects->any();
-        const std::string fxDefines = holes ? mEffects->defines() : std::string();
-
-        // Compute shading (OceanDesc::computeShading): the grids only fill a G-buffer sharing the host's
-        // depth, and one compute pass lights every pixel, the sky's included (ComputeShading.h).
-        const bool displaced = horizontalGuard(ocean) > 0.0; // the surface moves sideways (Gerstner, FFT)
-        const bool deferred =
-            ocean.desc.computeShading &&
-            mCompute->attach(frame.targetFramebuffer, frame.width, frame.height, displaced, holes);
-        mStats.computeShaded = deferred;
-        // Tiles (OceanDesc::shadeTiles): Auto asks the renderer's name once.
-        if (mPrograms->softwareRenderer < 0) {
-            const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-            mPrograms->softwareRenderer = gl::isSoftwareRenderer(name ? name : "");
-        }
-        const bool tiled =
-            deferred &&
-            (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::On ||
-             (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::Auto && mPrograms->softwareRenderer == 1));
-        mStats.shadeTiled = tiled;
-        auto shadePixels = [&] {
-            // Every shading program's defines; the sea's add the model's G-buffer layers.
-            const std::string base = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
-                                     mCompute->outputFormat() + "\n" + ComputeShading::tileDefines();
-            const std::string seaDefines = base + (holes ? "#define EFFECT_GRID\n" : "") +
-                                           (displaced ? "#define GBUFFER_DISPLACED\n" : "");
-            // One lighting program: all of it (untiled, kind < 0), or one kind of tile's part. The sky's
-            // kinds need neither the surface model nor the sea's lighting: one program each for every model
-            // and effect.
-            auto shadeProgram = [&](int kind) {
-                const bool skyOnly = ComputeShading::skyOnly(kind);
-                const std::string variant = (skyOnly ? base : seaDefines) +
-                                            (kind < 0 ? std::string()
-                                                      : "#define SHADE_TILES\n#define SHADE_TILE_ACCESS "
-                                                        "readonly\n#define SHADE_TILE_KIND " +
-                                                            std::to_string(kind) + "\n");
-                const std::string owner = skyOnly ? std::string("sky") : gpu.programKey;
-                gl::Program& program = mPrograms->shade[owner + variant];
-                if (!program) {
-                    ++mStats.programsBuilt;
-                    std::vector<std::string> files{"shade_compute.glsl"};
-                    if (!skyOnly)
-                        for (const std::string& f : gpu.model->glslFiles())
-                            files.push_back(f);
-                    files.insert(files.end(), {"sky.glsl", "sky.frag", "shade_pixels.glsl"});
-                    if (!skyOnly)
-                        files.push_back("ocean.frag");
-                    files.push_back("ocean_shade.comp");
-                    program = gl::buildProgram(
-                        {{gl::ShaderStage::Compute, sources(files, variant)}},
-                        "ocean compute shading (" + owner +
-                            (kind < 0 ? std::string() : ", tile kind " + std::to_string(kind)) + ")");
-                }
-                const GLuint prog = program.id();
-                setSurfaceUniforms(prog, ocean, gpu, frame);
-                mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-                glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
-                                          glm::value_ptr(invViewProj));
-                return prog;
-            };
-            if (tiled) {
-                if (!mPrograms->shadeTileSort) {
-                    ++mStats.programsBuilt;
-                    mPrograms->shadeTileSort = gl::buildProgram(
-                        {{gl::ShaderStage::Compute, sources({"shade_compute.glsl", "sky.glsl", "sky.frag",
-                                                             "shade_pixels.glsl", "ocean_shade_tiles.comp"},
-                                                            ComputeShading::tileDefines() +
-                                                                "#define SHADE_COMPUTE\n#define SHADE_TILES\n"
-                                                                "#define SHADE_TILE_ACCESS\n")}},
-                        "ocean compute shading tiles");
-                }
-                const GLuint sort = mPrograms->shadeTileSort.id();
-                glProgramUniformMatrix4fv(sort, glGetUniformLocation(sort, "uInvViewProj"), 1, GL_FALSE,
-                                          glm::value_ptr(invViewProj));
-                unsigned kinds[ComputeShading::TILE_KINDS];
-                for (int k = 0; k < ComputeShading::TILE_KINDS; ++k)
-                    kinds[k] = shadeProgram(k);
-                mCompute->shadeTiles(sort, kinds, ocean.desc.drawSky);
-                mStats.passes += 1 + ComputeShading::TILE_KINDS;
-            } else {
-                mCompute->shade(shadeProgram(-1), ocean.desc.drawSky);
-                mStats.passes += 1;
-            }
-            marks.mark(PassShade);
-        };
-
-        const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
-        gl::Program& seaProgram =
-            (deferred ? mPrograms->seaGeometry : mPrograms->sea)[gpu.programKey + vert + fxDefines];
-        if (!seaProgram) {
-            ++mStats.programsBuilt;
-            const std::vector<std::string> model = gpu.model->glslFiles();
-            std::vector<std::string> frag = deferred ? std::vector<std::string>{} : model;
-            if (holes)
-                frag.emplace_back("effects.glsl");
-            seaProgram = gl::buildProgram(
-                {{gl::ShaderStage::Vertex, sources(concat(model, {vert}))},
-                 {gl::ShaderStage::Fragment, sources(deferred ? concat(frag, {"ocean_gbuffer.frag"})
-                                                              : concat(frag, {"sky.glsl", "ocean.frag"}),
-                                                     holes ? fxDefines + "#define EFFECT_HOLES\n" : "")}},
-                std::string(deferred ? "ocean sea geometry (" : "ocean sea (") + gpu.programKey +
-                    (holes ? ", effect holes" : "") + ")");
-        }
-        const GLuint sea = seaProgram.id();
-        glUseProgram(sea);
-        if (deferred)
-            mCompute->beginGeometry();
-        if (!setSeaUniforms(sea, ocean, gpu, frame)) {
-            if (deferred)
-                shadePixels(); // no sea in view: the sky alone
-            else
-                drawSky(); // no sea in view: the sky pass alone
-            return;
-        }
-        if (!deferred)
-            mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-        if (holes)
-            mEffects->bind(sea);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_GREATER);
-        glDepthMask(GL_TRUE);
-        long long seaVertices = 0;
-        const std::vector<RadialGrid::IndexRange> ranges = seaIndices(gpu, ocean, frame, mStats, seaVertices);
-        glBindVertexArray(gpu.mesh.vao.id());
-        if (ranges.size() == 1) {
-            glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(ranges[0].count), GL_UNSIGNED_INT,
-                           reinterpret_cast<const void*>(ranges[0].first * sizeof(uint32_t)));
-        } else if (!ranges.empty()) { // one call for the blocks of columns (RadialGrid::rangesFrom)
-            std::vector<GLsizei> counts;
-            std::vector<const void*> offsets;
-            for (const RadialGrid::IndexRange& r : ranges) {
-                counts.push_back(static_cast<GLsizei>(r.count));
-                offsets.push_back(reinterpret_cast<const void*>(r.first * sizeof(uint32_t)));
-            }
-            glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(),
-                                static_cast<GLsizei>(ranges.size()));
-        }
-        mStats.passes += 1;
-        mStats.draws += 1;
-        mStats.vertices += seaVertices;
-        marks.mark(PassSea);
-
-        // The secondary grids, one instanced draw per kind in view (after the base grid: same depth test).
-        if (!holes) {
-            if (deferred)
-                shadePixels();
-            else
-                drawSky();
-            return;
-        }
-        if (deferred)
-            mCompute->drawEffects(true);
-        const GLuint fx = effectProgram(gpu, false, deferred);
-        glUseProgram(fx);
-        setSurfaceUniforms(fx, ocean, gpu, frame);
-        // The effect grids' guard adds the effect field's reach; the feedback programs (tests) leave the test
-        // off: every vertex evaluated.
-        setCullUniform(fx, ocean, frame, effectHeightBound(ocean));
-        mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-        mEffects->bind(fx);
-        for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {
-            EffectKindStats& ks = kind == EffectKind::Explosion ? mStats.explosions : mStats.wakes;
-            const long long vertices = mEffects->draw(fx, kind);
-            if (vertices == 0)
-                continue;
-            ks.passes += 1;
-            ks.draws += 1;
-            ks.vertices += vertices;
-            mStats.passes += 1;
-            mStats.draws += 1;
-            mStats.vertices += vertices;
-        }
-        marks.mark(PassEffects);
-        if (deferred)
-            shadePixels();
-        else
-            drawSky();
+        FramePasses passes{
+            *this, registry, frame, ocean, prepare(e, ocean), glm::inverse(frame.camera.viewProj), marks};
+        passes.compute();
+        if (passes.sea() && passes.holes)
+            passes.effects();
+        passes.last(); // no sea in view: the sky (or the shading pass) alone
     });
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }

@@ -208,6 +208,7 @@ public:
     struct Programs; ///< implementation detail: compiled shader programs
 
 private:
+    struct FramePasses; ///< one ocean's frame as a fixed list of passes (OceanRenderer.cpp)
     void renderPasses(ecs::Registry& registry, const OceanFrame& frame);
     Gpu& prepare(ecs::Entity e, const OceanComponent& ocean);
     /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once):
