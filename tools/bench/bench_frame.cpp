@@ -20,6 +20,7 @@
 #include "ocean/Presets.h"
 #include "ocean/SeaState.h"
 
+#include "BenchCli.h"
 #include "BenchText.h"
 
 #include <epoxy/gl.h>
@@ -267,210 +268,196 @@ struct Row {
     bool shadeTiled = false; // lit by tiles (OceanDesc::shadeTiles)
 };
 
-int usage(const char* argv0, int code) {
-    (code == 0 ? std::cout : std::cerr)
-        << "usage: " << argv0
-        << " --out DIR [--size WxH]... [--frames N] [--quick] [--only NAME,...]\n"
-           "  Frame time per quality preset and size, and per-pass split (docs/PERFORMANCE.md).\n"
-           "  Default sizes: 640x360 and 1280x720 on a software renderer, 1920x1080 on hardware;\n"
-           "  default frames 15 (llvmpipe) / 120 (hardware). --quick: the presets at 160x90, 3 frames.\n"
-           "  --only: just the named settings (rows of a full run: low, high/no-sky, low/forward-shading "
-           "...).\n";
-    return code;
+struct Args {
+    std::string outDir;
+    std::vector<std::pair<int, int>> sizes;
+    std::optional<int> frames;
+    bool quick = false;
+    std::vector<std::string> only; // just these settings
+    std::string commandLine;
+};
+
+std::optional<int> parseArgs(int argc, char** argv, Args& a) {
+    CLI::App app(
+        "Frame time per quality preset and size, and the per-pass split (docs/PERFORMANCE.md). Default "
+        "sizes: 640x360 and 1280x720 on a software renderer, 1920x1080 on hardware; default frames 15 "
+        "(llvmpipe) / 120 (hardware).",
+        "pacifica-bench-frame");
+    app.add_option("--out", a.outDir, "report directory (frame.csv, frame.md, frame.json)")->required();
+    std::vector<std::string> sizes;
+    app.add_option("--size", sizes, "frame size WxH (repeat for several)")->check(bench::sizeValidator());
+    app.add_option("--frames", a.frames, "timed frames per setting")->check(CLI::Range(1, 10000));
+    app.add_flag("--quick", a.quick, "the presets at 160x90, 3 frames");
+    app.add_option("--only", a.only, "just the named settings (rows of a full run: low, high/no-sky, ...)")
+        ->delimiter(',');
+    if (const auto code = bench::parseCommandLine(app, argc, argv))
+        return code;
+    for (const std::string& s : sizes)
+        a.sizes.push_back(*parseSize(s));
+    a.commandLine = bench::commandLine(argc, argv);
+    return std::nullopt;
+}
+
+/// The scene's timed frames as a report row.
+Row rowOf(Scene& scene, int width, int height) {
+    scene.timer.drain(); // every span in order, the warm-up frames' first
+    const std::vector<double>& all = scene.timer.samples();
+    const std::vector<double> ms(all.begin() + static_cast<long>(std::min(scene.warmupSpans, all.size())),
+                                 all.end());
+    Row r;
+    r.setting = scene.setting.name;
+    r.knob = scene.setting.knob;
+    r.width = width;
+    r.height = height;
+    r.ms = quantile(ms, 0.5);
+    r.p90 = quantile(ms, 0.9);
+    r.compute = quantile(scene.compute, 0.5);
+    r.sky = quantile(scene.sky, 0.5);
+    r.sea = quantile(scene.sea, 0.5);
+    r.effects = quantile(scene.effects, 0.5);
+    r.shade = quantile(scene.shade, 0.5);
+    r.vertices = scene.stats.vertices;
+    r.passes = scene.stats.passes;
+    r.draws = scene.stats.draws;
+    r.shadeTiled = scene.stats.shadeTiled;
+    r.samples = static_cast<int>(ms.size());
+    if (r.samples == 0 || !(r.ms > 0.0))
+        throw std::runtime_error("setting " + r.setting + ": no frame time measured");
+    return r;
+}
+
+/// What the reports say of the run besides its rows.
+struct RunInfo {
+    std::string renderer, clock, passClock, date, commandLine;
+    int frames = 0;
+};
+
+/// Every selected setting at one size: warm-up frames, then round robin (the starting scene rotating from
+/// round to round) so a shared machine's load hits them alike. Appends one row per setting.
+void runSize(const Args& a, int width, int height, gl::GpuTimer& timer, RunInfo& info,
+             std::vector<Row>& rows) {
+    std::fprintf(stderr, "pacifica-bench-frame: GL_RENDERER %s; clock: %s; %dx%d, %d frames per setting\n",
+                 info.renderer.c_str(), timer.clockName(), width, height, info.frames);
+    gl::FrameTargets targets(width, height);
+    std::vector<std::unique_ptr<Scene>> scenes;
+    for (Setting& s : settings(a.quick))
+        if (a.only.empty() || std::find(a.only.begin(), a.only.end(), s.name) != a.only.end())
+            scenes.push_back(std::make_unique<Scene>(std::move(s), timer.clock()));
+    if (scenes.empty())
+        throw CLI::ValidationError("--only",
+                                   "names no setting (the names are the rows of a full run, e.g. low, "
+                                   "high/no-sky)");
+    info.passClock = scenes.front()->profiled.passTimingClock();
+    double t = T0;
+    for (int i = 0; i < WARMUP_FRAMES; ++i, t += FRAME_DT)
+        for (auto& scene : scenes)
+            scene->frame(targets, t, false);
+    for (int f = 0; f < info.frames; ++f, t += FRAME_DT)
+        for (size_t k = 0; k < scenes.size(); ++k)
+            scenes[(k + static_cast<size_t>(f)) % scenes.size()]->frame(targets, t, true);
+    for (auto& scene : scenes) {
+        const Row r = rowOf(*scene, width, height);
+        rows.push_back(r);
+        std::fprintf(stderr,
+                     "  %-22s %8.3f ms (p90 %8.3f)  sky %7.3f  sea %8.3f  shade %7.3f  compute %6.3f\n",
+                     r.setting.c_str(), r.ms, r.p90, r.sky, r.sea, r.shade, r.compute);
+    }
+}
+
+std::string csvReport(const std::vector<Row>& rows, const RunInfo& info) {
+    std::ostringstream csv;
+    csv << "setting,knob,width,height,ms_median,ms_p90,samples,compute_ms,sky_ms,sea_ms,effects_ms,"
+           "shade_ms,vertices,passes,draws,shade_tiled,clock,pass_clock,renderer\n";
+    for (const Row& r : rows)
+        csv << r.setting << "," << csvQuote(r.knob) << "," << r.width << "," << r.height << "," << num(r.ms)
+            << "," << num(r.p90) << "," << r.samples << "," << num(r.compute) << "," << num(r.sky) << ","
+            << num(r.sea) << "," << num(r.effects) << "," << num(r.shade) << "," << r.vertices << ","
+            << r.passes << "," << r.draws << "," << (r.shadeTiled ? 1 : 0) << "," << csvQuote(info.clock)
+            << "," << csvQuote(info.passClock) << "," << csvQuote(info.renderer) << "\n";
+    return csv.str();
+}
+
+std::string markdownReport(const std::vector<Row>& rows, const RunInfo& info) {
+    std::ostringstream md;
+    md << "# Ocean frame cost per preset (pacifica-bench-frame)\n\n"
+       << "- GL_RENDERER: " << info.renderer << "\n- frame clock: " << info.clock
+       << "\n- pass clock: " << info.passClock << " (a separate renderer, same frames)\n- date: " << info.date
+       << "\n- command: `" << info.commandLine << "`\n- view: 20 m up, pitch " << PITCH_DEG
+       << " deg (rows high/3km*: 3 km up, pitch -10 deg), vertical fov " << FOV_Y_DEG
+       << " deg; median (p90) of " << info.frames << " frames per setting, round robin\n\n"
+       << "| setting | size | ms median | p90 | sky | sea | shade | compute | vertices | vs high |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const Row& r : rows) {
+        double high = 0.0;
+        for (const Row& h : rows)
+            if (h.setting == "high" && h.width == r.width && h.height == r.height)
+                high = h.ms;
+        md << "| " << r.setting << " | " << r.width << "x" << r.height << " | " << num(r.ms, 4) << " | "
+           << num(r.p90, 4) << " | " << num(r.sky, 3) << " | " << num(r.sea, 4) << " | " << num(r.shade, 3)
+           << " | " << num(r.compute, 3) << " | " << r.vertices << " | "
+           << (high > 0 ? num(r.ms / high, 3) : "-") << " |\n";
+    }
+    return md.str();
+}
+
+std::string jsonReport(const std::vector<Row>& rows, const RunInfo& info) {
+    nlohmann::json js;
+    js["renderer"] = info.renderer;
+    js["clock"] = info.clock;
+    js["pass_clock"] = info.passClock;
+    js["date"] = info.date;
+    js["command"] = info.commandLine;
+    js["frames"] = info.frames;
+    for (const Row& r : rows)
+        js["rows"].push_back({{"setting", r.setting},
+                              {"knob", r.knob},
+                              {"width", r.width},
+                              {"height", r.height},
+                              {"ms_median", r.ms},
+                              {"ms_p90", r.p90},
+                              {"samples", r.samples},
+                              {"compute_ms", r.compute},
+                              {"sky_ms", r.sky},
+                              {"sea_ms", r.sea},
+                              {"effects_ms", r.effects},
+                              {"shade_ms", r.shade},
+                              {"vertices", r.vertices},
+                              {"passes", r.passes},
+                              {"draws", r.draws},
+                              {"shade_tiled", r.shadeTiled}});
+    return js.dump(2) + "\n";
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    std::string outDir;
-    std::vector<std::pair<int, int>> sizes;
-    std::optional<int> framesArg;
-    bool quick = false;
-    std::vector<std::string> only; // --only NAME[,NAME...]: run just these settings
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::optional<std::string> {
-            if (i + 1 >= argc)
-                return std::nullopt;
-            return std::string(argv[++i]);
-        };
-        if (a == "--help" || a == "-h")
-            return usage(argv[0], 0);
-        if (a == "--quick") {
-            quick = true;
-        } else if (a == "--out") {
-            const auto v = value();
-            if (!v || v->empty()) {
-                std::cerr << "pacifica-bench-frame: --out expects a directory\n";
-                return 2;
-            }
-            outDir = *v;
-        } else if (a == "--size") {
-            const auto v = value();
-            const auto size = v ? parseSize(*v) : std::nullopt;
-            if (!size) {
-                std::cerr << "pacifica-bench-frame: --size expects WxH (16..8192 each), e.g. 1920x1080\n";
-                return 2;
-            }
-            sizes.push_back(*size);
-        } else if (a == "--only") {
-            const auto v = value();
-            if (!v || v->empty()) {
-                std::cerr << "pacifica-bench-frame: --only expects setting names, e.g. low,high/no-sky\n";
-                return 2;
-            }
-            std::stringstream list(*v);
-            for (std::string name; std::getline(list, name, ',');)
-                only.push_back(name);
-        } else if (a == "--frames") {
-            const auto v = value();
-            char* end = nullptr;
-            const long n = v ? std::strtol(v->c_str(), &end, 10) : 0;
-            if (!v || *end != '\0' || n < 1 || n > 10000) {
-                std::cerr << "pacifica-bench-frame: --frames expects an integer in 1..10000\n";
-                return 2;
-            }
-            framesArg = static_cast<int>(n);
-        } else {
-            std::cerr << "pacifica-bench-frame: unknown argument '" << a << "'\n";
-            return usage(argv[0], 2);
-        }
-    }
-    if (outDir.empty()) {
-        std::cerr << "pacifica-bench-frame: --out DIR is required\n";
-        return usage(argv[0], 2);
-    }
-    std::string commandLine;
-    for (int i = 0; i < argc; ++i)
-        commandLine += (i ? " " : "") + std::string(argv[i]);
-
+    Args a;
+    if (const auto code = parseArgs(argc, argv, a))
+        return *code;
     try {
-        std::filesystem::create_directories(outDir);
+        std::filesystem::create_directories(a.outDir);
         auto context = gl::createHeadlessContext({.debug = false});
-        const gl::ContextInfo info = context->info();
-        gl::GpuTimer timer(info);
-        if (sizes.empty()) {
-            if (quick)
-                sizes = {{160, 90}};
-            else if (info.software)
-                sizes = {{640, 360}, {1280, 720}};
-            else
-                sizes = {{1920, 1080}};
-        }
-        const int frames = framesArg.value_or(quick ? 3 : (info.software ? 15 : 120));
-        std::string passClock;
+        const gl::ContextInfo& gl = context->info();
+        gl::GpuTimer timer(gl);
+        std::vector<std::pair<int, int>> sizes = a.sizes;
+        if (sizes.empty())
+            sizes = a.quick ? std::vector<std::pair<int, int>>{{160, 90}}
+                            : (gl.software ? std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}}
+                                           : std::vector<std::pair<int, int>>{{1920, 1080}});
+        RunInfo info{
+            gl.renderer, timer.clockName(), "",
+            utcNow(),    a.commandLine,     a.frames.value_or(a.quick ? 3 : (gl.software ? 15 : 120))};
         std::vector<Row> rows;
-        for (const auto& [width, height] : sizes) {
-            std::fprintf(stderr,
-                         "pacifica-bench-frame: GL_RENDERER %s; clock: %s; %dx%d, %d frames per setting\n",
-                         info.renderer.c_str(), timer.clockName(), width, height, frames);
-            gl::FrameTargets targets(width, height);
-            std::vector<std::unique_ptr<Scene>> scenes;
-            for (Setting& s : settings(quick))
-                if (only.empty() || std::find(only.begin(), only.end(), s.name) != only.end())
-                    scenes.push_back(std::make_unique<Scene>(std::move(s), timer.clock()));
-            if (scenes.empty()) {
-                std::cerr << "pacifica-bench-frame: --only names no setting (the names are the rows of a "
-                             "full run, e.g. low, high/no-sky)\n";
-                return 2;
-            }
-            passClock = scenes.front()->profiled.passTimingClock();
-            double t = T0;
-            for (int i = 0; i < WARMUP_FRAMES; ++i, t += FRAME_DT)
-                for (auto& scene : scenes)
-                    scene->frame(targets, t, false);
-            // Round robin, the starting scene rotating from round to round.
-            for (int f = 0; f < frames; ++f, t += FRAME_DT)
-                for (size_t k = 0; k < scenes.size(); ++k)
-                    scenes[(k + static_cast<size_t>(f)) % scenes.size()]->frame(targets, t, true);
-            for (auto& scene : scenes) {
-                scene->timer.drain(); // every span in order, the warm-up frames' first
-                const std::vector<double>& all = scene->timer.samples();
-                const std::vector<double> ms(
-                    all.begin() + static_cast<long>(std::min(scene->warmupSpans, all.size())), all.end());
-                Row r;
-                r.setting = scene->setting.name;
-                r.knob = scene->setting.knob;
-                r.width = width;
-                r.height = height;
-                r.ms = quantile(ms, 0.5);
-                r.p90 = quantile(ms, 0.9);
-                r.compute = quantile(scene->compute, 0.5);
-                r.sky = quantile(scene->sky, 0.5);
-                r.sea = quantile(scene->sea, 0.5);
-                r.effects = quantile(scene->effects, 0.5);
-                r.shade = quantile(scene->shade, 0.5);
-                r.vertices = scene->stats.vertices;
-                r.passes = scene->stats.passes;
-                r.draws = scene->stats.draws;
-                r.shadeTiled = scene->stats.shadeTiled;
-                r.samples = static_cast<int>(ms.size());
-                if (r.samples == 0 || !(r.ms > 0.0))
-                    throw std::runtime_error("setting " + r.setting + ": no frame time measured");
-                rows.push_back(r);
-                std::fprintf(
-                    stderr,
-                    "  %-22s %8.3f ms (p90 %8.3f)  sky %7.3f  sea %8.3f  shade %7.3f  compute %6.3f\n",
-                    r.setting.c_str(), r.ms, r.p90, r.sky, r.sea, r.shade, r.compute);
-            }
-        }
-
-        const std::string date = utcNow();
-        std::ofstream csv(std::filesystem::path(outDir) / "frame.csv");
-        csv << "setting,knob,width,height,ms_median,ms_p90,samples,compute_ms,sky_ms,sea_ms,effects_ms,"
-               "shade_ms,vertices,passes,draws,shade_tiled,clock,pass_clock,renderer\n";
-        for (const Row& r : rows)
-            csv << r.setting << "," << csvQuote(r.knob) << "," << r.width << "," << r.height << ","
-                << num(r.ms) << "," << num(r.p90) << "," << r.samples << "," << num(r.compute) << ","
-                << num(r.sky) << "," << num(r.sea) << "," << num(r.effects) << "," << num(r.shade) << ","
-                << r.vertices << "," << r.passes << "," << r.draws << "," << (r.shadeTiled ? 1 : 0) << ","
-                << csvQuote(timer.clockName()) << "," << csvQuote(passClock) << "," << csvQuote(info.renderer)
-                << "\n";
-        std::ofstream md(std::filesystem::path(outDir) / "frame.md");
-        md << "# Ocean frame cost per preset (pacifica-bench-frame)\n\n"
-           << "- GL_RENDERER: " << info.renderer << "\n- frame clock: " << timer.clockName()
-           << "\n- pass clock: " << passClock << " (a separate renderer, same frames)\n- date: " << date
-           << "\n- command: `" << commandLine << "`\n- view: 20 m up, pitch " << PITCH_DEG
-           << " deg (rows high/3km*: 3 km up, pitch -10 deg), vertical fov " << FOV_Y_DEG
-           << " deg; median (p90) of " << frames << " frames per setting, round robin\n\n"
-           << "| setting | size | ms median | p90 | sky | sea | shade | compute | vertices | vs high |\n"
-           << "|---|---|---|---|---|---|---|---|---|---|\n";
-        for (const Row& r : rows) {
-            double high = 0.0;
-            for (const Row& h : rows)
-                if (h.setting == "high" && h.width == r.width && h.height == r.height)
-                    high = h.ms;
-            md << "| " << r.setting << " | " << r.width << "x" << r.height << " | " << num(r.ms, 4) << " | "
-               << num(r.p90, 4) << " | " << num(r.sky, 3) << " | " << num(r.sea, 4) << " | "
-               << num(r.shade, 3) << " | " << num(r.compute, 3) << " | " << r.vertices << " | "
-               << (high > 0 ? num(r.ms / high, 3) : "-") << " |\n";
-        }
-        nlohmann::json js;
-        js["renderer"] = info.renderer;
-        js["clock"] = timer.clockName();
-        js["pass_clock"] = passClock;
-        js["date"] = date;
-        js["command"] = commandLine;
-        js["frames"] = frames;
-        for (const Row& r : rows)
-            js["rows"].push_back({{"setting", r.setting},
-                                  {"knob", r.knob},
-                                  {"width", r.width},
-                                  {"height", r.height},
-                                  {"ms_median", r.ms},
-                                  {"ms_p90", r.p90},
-                                  {"samples", r.samples},
-                                  {"compute_ms", r.compute},
-                                  {"sky_ms", r.sky},
-                                  {"sea_ms", r.sea},
-                                  {"effects_ms", r.effects},
-                                  {"shade_ms", r.shade},
-                                  {"vertices", r.vertices},
-                                  {"passes", r.passes},
-                                  {"draws", r.draws},
-                                  {"shade_tiled", r.shadeTiled}});
-        std::ofstream(std::filesystem::path(outDir) / "frame.json") << js.dump(2) << "\n";
+        for (const auto& [width, height] : sizes)
+            runSize(a, width, height, timer, info, rows);
+        const std::filesystem::path dir(a.outDir);
+        bench::writeReport(dir / "frame.csv", csvReport(rows, info));
+        bench::writeReport(dir / "frame.md", markdownReport(rows, info));
+        bench::writeReport(dir / "frame.json", jsonReport(rows, info));
         return 0;
+    } catch (const CLI::ValidationError& e) {
+        std::cerr << "pacifica-bench-frame: " << e.what() << "\n";
+        return 2;
     } catch (const gl::ContextError& e) {
         std::cerr << "pacifica-bench-frame: no GL context: " << e.what() << "\n";
         return 2;
