@@ -384,12 +384,68 @@ double explosionVisibility(const Explosion& e, double t, const glm::dvec2& camer
 
 } // namespace
 
+namespace {
+
+/// The ship's path: the newest point follows the ship; a point is kept when the ship has moved a segment,
+/// turned 8 degrees, or 10 s have passed. h[0] is the head (the ship now), h[1] the newest kept point.
+/// Speeds are over the segment from the next-older point (inherited when the head has barely moved on).
+void recordPath(std::vector<WakePoint>& h, const glm::dvec2& position, double time, double segment) {
+    WakePoint now{position, time, 0.0};
+    bool keep = false;
+    if (!h.empty()) {
+        const WakePoint& last = h.size() >= 2 ? h[1] : h[0];
+        const glm::dvec2 d = position - last.position;
+        const double dist = glm::length(d);
+        const double dt = time - last.time;
+        now.speed = dt > 0.05 ? dist / dt : (h.size() >= 2 ? h[1].speed : 0.0);
+        keep = dist >= segment || dt >= 10.0;
+        if (!keep && h.size() >= 3 && dist >= 2.0) {
+            const glm::dvec2 prev = last.position - h[2].position;
+            const double pl = glm::length(prev);
+            if (pl > 0.0)
+                keep = glm::dot(d / dist, prev / pl) < std::cos(8.0 * std::numbers::pi / 180.0);
+        }
+    }
+    if (h.size() < 2) {
+        h.insert(h.begin(), now); // the first point stays as the newest kept one
+    } else if (keep) {
+        h.front() = now; // freeze the head here and start a new one
+        h.insert(h.begin(), now);
+    } else {
+        h.front() = now;
+    }
+}
+
+/// Forgets the points too long ago or too far back (and beyond MAX_WAKE_POINTS).
+void trimPath(std::vector<WakePoint>& h, const WakeParams& params, double time) {
+    const double maxAge = 6.0 * std::max(params.waveLife, params.foamLife);
+    double sigma = 0.0;
+    size_t keepCount = h.size();
+    for (size_t i = 1; i < h.size(); ++i) {
+        sigma += glm::length(h[i].position - h[i - 1].position);
+        if (sigma > params.maxLength || time - h[i].time > maxAge) {
+            keepCount = i + 1;
+            break;
+        }
+    }
+    h.resize(std::min(keepCount, static_cast<size_t>(MAX_WAKE_POINTS)));
+}
+
+} // namespace
+
 void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
     mCounters = {};
     const glm::dvec2 camera(cameraWorld);
     const double camHeight = std::isfinite(cameraWorld.z) ? std::abs(cameraWorld.z) : 0.0;
+    applySpawns(time, camera, camHeight);
+    attachTrails();
+    endFadedExplosions(time);
+    updateWakes(time, camera, camHeight);
+    mCounters.totalDroppedExplosions = mTotalDropped;
+}
 
-    // 1. Spawns, with the cap.
+/// 1. Spawns, with the cap: when full, the least visible of the active ones and the newcomer is dropped.
+void EffectsSystem::applySpawns(double time, const glm::dvec2& camera, double camHeight) {
     std::vector<SpawnExplosion> spawns;
     spawns.swap(mPendingExplosions);
     for (const SpawnExplosion& sp : spawns) {
@@ -434,8 +490,10 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
         mRegistry.emplace<Explosion>(ent, e);
         ++mCounters.spawned;
     }
+}
 
-    // 2. Trails attached by events.
+/// 2. Trails attached by events.
+void EffectsSystem::attachTrails() {
     std::vector<AttachShipTrail> attaches;
     attaches.swap(mPendingTrails);
     for (const AttachShipTrail& a : attaches) {
@@ -448,8 +506,10 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
         trail.params = a.params;
         mRegistry.emplaceOrReplace<ShipTrail>(a.ship, trail);
     }
+}
 
-    // 3. Explosions that faded end.
+/// 3. Explosions that faded end.
+void EffectsSystem::endFadedExplosions(double time) {
     std::vector<ecs::Entity> ended;
     mRegistry.view<Explosion>().each([&](ecs::Entity ent, Explosion& e) {
         const ExplosionState s = explosionState(e, time);
@@ -464,61 +524,23 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
         mEvents.enqueue(EffectEnded{EffectKind::Explosion, ent, time, false});
         ++mCounters.ended;
     }
+}
 
-    // 4. Ship paths: the newest point follows the ship; a point is kept when the ship has moved a segment,
-    // turned 8 degrees, or 10 s have passed.
+/// 4. The ships' paths, trails that went quiet end; 5. the wake cap: the most visible are drawn.
+void EffectsSystem::updateWakes(double time, const glm::dvec2& camera, double camHeight) {
     struct Candidate {
         ecs::Entity entity;
         double visibility;
     };
     std::vector<Candidate> wakes;
     mRegistry.view<Ship, ShipTrail>().each([&](ecs::Entity ent, Ship& ship, ShipTrail& trail) {
-        std::vector<WakePoint>& h = trail.history;
         if (!finite(ship.position)) {
             ++mCounters.rejected;
             return; // keep the path as it was; a NaN position never enters the history
         }
-        const double segment = trail.params.maxLength / (MAX_WAKE_POINTS - 2);
-        if (h.empty() || time > h.front().time) {
-            // h[0] is the head (the ship now); h[1] the newest kept point. Speeds are over the segment
-            // from the next-older point (inherited when the head has barely moved on).
-            WakePoint now{ship.position, time, 0.0};
-            bool keep = false;
-            if (!h.empty()) {
-                const WakePoint& last = h.size() >= 2 ? h[1] : h[0];
-                const glm::dvec2 d = ship.position - last.position;
-                const double dist = glm::length(d);
-                const double dt = time - last.time;
-                now.speed = dt > 0.05 ? dist / dt : (h.size() >= 2 ? h[1].speed : 0.0);
-                keep = dist >= segment || dt >= 10.0;
-                if (!keep && h.size() >= 3 && dist >= 2.0) {
-                    const glm::dvec2 prev = last.position - h[2].position;
-                    const double pl = glm::length(prev);
-                    if (pl > 0.0)
-                        keep = glm::dot(d / dist, prev / pl) < std::cos(8.0 * std::numbers::pi / 180.0);
-                }
-            }
-            if (h.size() < 2) {
-                h.insert(h.begin(), now); // the first point stays as the newest kept one
-            } else if (keep) {
-                h.front() = now; // freeze the head here and start a new one
-                h.insert(h.begin(), now);
-            } else {
-                h.front() = now;
-            }
-            // Forget what is too long ago or too far back.
-            const double maxAge = 6.0 * std::max(trail.params.waveLife, trail.params.foamLife);
-            double sigma = 0.0;
-            size_t keepCount = h.size();
-            for (size_t i = 1; i < h.size(); ++i) {
-                sigma += glm::length(h[i].position - h[i - 1].position);
-                if (sigma > trail.params.maxLength || time - h[i].time > maxAge) {
-                    keepCount = i + 1;
-                    break;
-                }
-            }
-            keepCount = std::min(keepCount, static_cast<size_t>(MAX_WAKE_POINTS));
-            h.resize(keepCount);
+        if (trail.history.empty() || time > trail.history.front().time) {
+            recordPath(trail.history, ship.position, time, trail.params.maxLength / (MAX_WAKE_POINTS - 2));
+            trimPath(trail.history, trail.params, time);
         }
         const WakeState s = wakeState(ship, trail, time);
         const bool alive = s.radius > 0.0 && (s.peak >= mDesc.endAmplitude || s.foamPeak >= 0.01);
@@ -535,7 +557,6 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
         wakes.push_back({ent, std::max(s.peak, 0.1) * s.radius / std::max(dist, s.radius)});
         trail.active = true;
     });
-    // 5. Wake cap: the most visible are drawn.
     std::sort(wakes.begin(), wakes.end(), [](const Candidate& a, const Candidate& b) {
         return a.visibility > b.visibility ||
                (a.visibility == b.visibility && a.entity.index < b.entity.index);
@@ -548,7 +569,6 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
             ++mCounters.droppedWakes;
         }
     }
-    mCounters.totalDroppedExplosions = mTotalDropped;
 }
 
 EffectsTimeline::EffectsTimeline(ecs::Registry& registry, ecs::EventQueue& events, EffectsSystem& system)

@@ -238,6 +238,12 @@ public:
     const EffectsDesc& desc() const { return mDesc; }
 
 private:
+    // The stages of update(), in order.
+    void applySpawns(double time, const glm::dvec2& camera, double camHeight);
+    void attachTrails();
+    void endFadedExplosions(double time);
+    void updateWakes(double time, const glm::dvec2& camera, double camHeight);
+
     ecs::Registry& mRegistry;
     ecs::EventQueue& mEvents;
     EffectsDesc mDesc;
