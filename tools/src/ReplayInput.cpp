@@ -153,58 +153,51 @@ std::string listObjects(const recording::Recording& rec) {
     return out;
 }
 
-ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vector<std::string>& rigs,
-                            int defaultWidth, int defaultHeight, float defaultFov) {
-    ReplayInput in;
-    std::error_code ec;
-    // A missing file goes to the CSV reader, whose error names it ("cannot open flight file").
-    const std::string format =
-        std::filesystem::is_regular_file(flight, ec) ? recording::detectFormat(flight) : "csv";
-    in.format = format;
-    if (format == "csv" || format.empty()) {
-        // The project's CSV (also for unrecognised text: FlightPath names the line that is wrong).
-        if (format.empty()) {
-            // Only fall back to the CSV reader for text that could be CSV; otherwise list the formats.
-            try {
-                in.csv = std::make_shared<const FlightPath>(FlightPath::load(flight));
-            } catch (const FlightError& e) {
-                throw recording::RecordingError(flight.string(), 0, "",
-                                                "unrecognised flight file format (as CSV: " + e.message() +
-                                                    "); supported: " + recording::supportedFormats());
-            }
-        } else {
-            in.csv = std::make_shared<const FlightPath>(FlightPath::load(flight));
-        }
-        in.format = "csv";
-        for (const std::string& r : rigs)
-            if (r != "path")
-                throw UsageError("--rig " + r +
-                                 ": a CSV flight is its own camera path (--rig path); rigs over "
-                                 "objects need a recording (Tacview ACMI or IGC)");
-        ReplayView v;
-        v.rig = "path";
-        v.width = defaultWidth;
-        v.height = defaultHeight;
-        v.fovYDeg = defaultFov;
-        std::shared_ptr<const FlightPath> csv = in.csv;
-        v.camera = [csv](double t) { return csv->poseAt(t); };
-        in.views.push_back(std::move(v));
-        in.startTime = in.csv->startTime();
-        in.endTime = in.csv->endTime();
-        in.ships = in.csv->ships();
-        in.shipLengths.assign(in.ships.size(), 60.0);
-        in.explosions = in.csv->explosions();
-        in.summary = nullptr;
-        return in;
-    }
+namespace {
 
-    auto rec = std::make_shared<const recording::Recording>(recording::readRecording(flight));
-    in.recording = rec;
-    if (rec->altitudeDatum == "ELL")
-        logWarning(flight.string() +
-                   ": GNSS altitudes are above the WGS84 ellipsoid (HFALGALTGPS:ELL) and are "
-                   "taken as above sea level (no geoid model installed; it differs by -106..+85 m)");
-    in.referenceUnix = rec->referenceUnix;
+/// The project's CSV (also for unrecognised text: FlightPath names the line that is wrong): one view along
+/// its own camera path, its ships and explosions.
+void loadCsvFlight(ReplayInput& in, const std::filesystem::path& flight, bool recognised,
+                   const std::vector<std::string>& rigs, int defaultWidth, int defaultHeight,
+                   float defaultFov) {
+    if (!recognised) {
+        // Only fall back to the CSV reader for text that could be CSV; otherwise list the formats.
+        try {
+            in.csv = std::make_shared<const FlightPath>(FlightPath::load(flight));
+        } catch (const FlightError& e) {
+            throw recording::RecordingError(flight.string(), 0, "",
+                                            "unrecognised flight file format (as CSV: " + e.message() +
+                                                "); supported: " + recording::supportedFormats());
+        }
+    } else {
+        in.csv = std::make_shared<const FlightPath>(FlightPath::load(flight));
+    }
+    in.format = "csv";
+    for (const std::string& r : rigs)
+        if (r != "path")
+            throw UsageError("--rig " + r +
+                             ": a CSV flight is its own camera path (--rig path); rigs over "
+                             "objects need a recording (Tacview ACMI or IGC)");
+    ReplayView v;
+    v.rig = "path";
+    v.width = defaultWidth;
+    v.height = defaultHeight;
+    v.fovYDeg = defaultFov;
+    std::shared_ptr<const FlightPath> csv = in.csv;
+    v.camera = [csv](double t) { return csv->poseAt(t); };
+    in.views.push_back(std::move(v));
+    in.startTime = in.csv->startTime();
+    in.endTime = in.csv->endTime();
+    in.ships = in.csv->ships();
+    in.shipLengths.assign(in.ships.size(), 60.0);
+    in.explosions = in.csv->explosions();
+    in.summary = nullptr;
+}
+
+/// The --rig specs over a recording's objects; without any, a chase camera on its default object.
+std::vector<recording::RigSpec> rigSpecs(const std::vector<std::string>& rigs,
+                                         const recording::Recording& rec,
+                                         const std::filesystem::path& flight) {
     std::vector<recording::RigSpec> specs;
     for (const std::string& r : rigs) {
         if (r == "path")
@@ -214,19 +207,23 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
         specs.push_back(recording::parseRigSpec(r));
     }
     if (specs.empty()) {
-        const recording::RecordedObject* focus = defaultFocus(*rec);
+        const recording::RecordedObject* focus = defaultFocus(rec);
         if (!focus)
             throw recording::RecordingError(flight.string(), 0, "",
                                             "the recording has no object with a position");
         specs.push_back(recording::parseRigSpec("chase:" + recording::hexId(focus->id)));
     }
-    // The world origin: the first view's object where the replay starts (near the action).
-    const recording::RecordedObject& focus = recording::selectObject(*rec, specs.front().object);
-    in.frame = std::make_shared<const recording::EarthFrame>(
-        recording::chooseFrame(*rec, &focus, focus.startTime()));
+    return specs;
+}
+
+/// One view per rig (named when there are several; names must differ); the first rig's object sets the
+/// replay's time span. Returns summary.json's "rigs".
+nlohmann::json addRigViews(ReplayInput& in, const std::vector<recording::RigSpec>& specs, int defaultWidth,
+                           int defaultHeight, float defaultFov) {
     nlohmann::json rigsJson = nlohmann::json::array();
     for (size_t i = 0; i < specs.size(); ++i) {
-        std::shared_ptr<const recording::CameraRig> rig = recording::makeRig(specs[i], *rec, *in.frame);
+        std::shared_ptr<const recording::CameraRig> rig =
+            recording::makeRig(specs[i], *in.recording, *in.frame);
         ReplayView v;
         v.rig = specs[i].text;
         v.width = defaultWidth;
@@ -254,11 +251,11 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
             if (in.views[i].name == in.views[j].name)
                 throw UsageError("--rig: two views are named '" + in.views[i].name +
                                  "'; give each its own name=");
+    return rigsJson;
+}
 
-    // GSHHG shorelines when installed (gmt-gshhg-*): impacts over land are left out by position, not
-    // altitude.
-    const std::optional<recording::LandMask> mask = recording::LandMask::loadDefault();
-    const recording::SeaDrivers drivers = recording::seaDrivers(*rec, *in.frame, mask ? &*mask : nullptr);
+/// What the recording drives on the sea: ship tracks and impacts (recording/SeaDrivers.h).
+void addSeaDrivers(ReplayInput& in, const recording::SeaDrivers& drivers) {
     for (const recording::SeaShip& s : drivers.ships) {
         ShipTrack t;
         t.id = recording::hexId(s.id);
@@ -269,7 +266,13 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
     }
     for (const recording::SeaImpact& x : drivers.impacts)
         in.explosions.push_back({x.time, x.position.x, x.position.y, x.strength, 0});
+}
 
+/// summary.json's "recording": the file, the origin, the rigs, and what was read per object type, which
+/// ships and impacts drive the sea and what was left out.
+nlohmann::json recordingSummary(const ReplayInput& in, const recording::SeaDrivers& drivers,
+                                const std::optional<recording::LandMask>& mask, nlohmann::json rigsJson) {
+    const recording::Recording& rec = *in.recording;
     nlohmann::json types = nlohmann::json::object();
     for (const auto& [type, tally] : drivers.byType) {
         nlohmann::json left = nlohmann::json::object();
@@ -297,24 +300,59 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
     nlohmann::json ships = nlohmann::json::array();
     for (const recording::SeaShip& s : drivers.ships)
         ships.push_back({{"id", recording::hexId(s.id)}, {"object", s.label}, {"length_m", s.length}});
-    in.summary = {{"format", rec->format},
-                  {"file_version", rec->fileVersion},
-                  {"title", rec->title},
-                  {"reference_time", rec->referenceTime},
-                  {"objects", rec->objects.size()},
-                  {"samples", rec->samples},
-                  {"events", rec->events.size()},
-                  {"time_span_s", {rec->startTime, rec->endTime}},
-                  {"origin",
-                   {{"latitude_deg", in.frame->originLatitude()},
-                    {"longitude_deg", in.frame->originLongitude()},
-                    {"frame", "WGS84 azimuthal equidistant (GeographicLib), z = altitude MSL"}}},
-                  {"altitude_datum", rec->altitudeDatum},
-                  {"rigs", rigsJson},
-                  {"land_mask", mask ? nlohmann::json(mask->source()) : nlohmann::json(nullptr)},
-                  {"by_type", types},
-                  {"ships", ships},
-                  {"explosions", impacts}};
+    return {{"format", rec.format},
+            {"file_version", rec.fileVersion},
+            {"title", rec.title},
+            {"reference_time", rec.referenceTime},
+            {"objects", rec.objects.size()},
+            {"samples", rec.samples},
+            {"events", rec.events.size()},
+            {"time_span_s", {rec.startTime, rec.endTime}},
+            {"origin",
+             {{"latitude_deg", in.frame->originLatitude()},
+              {"longitude_deg", in.frame->originLongitude()},
+              {"frame", "WGS84 azimuthal equidistant (GeographicLib), z = altitude MSL"}}},
+            {"altitude_datum", rec.altitudeDatum},
+            {"rigs", std::move(rigsJson)},
+            {"land_mask", mask ? nlohmann::json(mask->source()) : nlohmann::json(nullptr)},
+            {"by_type", types},
+            {"ships", ships},
+            {"explosions", impacts}};
+}
+
+} // namespace
+
+ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vector<std::string>& rigs,
+                            int defaultWidth, int defaultHeight, float defaultFov) {
+    ReplayInput in;
+    std::error_code ec;
+    // A missing file goes to the CSV reader, whose error names it ("cannot open flight file").
+    const std::string format =
+        std::filesystem::is_regular_file(flight, ec) ? recording::detectFormat(flight) : "csv";
+    in.format = format;
+    if (format == "csv" || format.empty()) {
+        loadCsvFlight(in, flight, !format.empty(), rigs, defaultWidth, defaultHeight, defaultFov);
+        return in;
+    }
+    auto rec = std::make_shared<const recording::Recording>(recording::readRecording(flight));
+    in.recording = rec;
+    if (rec->altitudeDatum == "ELL")
+        logWarning(flight.string() +
+                   ": GNSS altitudes are above the WGS84 ellipsoid (HFALGALTGPS:ELL) and are "
+                   "taken as above sea level (no geoid model installed; it differs by -106..+85 m)");
+    in.referenceUnix = rec->referenceUnix;
+    const std::vector<recording::RigSpec> specs = rigSpecs(rigs, *rec, flight);
+    // The world origin: the first view's object where the replay starts (near the action).
+    const recording::RecordedObject& focus = recording::selectObject(*rec, specs.front().object);
+    in.frame = std::make_shared<const recording::EarthFrame>(
+        recording::chooseFrame(*rec, &focus, focus.startTime()));
+    nlohmann::json rigsJson = addRigViews(in, specs, defaultWidth, defaultHeight, defaultFov);
+    // GSHHG shorelines when installed (gmt-gshhg-*): impacts over land are left out by position, not
+    // altitude.
+    const std::optional<recording::LandMask> mask = recording::LandMask::loadDefault();
+    const recording::SeaDrivers drivers = recording::seaDrivers(*rec, *in.frame, mask ? &*mask : nullptr);
+    addSeaDrivers(in, drivers);
+    in.summary = recordingSummary(in, drivers, mask, std::move(rigsJson));
     return in;
 }
 
