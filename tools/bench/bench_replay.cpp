@@ -1,14 +1,14 @@
 // pacifica-bench: the replay benchmarks of the foundation issue — replay throughput at 640x360 (frames/s with
 // and without writing images) and the time to the first frame of a fresh `pacifica replay` process. The
-// per-frame benchmarks repeat the work runReplay() (tools/src/Replay.cpp) does for one frame (all of it but
-// the frame's summary.json record and progress line), in one headless GL context shared by all benchmarks;
-// the time-to-first-frame benchmark runs the real CLI as a subprocess. Speed targets live here, never in
-// tests (docs/BENCHMARKS.md says how to run and read it).
+// per-frame benchmarks time the frames of the real replay run (tools::ReplaySession, the same code as
+// `pacifica replay`) in-process; the time-to-first-frame benchmark runs the CLI as a subprocess. Speed
+// targets live here, never in tests (docs/BENCHMARKS.md says how to run and read it).
 //
 // Own flags, read before Google Benchmark sees the command line:
 //   --pacifica-cli=PATH   the CLI binary to time (default: `pacifica` next to this binary)
 // Environment: PACIFICA_SOURCE_DIR overrides the repository root compiled in (tools/data/demo_flight.csv).
-#include "FlightPath.h"
+#include "OceanOptions.h"
+#include "Replay.h"
 #include "engine/Ecs.h"
 #include "engine/Log.h"
 #include "engine/Space.h"
@@ -55,8 +55,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int WIDTH = 640;
 constexpr int HEIGHT = 360;
-constexpr double FRAME_STEP_S = 0.1;     // the CLI's default --fps 10
-constexpr float FOV_Y_DEG = 60.0f;       // the CLI's default --fov
 constexpr int REPETITIONS = 5;           // medians of 5 unless --benchmark_repetitions says otherwise
 constexpr double FRAME_MIN_TIME_S = 1.5; // per repetition (a frame is 0.3-0.6 s on 2-core llvmpipe) unless
                                          // --benchmark_min_time says otherwise
@@ -88,108 +86,83 @@ private:
     fs::path mPath;
 };
 
-/// Everything one replay frame needs, built once in one headless context: the same objects, in the same
-/// order, as runReplay() builds them.
-struct ReplayScene {
-    tools::FlightPath flight;
-    color::ColorPipeline colour;
-    std::unique_ptr<gl::GlContext> context; // declared before every GL object: destroyed after them
-    ecs::Registry registry;
-    ocean::OceanRenderer renderer;
-    gl::FrameTargets targets;
-    color::Tonemapper tonemapper;
-    gl::GpuTimer gpuTimer;
-    std::vector<float> scene, display;
-
-    explicit ReplayScene(const fs::path& flightFile)
-        : flight(tools::FlightPath::load(flightFile)), colour(makeColour()),
-          context(gl::createHeadlessContext()), renderer(), targets(WIDTH, HEIGHT), tonemapper(colour),
-          gpuTimer(context->info()) {
-        registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean({}));
-    }
-
-    static color::ColorPipeline makeColour() {
-        color::ColorPipeline c = color::ColorPipeline::fromEnvironmentOr(std::nullopt);
-        c.select("", "");
-        return c;
-    }
-
-    /// Frame k of a run: successive times 1/10 s apart, wrapping within the flight.
-    double timeOfFrame(long long k) const {
-        const double duration = flight.endTime() - flight.startTime();
-        return flight.startTime() + std::fmod(static_cast<double>(k) * FRAME_STEP_S, duration);
-    }
-
-    /// One frame of `pacifica replay` (the body of runReplay()'s loop): render + tonemap (timed by the
-    /// GpuTimer, as the CLI does), both readbacks, then either the half conversion + hash (--no-images) or
-    /// the EXR + PNG writes into dir (files overwritten every frame). Returns the frame's pixel hash.
-    uint64_t renderFrame(long long k, const fs::path* imageDir) {
-        const double t = timeOfFrame(k);
-        const Pose pose = flight.poseAt(t);
-        const ocean::OceanFrame frame =
-            ocean::makeOceanFrame(pose, FOV_Y_DEG * static_cast<float>(std::numbers::pi / 180.0), WIDTH,
-                                  HEIGHT, t, targets.sceneFramebuffer().id());
-
-        gpuTimer.begin();
-        renderer.render(registry, frame);
-        tonemapper.run(targets.sceneColor(), targets.displayFramebuffer(), WIDTH, HEIGHT);
-        gpuTimer.end();
-        targets.readScene(scene); // glReadPixels into client memory: waits for the GPU
-        targets.readDisplay(display);
-
-        if (!imageDir) {
-            const std::vector<uint16_t> half = capture::toHalf(scene.data(), scene.size());
-            return capture::hashHalfPixels(half.data(), half.size());
+/// The replay run a frame benchmark times: `pacifica replay tools/data/demo_flight.csv --size 640x360` (the
+/// CLI's defaults: --fps 10, --fov 60, the high preset), into a temporary directory, without the flight's
+/// events and objects (the plain ocean), with or without images. One session lives at a time (each has its
+/// own GL context): switching variants replaces it, and a new one renders two frames untimed first.
+class Sessions {
+public:
+    tools::ReplaySession& get(bool writeImages) {
+        if (!mSession || mImages != writeImages) {
+            mSession.reset();
+            mDir.reset();
+            mDir = std::make_unique<TempDir>(writeImages ? "frames" : "hashes");
+            tools::ReplayOptions o;
+            o.flight = sourceDir() / "tools/data/demo_flight.csv";
+            o.outDir = mDir->path() / "out";
+            o.width = WIDTH;
+            o.height = HEIGHT;
+            o.writeImages = writeImages;
+            o.events = false;
+            o.objects = false;
+            o.progress = false;
+            o.ocean = tools::toOceanDesc(tools::OceanOptions{});
+            mSession = std::make_unique<tools::ReplaySession>(o);
+            mImages = writeImages;
+            // Warm-up, untimed: the first frames of a context pay llvmpipe's lazy shader JIT and the
+            // ocean's map generation, which BM_TimeToFirstFrame measures; the frame benchmarks measure the
+            // steady state.
+            for (long long k = 0; k < 2; ++k)
+                mSession->renderFrame(k);
         }
-        capture::Metadata meta;
-        meta.numbers = {{"frame", static_cast<double>(k)},   {"time_s", t},
-                        {"camera_x_m", pose.position.x},     {"camera_y_m", pose.position.y},
-                        {"camera_z_m", pose.position.z},     {"camera_heading_deg", pose.headingDeg},
-                        {"camera_pitch_deg", pose.pitchDeg}, {"camera_roll_deg", pose.rollDeg}};
-        meta.strings = {{"ocio_config", colour.configDescription()},
-                        {"ocio_display", colour.selectedDisplay()},
-                        {"ocio_view", colour.selectedView()},
-                        {"gl_renderer", context->info().renderer},
-                        {"flight", "demo_flight.csv"}};
-        const uint64_t hash =
-            capture::writeExrHalf(*imageDir / "frame.exr", WIDTH, HEIGHT, 4, scene.data(), meta);
-        capture::writePng8(*imageDir / "frame.png", WIDTH, HEIGHT, 4, display.data());
-        return hash;
+        return *mSession;
     }
+    void reset() {
+        mSession.reset();
+        mDir.reset();
+    }
+
+private:
+    std::unique_ptr<TempDir> mDir; // outlives the session: its staging directory is inside
+    std::unique_ptr<tools::ReplaySession> mSession;
+    bool mImages = false;
 };
 
-ReplayScene* gScene = nullptr;
+Sessions gSessions;
 fs::path gCli;
 bool gFailed = false; // a benchmark skipped with an error: the process exits non-zero
 
-/// BM_ReplayFrame/no_images and /with_images: one replay frame per iteration. Manual time: steady_clock
-/// around the whole frame (pose to hash or image writes); the readbacks inside it wait for the GPU, so GPU
-/// work is included on any driver. Each variant has its own frame counter that starts at the flight's
-/// first frame and carries on across its runs (estimation and repetitions), so both variants walk the
-/// same frame sequence and the repetitions do not all re-render the same frames.
+/// BM_ReplayFrame/no_images and /with_images: one frame of the real replay run per iteration
+/// (ReplaySession::renderFrame: the pose, render + objects pass + tonemap inside the GpuTimer, both
+/// readbacks, then the half conversion + hash, or the EXR + PNG handed to the encoder thread as the CLI
+/// does, and the frame's summary record). Manual time: steady_clock around the frame; the readbacks wait for
+/// the GPU, so GPU work is included on any driver. Each variant has its own frame counter that carries on
+/// across its runs (estimation and repetitions), wrapping within the flight, so both variants walk the same
+/// frame sequence and the repetitions do not all re-render the same frames.
 void replayFrame(benchmark::State& state, bool writeImages) {
     static long long nextFrame[2] = {0, 0};
     long long& k = nextFrame[writeImages ? 1 : 0];
-    std::optional<TempDir> dir;
-    if (writeImages)
-        dir.emplace("frames");
-    const size_t gpuSamples0 = gScene->gpuTimer.samples().size();
-    uint64_t hashes = 0;
-    for (auto _ : state) {
-        const auto t0 = Clock::now();
-        hashes ^= gScene->renderFrame(k++, dir ? &dir->path() : nullptr);
-        state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+    try {
+        tools::ReplaySession& session = gSessions.get(writeImages);
+        const std::vector<double>& gpu = *session.info().gpuMs;
+        const size_t gpuSamples0 = gpu.size();
+        for (auto _ : state) {
+            const auto t0 = Clock::now();
+            session.renderFrame(k++ % session.frameCount());
+            state.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+        }
+        state.SetItemsProcessed(state.iterations()); // items = frames: items_per_second is frames/s
+        double gpuMs = 0.0;
+        for (size_t i = gpuSamples0; i < gpu.size(); ++i)
+            gpuMs += gpu[i];
+        if (gpu.size() > gpuSamples0)
+            state.counters["gpu_ms"] = gpuMs / static_cast<double>(gpu.size() - gpuSamples0);
+        state.SetLabel("frame: manual steady_clock; gpu_ms: render+objects+tonemap, " +
+                       session.info().gpuClock);
+    } catch (const std::exception& e) {
+        gFailed = true;
+        state.SkipWithError(e.what());
     }
-    benchmark::DoNotOptimize(hashes);
-    state.SetItemsProcessed(state.iterations()); // items = frames: items_per_second is frames/s
-    const std::vector<double>& gpu = gScene->gpuTimer.samples();
-    double gpuMs = 0.0;
-    for (size_t i = gpuSamples0; i < gpu.size(); ++i)
-        gpuMs += gpu[i];
-    if (gpu.size() > gpuSamples0)
-        state.counters["gpu_ms"] = gpuMs / static_cast<double>(gpu.size() - gpuSamples0);
-    state.SetLabel("frame: manual steady_clock; gpu_ms: render+tonemap, " +
-                   std::string(gScene->gpuTimer.clockName()));
 }
 
 /// Runs `pacifica replay` for one frame; returns the wall seconds from spawn to exit and, if it could be
@@ -327,20 +300,15 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv))
         return 1;
     try {
-        ReplayScene scene(sourceDir() / "tools/data/demo_flight.csv");
-        gScene = &scene;
-        // Warm-up, untimed: the first frames pay llvmpipe's lazy shader JIT and the ocean's map generation,
-        // which BM_TimeToFirstFrame measures; the frame benchmarks measure the steady state.
-        for (long long k = 0; k < 2; ++k)
-            scene.renderFrame(k, nullptr);
-        logInfo("pacifica-bench: GL_RENDERER=" + scene.context->info().renderer +
-                ", clock: " + scene.gpuTimer.clockName() + ", CLI: " + gCli.string());
-        benchmark::AddCustomContext("gl_renderer", scene.context->info().renderer);
-        benchmark::AddCustomContext("gl_version", scene.context->info().version);
-        benchmark::AddCustomContext("gpu_clock", scene.gpuTimer.clockName());
+        const tools::ReplayRunInfo& info = gSessions.get(false).info();
+        logInfo("pacifica-bench: GL_RENDERER=" + info.glRenderer + ", clock: " + info.gpuClock +
+                ", CLI: " + gCli.string());
+        benchmark::AddCustomContext("gl_renderer", info.glRenderer);
+        benchmark::AddCustomContext("gl_version", info.glVersion);
+        benchmark::AddCustomContext("gpu_clock", info.gpuClock);
         benchmark::AddCustomContext("frame_clock", "steady_clock wall time (manual time) per frame");
         benchmark::AddCustomContext("frame_size", std::to_string(WIDTH) + "x" + std::to_string(HEIGHT));
-        benchmark::AddCustomContext("ocio_config", scene.colour.configDescription());
+        benchmark::AddCustomContext("ocio_config", info.ocioConfig);
         benchmark::AddCustomContext("pacifica_cli", gCli.string());
 
         auto common = [&](benchmark::internal::Benchmark* b) {
@@ -363,7 +331,7 @@ int main(int argc, char** argv) {
 
         const size_t ran = benchmark::RunSpecifiedBenchmarks();
         benchmark::Shutdown();
-        gScene = nullptr;
+        gSessions.reset();
         if (ran == 0) {
             std::fprintf(stderr, "pacifica-bench: error: no benchmark matched the filter\n");
             return 1;

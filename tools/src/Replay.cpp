@@ -400,6 +400,14 @@ public:
     void renderFrame(long long k);
     /// Waits for every image (or the first failure), finishes the video, writes summary.json last.
     void finish();
+    const ReplayRunInfo& info() {
+        mInfo.glRenderer = context->info().renderer;
+        mInfo.glVersion = context->info().version;
+        mInfo.gpuClock = gpuTimer.clockName();
+        mInfo.gpuMs = &gpuTimer.samples();
+        mInfo.ocioConfig = colour.configDescription();
+        return mInfo;
+    }
 
 private:
     // --profile: the replay's own GPU passes, timed with the ocean's clock.
@@ -448,6 +456,7 @@ private:
     std::vector<double> frameWallMs;
     double firstFrameSeconds = 0.0;
     const bool tty;
+    ReplayRunInfo mInfo;
 };
 
 std::vector<std::unique_ptr<gl::FrameTargets>> makeTargets(const std::vector<ReplayView>& views) {
@@ -736,19 +745,51 @@ nlohmann::json ReplayRun::summary(double totalSeconds) const {
 
 } // namespace
 
-/// Validate everything first (options, the flight, the frames, ffmpeg), then build the run and render it
-/// frame by frame; a failure anywhere removes what the run wrote.
+struct ReplaySession::State {
+    Clock::time_point t0;
+    ReplayOptions o;
+    ReplayInput input;
+    FramePlan plan;
+    std::optional<ReplayRun> run;
+};
+
+/// Validate everything first (options, the flight, the frames, ffmpeg), then build the run.
+ReplaySession::ReplaySession(const ReplayOptions& o) : mState(std::make_unique<State>()) {
+    State& s = *mState;
+    s.t0 = Clock::now();
+    s.o = o;
+    checkOptions(s.o);
+    s.input = loadReplayInput(s.o.flight, s.o.rigs, s.o.width, s.o.height, s.o.fovYDeg);
+    s.plan = planFrames(s.o, s.input);
+    if (s.o.video)
+        VideoWriter::findFfmpeg(*s.o.video); // extension and ffmpeg checked before anything is written
+    s.run.emplace(s.o, s.input, s.plan, s.t0);
+}
+
+ReplaySession::~ReplaySession() = default;
+
+long long ReplaySession::frameCount() const {
+    return mState->plan.count;
+}
+
+void ReplaySession::renderFrame(long long k) {
+    mState->run->renderFrame(k);
+}
+
+void ReplaySession::finish() {
+    mState->run->finish();
+}
+
+const ReplayRunInfo& ReplaySession::info() const {
+    return mState->run->info();
+}
+
+/// A failure anywhere removes what the run wrote (the session's output transaction is never committed).
 void runReplay(const ReplayOptions& o) {
-    const auto t0 = Clock::now();
-    checkOptions(o);
-    const ReplayInput input = loadReplayInput(o.flight, o.rigs, o.width, o.height, o.fovYDeg);
-    const FramePlan plan = planFrames(o, input);
-    if (o.video)
-        VideoWriter::findFfmpeg(*o.video); // extension and ffmpeg checked before anything is written
-    ReplayRun run(o, input, plan, t0);
-    for (long long k = 0; k < plan.count; ++k)
-        run.renderFrame(k);
-    run.finish();
+    ReplaySession session(o);
+    for (long long k = 0; k < session.frameCount(); ++k)
+        session.renderFrame(k);
+    session.finish();
 }
 
 } // namespace pacifica::tools

@@ -7,6 +7,7 @@
 #include "ocean/Ocean.h"
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -67,6 +68,32 @@ struct ReplayOptions {
 
 /// Parses "WxH" (e.g. "640x360"); throws UsageError naming --size.
 void parseSize(const std::string& text, int& width, int& height);
+
+/// What a replay run renders with, for benchmarks that time its frames.
+struct ReplayRunInfo {
+    std::string glRenderer, glVersion, gpuClock, ocioConfig;
+    const std::vector<double>* gpuMs = nullptr; ///< the GPU time of every view frame so far (GpuTimer)
+};
+
+/// A replay run frame by frame: what runReplay() does, open to benchmarks that time the real frames. The
+/// constructor validates everything and builds the run (the output transaction open), renderFrame(k)
+/// renders frame k of [0, frameCount()) (the simulation advanced to its time), finish() writes every image
+/// and summary.json. A session destroyed unfinished leaves the output directory as it was.
+class ReplaySession {
+public:
+    explicit ReplaySession(const ReplayOptions& options);
+    ~ReplaySession();
+    ReplaySession(const ReplaySession&) = delete;
+    ReplaySession& operator=(const ReplaySession&) = delete;
+    long long frameCount() const;
+    void renderFrame(long long k);
+    void finish();
+    const ReplayRunInfo& info() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> mState;
+};
 
 /// Runs the replay. Throws (FlightError, ColorError, ContextError, CaptureError, UsageError) on failure,
 /// after removing every file this run wrote, so DIR holds no partial output.
