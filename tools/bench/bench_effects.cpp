@@ -20,6 +20,7 @@
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 
+#include "BenchCli.h"
 #include "BenchText.h"
 
 #include <epoxy/gl.h>
@@ -448,16 +449,34 @@ void writeReports(const std::string& outDir, const std::vector<Row>& rows, const
               << ")\n";
 }
 
-int usage(const char* argv0, int rc) {
-    (rc == 0 ? std::cout : std::cerr)
-        << "usage: " << argv0 << " [--out DIR] [--size WxH] [--frames N] [--quick]\n"
-        << "  --out DIR     output directory for effects.csv, effects.md, effects.json (default effects)\n"
-        << "  --size WxH    render size (default 640x360; --quick: 160x90)\n"
-        << "  --frames N    timed frames per setting, median and p90 reported (default 15; --quick: 3)\n"
-        << "  --quick       few settings (plain, zero-effect, 1 and 4 explosions, 1 and 2 wakes): the test\n"
-        << "Cost per active effect of each kind and the zero-effect frame against the plain ocean "
-           "(docs/EFFECTS_BENCH.md).\n";
-    return rc;
+struct Args {
+    std::string outDir = "effects";
+    bool quick = false;
+    std::optional<std::pair<int, int>> size;
+    std::optional<int> frames;
+    std::string commandLine;
+};
+
+std::optional<int> parseArgs(int argc, char** argv, Args& a) {
+    CLI::App app("Cost per active effect of each kind and the zero-effect frame against the plain ocean "
+                 "(docs/EFFECTS_BENCH.md).",
+                 "pacifica-bench-effects");
+    app.add_option("--out", a.outDir,
+                   "output directory for effects.csv, effects.md, effects.json (default effects)");
+    std::string size;
+    app.add_option("--size", size, "render size WxH (default 640x360; --quick: 160x90)")
+        ->check(bench::sizeValidator());
+    app.add_option("--frames", a.frames,
+                   "timed frames per setting, median and p90 reported (default 15; --quick: 3)")
+        ->check(CLI::Range(1, 10000));
+    app.add_flag("--quick", a.quick,
+                 "few settings (plain, zero-effect, 1 and 4 explosions, 1 and 2 wakes): the test");
+    if (const auto code = bench::parseCommandLine(app, argc, argv))
+        return code;
+    if (!size.empty())
+        a.size = parseSize(size);
+    a.commandLine = bench::commandLine(argc, argv);
+    return std::nullopt;
 }
 
 } // namespace
@@ -632,55 +651,16 @@ void writeGridReport(const std::string& outDir, const std::vector<GridRow>& rows
 }
 
 int main(int argc, char** argv) {
-    std::string outDir = "effects";
-    bool quick = false;
-    std::optional<std::pair<int, int>> size;
-    std::optional<int> framesArg;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::optional<std::string> {
-            if (i + 1 >= argc)
-                return std::nullopt;
-            return std::string(argv[++i]);
-        };
-        if (a == "--help" || a == "-h")
-            return usage(argv[0], 0);
-        if (a == "--quick") {
-            quick = true;
-        } else if (a == "--out") {
-            const auto v = value();
-            if (!v || v->empty())
-                return usage(argv[0], 2);
-            outDir = *v;
-        } else if (a == "--size") {
-            const auto v = value();
-            size = v ? parseSize(*v) : std::nullopt;
-            if (!size) {
-                std::cerr << "pacifica-bench-effects: --size expects WxH (16..8192 each), e.g. 1920x1080\n";
-                return 2;
-            }
-        } else if (a == "--frames") {
-            const auto v = value();
-            char* end = nullptr;
-            const long n = v ? std::strtol(v->c_str(), &end, 10) : 0;
-            if (!v || *end != '\0' || n < 1 || n > 10000) {
-                std::cerr << "pacifica-bench-effects: --frames expects an integer in 1..10000\n";
-                return 2;
-            }
-            framesArg = static_cast<int>(n);
-        } else {
-            std::cerr << "pacifica-bench-effects: unknown argument '" << a << "'\n";
-            return usage(argv[0], 2);
-        }
-    }
-    const auto [width, height] = size.value_or(quick ? std::pair{160, 90} : std::pair{640, 360});
-    const int frames = framesArg.value_or(quick ? 3 : 15);
+    Args args;
+    if (const auto code = parseArgs(argc, argv, args))
+        return *code;
+    const bool quick = args.quick;
+    const std::string& outDir = args.outDir;
+    const std::string& commandLine = args.commandLine;
+    const auto [width, height] = args.size.value_or(quick ? std::pair{160, 90} : std::pair{640, 360});
+    const int frames = args.frames.value_or(quick ? 3 : 15);
     const std::vector<int> explosionCounts = quick ? std::vector{1, 4} : std::vector{1, 4, 16, 64};
     const std::vector<int> wakeCounts = quick ? std::vector{1, 2} : std::vector{1, 2, 4, 8};
-    std::string commandLine;
-    for (int i = 0; i < argc; ++i)
-        commandLine += (i ? " " : "") + std::string(argv[i]);
-
     try {
         std::filesystem::create_directories(outDir);
         auto context = gl::createHeadlessContext({.debug = false});

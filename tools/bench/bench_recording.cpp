@@ -7,6 +7,8 @@
 // the wall time (steady_clock) of readRecording(), median of --runs. Writes DIR/recording_bench.{json,md}.
 //
 //   pacifica-bench-recording --out DIR [--mb 200] [--runs 3] [--keep]
+#include "BenchCli.h"
+
 #include <engine/Stats.h>
 #include <recording/Recording.h>
 
@@ -20,6 +22,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -210,86 +213,86 @@ Measure parseInChild(const fs::path& file) {
     return m;
 }
 
-} // namespace
-
-int main(int argc, char** argv) {
-    if (argc == 4 && std::string(argv[1]) == "--parse-child")
-        return parseChild(argv[2], std::atoi(argv[3]));
+struct Args {
     fs::path outDir;
     double mb = 200.0;
     int runs = 3;
     bool keep = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--out" && i + 1 < argc)
-            outDir = argv[++i];
-        else if (a == "--mb" && i + 1 < argc)
-            mb = std::atof(argv[++i]);
-        else if (a == "--runs" && i + 1 < argc)
-            runs = std::atoi(argv[++i]);
-        else if (a == "--keep")
-            keep = true;
-        else {
-            std::fprintf(stderr,
-                         "usage: pacifica-bench-recording --out DIR [--mb 200] [--runs 3] [--keep]\n");
-            return 2;
-        }
+};
+
+std::optional<int> parseArgs(int argc, char** argv, Args& a) {
+    CLI::App app("ACMI parse throughput (MB/s) and peak memory on a generated busy recording, text and zip "
+                 "(docs/RECORDINGS.md)",
+                 "pacifica-bench-recording");
+    app.add_option("--out", a.outDir, "report directory (recording_bench.json, recording_bench.md)")
+        ->required();
+    app.add_option("--mb", a.mb, "size of the generated text ACMI, MB")->check(CLI::Range(0.001, 100000.0));
+    app.add_option("--runs", a.runs, "parses per file (median)")->check(CLI::Range(1, 1000));
+    app.add_flag("--keep", a.keep, "keep the generated recordings");
+    return pacifica::bench::parseCommandLine(app, argc, argv);
+}
+
+/// One file parsed `runs` times, each in a fresh child: its JSON row; its Markdown row appended to `md`.
+nlohmann::json measureFile(const fs::path& f, int runs, std::string& md) {
+    std::vector<double> secs;
+    Measure m;
+    for (int r = 0; r < runs; ++r) {
+        m = parseInChild(f);
+        secs.push_back(m.seconds);
     }
-    if (outDir.empty() || !(mb > 0.0) || runs < 1) {
-        std::fprintf(stderr,
-                     "pacifica-bench-recording: error: --out DIR is required; --mb > 0; --runs >= 1\n");
-        return 2;
-    }
+    const double s = median(secs);
+    const double decodedMb = static_cast<double>(m.bytes) / 1e6;
+    const double tracksMb = static_cast<double>(m.samples) * sizeof(ObjectSample) / 1e6;
+    const double peakMb = static_cast<double>(m.peakKb - m.baseKb) / 1024.0;
+    const double fileMb = static_cast<double>(fs::file_size(f)) / 1e6;
+    char row[512];
+    std::snprintf(row, sizeof row, "| %s | %.1f | %.1f | %lld | %lld | %.1f | %.3f | %.1f | %.1f | %.2f |\n",
+                  f.filename().string().c_str(), fileMb, decodedMb, m.objects, m.samples, tracksMb, s,
+                  decodedMb / s, peakMb, peakMb / tracksMb);
+    md += row;
+    std::printf("%s", row);
+    return {{"input", f.filename().string()},
+            {"file_mb", fileMb},
+            {"decoded_mb", decodedMb},
+            {"objects", m.objects},
+            {"samples", m.samples},
+            {"tracks_kept_mb", tracksMb},
+            {"parse_s_median", s},
+            {"mb_per_s", decodedMb / s},
+            {"peak_rss_above_baseline_mb", peakMb},
+            {"peak_over_tracks", peakMb / tracksMb}};
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc == 4 && std::string(argv[1]) == "--parse-child") // internal: one parse in a child process
+        return parseChild(argv[2], std::atoi(argv[3]));
+    Args a;
+    if (const auto code = parseArgs(argc, argv, a))
+        return *code;
     try {
-        fs::create_directories(outDir);
-        const fs::path text = outDir / "generated.txt.acmi", zipped = outDir / "generated.zip.acmi";
-        std::printf("generating %.0f MB ACMI ...\n", mb);
-        const uint64_t bytes = generate(text, static_cast<uint64_t>(mb * 1e6));
+        fs::create_directories(a.outDir);
+        const fs::path text = a.outDir / "generated.txt.acmi", zipped = a.outDir / "generated.zip.acmi";
+        std::printf("generating %.0f MB ACMI ...\n", a.mb);
+        const uint64_t bytes = generate(text, static_cast<uint64_t>(a.mb * 1e6));
         zipFile(text, zipped);
         nlohmann::json results = nlohmann::json::array();
         std::string md =
             "| input | file MB | decoded MB | objects | samples | tracks kept MB | parse s (median of " +
-            std::to_string(runs) +
+            std::to_string(a.runs) +
             ") | MB/s | peak RSS MB (above baseline) | peak / tracks |\n"
             "|---|---|---|---|---|---|---|---|---|---|\n";
-        for (const fs::path& f : {text, zipped}) {
-            std::vector<double> secs;
-            Measure m;
-            for (int r = 0; r < runs; ++r) {
-                m = parseInChild(f);
-                secs.push_back(m.seconds);
-            }
-            const double s = median(secs);
-            const double decodedMb = static_cast<double>(m.bytes) / 1e6;
-            const double tracksMb = static_cast<double>(m.samples) * sizeof(ObjectSample) / 1e6;
-            const double peakMb = static_cast<double>(m.peakKb - m.baseKb) / 1024.0;
-            const double fileMb = static_cast<double>(fs::file_size(f)) / 1e6;
-            results.push_back({{"input", f.filename().string()},
-                               {"file_mb", fileMb},
-                               {"decoded_mb", decodedMb},
-                               {"objects", m.objects},
-                               {"samples", m.samples},
-                               {"tracks_kept_mb", tracksMb},
-                               {"parse_s_median", s},
-                               {"mb_per_s", decodedMb / s},
-                               {"peak_rss_above_baseline_mb", peakMb},
-                               {"peak_over_tracks", peakMb / tracksMb}});
-            char row[512];
-            std::snprintf(row, sizeof row,
-                          "| %s | %.1f | %.1f | %lld | %lld | %.1f | %.3f | %.1f | %.1f | %.2f |\n",
-                          f.filename().string().c_str(), fileMb, decodedMb, m.objects, m.samples, tracksMb, s,
-                          decodedMb / s, peakMb, peakMb / tracksMb);
-            md += row;
-            std::printf("%s", row);
-        }
+        for (const fs::path& f : {text, zipped})
+            results.push_back(measureFile(f, a.runs, md));
         nlohmann::json summary = {{"generated_bytes", bytes},
                                   {"clock", "steady_clock around readRecording(), one process per parse"},
                                   {"memory", "ru_maxrss of the parsing child minus its VmRSS before parsing"},
                                   {"tracks_kept", "samples x sizeof(ObjectSample) (40 bytes)"},
                                   {"results", results}};
-        std::ofstream(outDir / "recording_bench.json") << summary.dump(2) << "\n";
-        std::ofstream(outDir / "recording_bench.md") << md;
-        if (!keep) {
+        pacifica::bench::writeReport(a.outDir / "recording_bench.json", summary.dump(2) + "\n");
+        pacifica::bench::writeReport(a.outDir / "recording_bench.md", md);
+        if (!a.keep) {
             fs::remove(text);
             fs::remove(zipped);
         }
