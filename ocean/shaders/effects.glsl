@@ -5,25 +5,40 @@
 // Coordinates are camera-relative metres; the grid being drawn passes its own effect-local offset too, so
 // its own effect is evaluated without the float rounding of a camera-relative difference (40 km away).
 
-// Per explosion (ocean/src/gpu/EffectsGpu.cpp packs them from explosionState()):
-//   a = (centre - camera: x, y; grid radius R; amplitude A(tau))
-//   b = (k; phase w tau wrapped; r0; front radius)
-//   c = (front half-width; crown foam; crown radius; I0)
-struct ExplosionGpu {
-    vec4 a, b, c;
+// The buffers' structs are declared in C++ (ocean/src/gpu/GpuInterface.h, with what each member means); these
+// declare the same members in the same order, and test_gpu_interface_gl checks the driver's offsets against
+// the C++ ones. The binding slots are #defines of the same header's enum.
+struct ExplosionGpu { // explosionState() of each explosion, camera-relative
+    vec2 centre;
+    float gridRadius;
+    float amplitude;
+    float wavenumber;
+    float phase;
+    float coreRadius;
+    float front;
+    float frontWidth;
+    float crownFoam;
+    float crownRadius;
+    float peakAmplitude;
 };
-// Per wake: a = (ship - camera: x, y; grid radius; point count), b = (length L, beam, wave life, foam life),
-// c = the box (relative to the ship: min x, min y, max x, max y) outside which the wake is 0.
 // Its points at [wake * MAX_WAKE_POINTS * 2 ...]: (offset from ship x, y; sigma; age), (amplitude, k0, 0, 0).
 struct WakeGpu {
-    vec4 a, b, c;
+    vec2 ship;
+    float gridRadius;
+    float points;
+    float shipLength;
+    float beam;
+    float waveLife;
+    float foamLife;
+    vec2 boxMin; // the box outside which the wake is 0, relative to the ship
+    vec2 boxMax;
 };
-layout(std430, binding = 4) readonly buffer EffectExplosions { ExplosionGpu uExplosions[]; };
-layout(std430, binding = 5) readonly buffer EffectWakes { WakeGpu uWakes[]; };
-layout(std430, binding = 6) readonly buffer EffectWakePoints { vec4 uWakePoints[]; };
+layout(std430, binding = EFFECT_EXPLOSIONS_BINDING) readonly buffer EffectExplosions { ExplosionGpu uExplosions[]; };
+layout(std430, binding = EFFECT_WAKES_BINDING) readonly buffer EffectWakes { WakeGpu uWakes[]; };
+layout(std430, binding = EFFECT_WAKE_POINTS_BINDING) readonly buffer EffectWakePoints { vec4 uWakePoints[]; };
 // Per effect g (explosions first, then wakes): [4 g .. 4 g + 3] = (offset, count) of the explosions and
 // (offset, count) of the wakes whose field reaches g's grid, then the index lists (EffectsGpu.cpp).
-layout(std430, binding = 7) readonly buffer EffectNeighbours { int uNeighbours[]; };
+layout(std430, binding = EFFECT_NEIGHBOURS_BINDING) readonly buffer EffectNeighbours { int uNeighbours[]; };
 uniform int uExplosionCount;
 uniform int uWakeCount;
 
@@ -39,8 +54,9 @@ float effectSmoothstepDerivative(float e0, float e1, float x) {
 // (h, dh/dx, dh/dy) of explosion i at offset q from its centre: explosionWave() in Effects.cpp.
 vec3 explosionWave(int i, vec2 q) {
     ExplosionGpu e = uExplosions[i];
-    float R = e.a.z, amplitude = e.a.w, k = e.b.x, phase = e.b.y, r0 = e.b.z, front = e.b.w;
-    float width = e.c.x;
+    float R = e.gridRadius, amplitude = e.amplitude, k = e.wavenumber, phase = e.phase, r0 = e.coreRadius,
+          front = e.front;
+    float width = e.frontWidth;
     if (R <= 0.0)
         return vec3(0.0);
     float s = sqrt(dot(q, q) + r0 * r0);
@@ -64,10 +80,10 @@ vec3 explosionWave(int i, vec2 q) {
 
 float explosionFoam(int i, vec2 q, float h) {
     ExplosionGpu e = uExplosions[i];
-    if (e.a.z <= 0.0 || dot(q, q) >= e.a.z * e.a.z)
+    if (e.gridRadius <= 0.0 || dot(q, q) >= e.gridRadius * e.gridRadius)
         return 0.0;
-    float crown = e.c.y * exp(-dot(q, q) / (e.c.z * e.c.z));
-    float h0 = 0.35 * e.c.w, hMax = 0.8 * e.c.w; // GPU Gems 2 §18.3: (H - H0) / (Hmax - H0)
+    float crown = e.crownFoam * exp(-dot(q, q) / (e.crownRadius * e.crownRadius));
+    float h0 = 0.35 * e.peakAmplitude, hMax = 0.8 * e.peakAmplitude; // GPU Gems 2 §18.3: (H - H0) / (Hmax - H0)
     float crest = clamp((h - h0) / (hMax - h0), 0.0, 1.0);
     return clamp(max(crown, crest), 0.0, 1.0);
 }
@@ -81,7 +97,7 @@ struct WakeCoords {
 WakeCoords wakeCoords(int i, vec2 q) {
     WakeCoords best = WakeCoords(0.0, 0.0, 0.0, 0.0, 0.0, vec2(1.0, 0.0));
     float bestDist2 = 3.4e38;
-    int n = int(uWakes[i].a.w);
+    int n = int(uWakes[i].points);
     int base = i * MAX_WAKE_POINTS * 2;
     for (int j = 0; j + 1 < n; ++j) {
         vec4 pa = uWakePoints[base + 2 * j], pb = uWakePoints[base + 2 * j + 2];
@@ -107,7 +123,7 @@ WakeCoords wakeCoords(int i, vec2 q) {
 
 float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
     float x = behind;
-    int n = int(uWakes[i].a.w);
+    int n = int(uWakes[i].points);
     if (!(x > 0.0) || c.amplitude <= 0.0 || n < 2)
         return 0.0;
     float y = abs(lateral);
@@ -134,17 +150,17 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
     float cusp = 1.0 - smoothstep(0.8, 1.0, u);
     float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
     float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, x);
-    vec4 b = uWakes[i].b;
-    float a = c.amplitude * exp(-c.age / b.z) / sqrt(1.0 + x / b.x);
+    WakeGpu wake = uWakes[i];
+    float a = c.amplitude * exp(-c.age / wake.waveLife) / sqrt(1.0 + x / wake.shipLength);
     return a * start * cusp * end * sum;
 }
 
 // (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship).
 vec4 wakeWave(int i, vec2 q) {
-    float R = uWakes[i].a.z;
-    vec4 box = uWakes[i].c;
+    float R = uWakes[i].gridRadius;
+    vec2 boxMin = uWakes[i].boxMin, boxMax = uWakes[i].boxMax;
     // insideWakeBox() in Effects.cpp
-    if (R <= 0.0 || dot(q, q) >= R * R || q.x <= box.x || q.y <= box.y || q.x >= box.z || q.y >= box.w)
+    if (R <= 0.0 || dot(q, q) >= R * R || q.x <= boxMin.x || q.y <= boxMin.y || q.x >= boxMax.x || q.y >= boxMax.y)
         return vec4(0.0);
     WakeCoords c = wakeCoords(i, q);
     float h = kelvinHeight(i, c, c.behind, c.lateral);
@@ -158,16 +174,16 @@ vec4 wakeWave(int i, vec2 q) {
     vec2 left = vec2(-c.direction.y, c.direction.x);
     vec2 g = -dx * c.direction + dy * left;
     // wakeFoam(): the turbulent strip behind the stern.
-    vec4 b = uWakes[i].b;
-    int n = int(uWakes[i].a.w);
+    WakeGpu wake = uWakes[i];
+    int n = int(wake.points);
     float foam = 0.0;
     if (n >= 2 && c.amplitude > 0.0) {
-        float width = b.y * (1.0 + max(c.behind, 0.0) / 400.0);
+        float width = wake.beam * (1.0 + max(c.behind, 0.0) / 400.0);
         float strip = exp(-(c.lateral * c.lateral) / (width * width));
-        float start = smoothstep(-b.y, 0.0, c.behind);
+        float start = smoothstep(-wake.beam, 0.0, c.behind);
         float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
         float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);
-        foam = clamp(min(1.0, c.amplitude / 0.2) * exp(-c.age / b.w) * strip * start * end, 0.0, 1.0);
+        foam = clamp(min(1.0, c.amplitude / 0.2) * exp(-c.age / wake.foamLife) * strip * start * end, 0.0, 1.0);
     }
     return vec4(h, g, foam);
 }
@@ -182,8 +198,8 @@ vec4 effectField(vec2 qCam, vec2 qSelf, int selfKind, int selfIndex) {
 #ifdef EFFECTS_EXPLOSIONS
     for (int k = 0; k < uNeighbours[g + 1]; ++k) {
         int i = uNeighbours[uNeighbours[g] + k];
-        vec2 q = (selfKind == 0 && i == selfIndex) ? qSelf : qCam - uExplosions[i].a.xy;
-        float R = uExplosions[i].a.z;
+        vec2 q = (selfKind == 0 && i == selfIndex) ? qSelf : qCam - uExplosions[i].centre;
+        float R = uExplosions[i].gridRadius;
         if (dot(q, q) >= R * R)
             continue;
         vec3 w = explosionWave(i, q);
@@ -194,7 +210,7 @@ vec4 effectField(vec2 qCam, vec2 qSelf, int selfKind, int selfIndex) {
 #ifdef EFFECTS_WAKES
     for (int k = 0; k < uNeighbours[g + 3]; ++k) {
         int i = uNeighbours[uNeighbours[g + 2] + k];
-        vec2 q = (selfKind == 1 && i == selfIndex) ? qSelf : qCam - uWakes[i].a.xy;
+        vec2 q = (selfKind == 1 && i == selfIndex) ? qSelf : qCam - uWakes[i].ship;
         vec4 w = wakeWave(i, q);
         sum += w.xyz;
         foam = max(foam, w.w);
@@ -209,16 +225,16 @@ vec4 effectField(vec2 qCam, vec2 qSelf, int selfKind, int selfIndex) {
 bool insideEffectGrid(vec2 rel) {
 #ifdef EFFECTS_EXPLOSIONS
     for (int i = 0; i < uExplosionCount; ++i) {
-        vec2 q = rel - uExplosions[i].a.xy;
-        float R = 0.98 * uExplosions[i].a.z;
+        vec2 q = rel - uExplosions[i].centre;
+        float R = 0.98 * uExplosions[i].gridRadius;
         if (dot(q, q) < R * R)
             return true;
     }
 #endif
 #ifdef EFFECTS_WAKES
     for (int i = 0; i < uWakeCount; ++i) {
-        vec2 q = rel - uWakes[i].a.xy;
-        float R = 0.98 * uWakes[i].a.z;
+        vec2 q = rel - uWakes[i].ship;
+        float R = 0.98 * uWakes[i].gridRadius;
         if (dot(q, q) < R * R)
             return true;
     }

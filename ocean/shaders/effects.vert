@@ -23,11 +23,11 @@ void main() {
     vec2 center;
     float radius;
     if (uKind == 0) {
-        center = uExplosions[gl_InstanceID].a.xy;
-        radius = uExplosions[gl_InstanceID].a.z;
+        center = uExplosions[gl_InstanceID].centre;
+        radius = uExplosions[gl_InstanceID].gridRadius;
     } else {
-        center = uWakes[gl_InstanceID].a.xy;
-        radius = uWakes[gl_InstanceID].a.z;
+        center = uWakes[gl_InstanceID].ship;
+        radius = uWakes[gl_InstanceID].gridRadius;
     }
     bool skirt = dot(aDisc, aDisc) > 2.0;
     vec2 local = (skirt ? 0.5 * aDisc : aDisc) * radius;

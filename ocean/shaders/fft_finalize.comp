@@ -10,7 +10,7 @@
 
 layout(local_size_x = TILE_GROUP, local_size_y = TILE_GROUP) in;
 
-layout(std430, binding = 0) readonly buffer Planes { vec2 planes[]; };
+layout(std430, binding = FFT_PLANES_BINDING) readonly buffer Planes { vec2 planes[]; };
 layout(rgba32f, binding = 0) writeonly uniform image2DArray uDisplacementImage;
 layout(rgba32f, binding = 1) writeonly uniform image2DArray uSlopeImage;
 

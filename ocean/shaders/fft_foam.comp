@@ -12,7 +12,7 @@
 layout(local_size_x = TILE_GROUP, local_size_y = TILE_GROUP) in;
 
 #ifdef FFT_FOAM_SAMPLE
-layout(std430, binding = 0) readonly buffer Planes { vec2 planes[]; };
+layout(std430, binding = FFT_PLANES_BINDING) readonly buffer Planes { vec2 planes[]; };
 layout(rg32f, binding = 2) writeonly uniform image2DArray uSamples;
 uniform int uSlot;
 

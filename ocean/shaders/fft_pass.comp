@@ -10,8 +10,8 @@
 
 layout(local_size_x = FFT_THREADS) in;
 
-layout(std430, binding = 0) buffer Planes { vec2 planes[]; };              // [plane][y][x]
-layout(std430, binding = 3) readonly buffer Twiddles { vec2 twiddles[]; }; // e^{2 pi i j / N}
+layout(std430, binding = FFT_PLANES_BINDING) buffer Planes { vec2 planes[]; };              // [plane][y][x]
+layout(std430, binding = FFT_TWIDDLES_BINDING) readonly buffer Twiddles { vec2 twiddles[]; }; // e^{2 pi i j / N}
 
 uniform int uDirection; // 0: transform along x (one row per workgroup), 1: along y (one column)
 uniform uint uPlaneBase;      // the first plane of each layer transformed: the foam memory's samples

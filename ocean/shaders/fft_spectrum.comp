@@ -12,9 +12,9 @@
 
 layout(local_size_x = TILE_GROUP, local_size_y = TILE_GROUP) in;
 
-layout(std430, binding = 0) writeonly buffer Planes { vec2 planes[]; };      // [plane][y][x]
-layout(std430, binding = 1) readonly buffer H0Pairs { vec4 h0Pairs[]; };     // (h0(k), conj(h0(-k)))
-layout(std430, binding = 2) readonly buffer OmegaMultiples { uint omegaQ[]; }; // w(k) / w0, an integer
+layout(std430, binding = FFT_PLANES_BINDING) writeonly buffer Planes { vec2 planes[]; };      // [plane][y][x]
+layout(std430, binding = FFT_H0_PAIRS_BINDING) readonly buffer H0Pairs { vec4 h0Pairs[]; };     // (h0(k), conj(h0(-k)))
+layout(std430, binding = FFT_OMEGA_MULTIPLES_BINDING) readonly buffer OmegaMultiples { uint omegaQ[]; }; // w(k) / w0, an integer
 
 uniform uint uTimeWord; // wrap(t, T) / T as a 32-bit fixed-point fraction (formed in double on the CPU)
 uniform float uDeltaK[FFT_MAX_LAYERS]; // 2 pi / L per layer

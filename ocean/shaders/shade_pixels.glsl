@@ -10,7 +10,8 @@ uniform ivec2 uShadeSize; // the viewport, pixels
 // their pixels hold, tiles of one kind run a program with only their part: the sea, the open sky above the
 // sea's horizon, the sky and the sea beyond the grid (sky.frag's skyColor), or all of it (tiles on an edge).
 // The kinds' numbers SHADE_TILE_MIXED, _SEA, _SKY, _BEYOND, their count SHADE_TILE_KINDS, the tile size
-// SHADE_TILE_SIZE and the buffer's SHADE_TILE_BINDING are #defined by ComputeShading::tileDefines().
+// SHADE_TILE_SIZE is #defined by ComputeShading::tileDefines(), the buffer's SHADE_TILE_BINDING by
+// shaderConstantDefines() (gpu/GpuInterface.h).
 // A tile is open sky when every pixel's ray rises above this (its z, unit ray): a ray of z >= 0 misses the
 // sea (seaHitDistance), and the margin keeps rounding between the two programs on the same side.
 #define SHADE_TILE_SKY_MIN_Z 1e-4

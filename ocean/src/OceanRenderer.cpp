@@ -114,16 +114,6 @@ namespace {
 /// Texture units: the surface model binds from 0, the lighting (environment map, foam) from here.
 constexpr int LIGHTING_FIRST_UNIT = 12;
 
-std::string effectConstantDefines() {
-    char buf[320];
-    std::snprintf(
-        buf, sizeof buf,
-        "#define EFFECT_HEIGHT_LIMIT %.9g\n#define MAX_WAKE_POINTS %d\n#define EFFECT_MIN_WAVELENGTH %.9g\n"
-        "#define KELVIN_TAN2 %.9g\n#define KELVIN_DECAY_WAVELENGTHS %.9g\n",
-        EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH, KELVIN_TAN2, KELVIN_DECAY_WAVELENGTHS);
-    return buf;
-}
-
 /// The shader sources: constants, then the variant's #defines (feature set), then the files.
 std::vector<gl::ShaderSource> sources(const std::vector<std::string>& names,
                                       const std::string& defines = {}) {

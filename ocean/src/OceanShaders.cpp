@@ -1,6 +1,9 @@
 // OceanShaders: lookup of the embedded GLSL files and the #defines generated from OceanConstants.h.
 #include "ocean/OceanShaders.h"
 
+#include "gpu/GpuInterface.h"
+
+#include "ocean/Effects.h"
 #include "ocean/OceanConstants.h"
 
 #include <cstdio>
@@ -90,6 +93,26 @@ std::string shaderConstantDefines() {
         .add("FFT_MIX_AMPLITUDE", FFT_MIX_AMPLITUDE)
         .add("OCTAVE_MIX_SHIFT_U", OCTAVE_MIX_SHIFT_U)
         .add("OCTAVE_MIX_SHIFT_V", OCTAVE_MIX_SHIFT_V);
+    // Storage-buffer binding slots (gpu/GpuInterface.h).
+    d.add("FFT_PLANES_BINDING", FFT_PLANES_BINDING)
+        .add("FFT_H0_PAIRS_BINDING", FFT_H0_PAIRS_BINDING)
+        .add("FFT_OMEGA_MULTIPLES_BINDING", FFT_OMEGA_MULTIPLES_BINDING)
+        .add("FFT_TWIDDLES_BINDING", FFT_TWIDDLES_BINDING)
+        .add("SHADE_TILE_BINDING", SHADE_TILE_BINDING)
+        .add("EFFECT_EXPLOSIONS_BINDING", EFFECT_EXPLOSIONS_BINDING)
+        .add("EFFECT_WAKES_BINDING", EFFECT_WAKES_BINDING)
+        .add("EFFECT_WAKE_POINTS_BINDING", EFFECT_WAKE_POINTS_BINDING)
+        .add("EFFECT_NEIGHBOURS_BINDING", EFFECT_NEIGHBOURS_BINDING);
+    return d.text;
+}
+
+std::string effectConstantDefines() {
+    Defines d;
+    d.add("EFFECT_HEIGHT_LIMIT", EFFECT_HEIGHT_LIMIT)
+        .add("MAX_WAKE_POINTS", MAX_WAKE_POINTS)
+        .add("EFFECT_MIN_WAVELENGTH", EFFECT_MIN_WAVELENGTH)
+        .add("KELVIN_TAN2", KELVIN_TAN2)
+        .add("KELVIN_DECAY_WAVELENGTHS", KELVIN_DECAY_WAVELENGTHS);
     return d.text;
 }
 

@@ -76,11 +76,12 @@ TEST(OceanShaders, ConstantDefinesHoldEachConstantOnce) {
     expectLine("#define FOAM_MEMORY_WINDOW " + std::to_string(FOAM_MEMORY_WINDOW));
     expectLine("#define FFT_MAX_CASCADES " + std::to_string(FFT_MAX_CASCADES));
     expectLine("#define FFT_MIX_AMPLITUDE 1.5");
-    // Every line is a define; 37 constants.
+    expectLine("#define EFFECT_EXPLOSIONS_BINDING 4");
+    // Every line is a define; 37 constants and 9 binding slots.
     size_t lines = 0;
     for (size_t at = 0; (at = d.find('\n', at)) != std::string::npos; ++at)
         ++lines;
-    EXPECT_EQ(lines, 37u);
+    EXPECT_EQ(lines, 46u);
     EXPECT_EQ(d.rfind("#define ", 0), 0u);
     EXPECT_EQ(d.back(), '\n');
 }

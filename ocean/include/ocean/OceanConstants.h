@@ -122,5 +122,7 @@ inline double curvatureDrop(double d) {
 
 /// GLSL #define lines for the constants above (plus MAX_OCTAVES), prepended to every ocean shader.
 std::string shaderConstantDefines();
+/// GLSL #define lines for the effects' constants (Effects.h), prepended to the programs with effects.
+std::string effectConstantDefines();
 
 } // namespace pacifica::ocean

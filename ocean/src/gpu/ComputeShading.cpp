@@ -117,8 +117,7 @@ void ComputeShading::beginGeometry() {
 }
 
 std::string ComputeShading::tileDefines() {
-    std::string d = "#define SHADE_TILE_SIZE " + std::to_string(TILE_SIZE) + "\n#define SHADE_TILE_BINDING " +
-                    std::to_string(TILE_BINDING) + "\n#define SHADE_TILE_KINDS " +
+    std::string d = "#define SHADE_TILE_SIZE " + std::to_string(TILE_SIZE) + "\n#define SHADE_TILE_KINDS " +
                     std::to_string(TILE_KINDS) + "\n";
     const char* names[TILE_KINDS] = {"MIXED", "SEA", "SKY", "BEYOND"};
     for (int k = 0; k < TILE_KINDS; ++k)

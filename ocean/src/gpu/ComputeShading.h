@@ -22,6 +22,7 @@
 #pragma once
 
 #include "engine/gl/GlObjects.h"
+#include "gpu/GpuInterface.h"
 
 #include <array>
 #include <string>
@@ -31,11 +32,12 @@ namespace pacifica::ocean {
 class ComputeShading {
 public:
     static constexpr int DEPTH_UNIT = 15, GEOMETRY_UNIT = 16, OFFSET_UNIT = 17, EFFECT_UNIT = 18,
-                         OUTPUT_IMAGE_UNIT = 1, TILE_BINDING = 3, TILE_SIZE = 8;
+                         OUTPUT_IMAGE_UNIT = 1, TILE_BINDING = SHADE_TILE_BINDING, TILE_SIZE = 8;
     /// Kinds of tile (shade_pixels.glsl): an edge between sea and sky (the whole program), sea only, open sky
     /// only, sky with the sea beyond the grid.
     enum TileKind { TILE_MIXED, TILE_SEA, TILE_SKY, TILE_BEYOND, TILE_KINDS };
-    /// The #defines the shading programs take these from (SHADE_TILE_SIZE, SHADE_TILE_BINDING, the kinds).
+    /// The #defines the shading programs take these from (SHADE_TILE_SIZE, the kinds; the binding is
+    /// SHADE_TILE_BINDING of shaderConstantDefines()).
     static std::string tileDefines();
     static bool skyOnly(int kind) { return kind == TILE_SKY || kind == TILE_BEYOND; }
 

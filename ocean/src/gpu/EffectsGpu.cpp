@@ -2,6 +2,7 @@
 #include "gpu/EffectsGpu.h"
 
 #include "GridOrder.h"
+#include "gpu/GpuInterface.h"
 
 #include "ocean/OceanConstants.h"
 
@@ -14,13 +15,6 @@
 namespace pacifica::ocean {
 
 namespace {
-
-struct ExplosionGpu {
-    glm::vec4 a, b, c;
-};
-struct WakeGpu {
-    glm::vec4 a, b, c;
-};
 
 /// Bounding-sphere test against the side planes of the frustum and the camera's front (reverse-Z infinite
 /// projection: no far plane). Planes from the rows of viewProj (Gribb & Hartmann 2001).
@@ -152,19 +146,25 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
             return;
         const glm::dvec2 rel = e.center - glm::dvec2(cam);
         ExplosionGpu g;
-        g.a = glm::vec4(static_cast<float>(rel.x), static_cast<float>(rel.y), static_cast<float>(s.radius),
-                        static_cast<float>(s.amplitude));
-        g.b = glm::vec4(static_cast<float>(e.params.wavenumber), static_cast<float>(s.phase),
-                        static_cast<float>(e.params.coreRadius), static_cast<float>(s.front));
-        g.c = glm::vec4(static_cast<float>(s.frontWidth), static_cast<float>(s.foam),
-                        static_cast<float>(s.crownRadius), static_cast<float>(e.params.amplitude));
+        g.centre = glm::vec2(static_cast<float>(rel.x), static_cast<float>(rel.y));
+        g.gridRadius = static_cast<float>(s.radius);
+        g.amplitude = static_cast<float>(s.amplitude);
+        g.wavenumber = static_cast<float>(e.params.wavenumber);
+        g.phase = static_cast<float>(s.phase);
+        g.coreRadius = static_cast<float>(e.params.coreRadius);
+        g.front = static_cast<float>(s.front);
+        g.frontWidth = static_cast<float>(s.frontWidth);
+        g.crownFoam = static_cast<float>(s.foam);
+        g.crownRadius = static_cast<float>(s.crownRadius);
+        g.peakAmplitude = static_cast<float>(e.params.amplitude);
         (inView(rel, s.radius) ? visible : hidden).push_back(g);
     });
     mExplosionsDrawn = static_cast<int>(visible.size());
     visible.insert(visible.end(), hidden.begin(), hidden.end());
     std::vector<Footprint> footprints;
     for (const ExplosionGpu& g : visible)
-        footprints.push_back({glm::dvec2(g.a.x, g.a.y), double(g.a.z), glm::dvec2(-1e30), glm::dvec2(1e30)});
+        footprints.push_back(
+            {glm::dvec2(g.centre), double(g.gridRadius), glm::dvec2(-1e30), glm::dvec2(1e30)});
     mExplosionCount = static_cast<int>(visible.size());
     if (mExplosionCount > 0) {
         ensureMesh(mExplosionMesh, grids.explosionRings, grids.explosionSegments, grids.explosionExponent,
@@ -187,11 +187,15 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
             return;
         const glm::dvec2 rel = s.ship - glm::dvec2(cam);
         Packed p;
-        p.header.a = glm::vec4(static_cast<float>(rel.x), static_cast<float>(rel.y),
-                               static_cast<float>(s.radius), static_cast<float>(s.offsets.size()));
-        p.header.b = glm::vec4(static_cast<float>(s.length), static_cast<float>(s.beam),
-                               static_cast<float>(s.waveLife), static_cast<float>(s.foamLife));
-        p.header.c = glm::vec4(glm::vec2(s.boxMin), glm::vec2(s.boxMax));
+        p.header.ship = glm::vec2(static_cast<float>(rel.x), static_cast<float>(rel.y));
+        p.header.gridRadius = static_cast<float>(s.radius);
+        p.header.points = static_cast<float>(s.offsets.size());
+        p.header.shipLength = static_cast<float>(s.length);
+        p.header.beam = static_cast<float>(s.beam);
+        p.header.waveLife = static_cast<float>(s.waveLife);
+        p.header.foamLife = static_cast<float>(s.foamLife);
+        p.header.boxMin = glm::vec2(s.boxMin);
+        p.header.boxMax = glm::vec2(s.boxMax);
         p.points.assign(2 * MAX_WAKE_POINTS, glm::vec4(0.0f));
         for (size_t i = 0; i < s.offsets.size(); ++i) {
             p.points[2 * i] =
@@ -207,9 +211,9 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
         wVisible.push_back(std::move(p));
     mWakeCount = static_cast<int>(wVisible.size());
     for (const Packed& p : wVisible) {
-        const glm::dvec2 ship(p.header.a.x, p.header.a.y);
-        footprints.push_back({ship, double(p.header.a.z), ship + glm::dvec2(p.header.c.x, p.header.c.y),
-                              ship + glm::dvec2(p.header.c.z, p.header.c.w)});
+        const glm::dvec2 ship(p.header.ship);
+        footprints.push_back({ship, double(p.header.gridRadius), ship + glm::dvec2(p.header.boxMin),
+                              ship + glm::dvec2(p.header.boxMax)});
     }
     if (mWakeCount > 0) {
         ensureMesh(mWakeMesh, grids.wakeRings, grids.wakeSegments, grids.wakeExponent, mWakeUploads);
@@ -241,13 +245,13 @@ std::string EffectsGpu::defines() const {
 
 void EffectsGpu::bind(unsigned program) const {
     if (mExplosionCount > 0)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, mExplosionBuffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_EXPLOSIONS_BINDING, mExplosionBuffer.id());
     if (mWakeCount > 0) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, mWakeBuffer.id());
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, mWakePointBuffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_WAKES_BINDING, mWakeBuffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_WAKE_POINTS_BINDING, mWakePointBuffer.id());
     }
     if (mExplosionCount + mWakeCount > 0)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, mNeighbourBuffer.id());
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_NEIGHBOURS_BINDING, mNeighbourBuffer.id());
     glProgramUniform1i(program, glGetUniformLocation(program, "uExplosionCount"), mExplosionCount);
     glProgramUniform1i(program, glGetUniformLocation(program, "uWakeCount"), mWakeCount);
 }

@@ -4,6 +4,8 @@
 
 #include "gpu/FftGpu.h"
 
+#include "gpu/GpuInterface.h"
+
 #include "engine/Time.h"
 #include "engine/gl/Shader.h"
 #include "ocean/OceanConstants.h"
@@ -195,10 +197,10 @@ void FftGpu::upload(Group& g, int groupIndex) {
 void FftGpu::transform(const Group& g, int layers, uint32_t word, unsigned firstPlane, unsigned planes) {
     const GLuint n = static_cast<GLuint>(g.size);
     const GLuint groups2d = n / TILE_GROUP;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mData.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.h0Pairs.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g.omegaMultiples.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g.twiddles.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FFT_PLANES_BINDING, mData.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FFT_H0_PAIRS_BINDING, g.h0Pairs.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FFT_OMEGA_MULTIPLES_BINDING, g.omegaMultiples.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, FFT_TWIDDLES_BINDING, g.twiddles.id());
     // 1. htilde(k, t) and the derived spectra, every layer (dispatch z).
     glUseProgram(g.spectrum.id());
     glUniform1ui(location(g.spectrum.id(), "uTimeWord"), word);

@@ -1,0 +1,65 @@
+// GpuInterface (internal): the CPU/GPU interface of the ocean's storage buffers, declared once. The C++
+// structs below are what the CPU uploads; their std430 layout is fixed by the static_asserts; the GLSL
+// declares the same members in the same order (effects.glsl) and test_gpu_interface_gl compiles the real
+// shaders and checks the driver's offset of every member against offsetof() here. The binding slots are one
+// enum, given to every ocean shader as #defines by shaderConstantDefines() (no slot is typed on both sides).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+
+namespace pacifica::ocean {
+
+/// Shader-storage binding slots. The FFT's compute passes and the shading pass run apart from the
+/// effects' draws, so their slots may coincide with each other but never with the effects'.
+enum StorageBinding : int {
+    FFT_PLANES_BINDING = 0,          ///< fft_*.comp: the complex planes [plane][y][x]
+    FFT_H0_PAIRS_BINDING = 1,        ///< fft_spectrum.comp: (h0(k), conj(h0(-k)))
+    FFT_OMEGA_MULTIPLES_BINDING = 2, ///< fft_spectrum.comp: w(k) / w0 (integers)
+    FFT_TWIDDLES_BINDING = 3,        ///< fft_pass.comp: e^{2 pi i j / N}
+    SHADE_TILE_BINDING = 3,          ///< ocean_shade*.comp: the tile lists (ComputeShading.h)
+    EFFECT_EXPLOSIONS_BINDING = 4,   ///< effects.glsl: ExplosionGpu[]
+    EFFECT_WAKES_BINDING = 5,        ///< effects.glsl: WakeGpu[]
+    EFFECT_WAKE_POINTS_BINDING = 6,  ///< effects.glsl: vec4[2 * MAX_WAKE_POINTS] per wake
+    EFFECT_NEIGHBOURS_BINDING = 7,   ///< effects.glsl: the neighbour lists (EffectsGpu.cpp)
+};
+
+/// One explosion as effects.glsl reads it (std430, 48 bytes). Camera-relative metres.
+struct ExplosionGpu {
+    glm::vec2 centre;    ///< centre - camera
+    float gridRadius;    ///< R: the secondary grid's radius; 0 = nothing yet
+    float amplitude;     ///< A(tau)
+    float wavenumber;    ///< k, rad/m
+    float phase;         ///< w tau, wrapped to [0, 2 pi)
+    float coreRadius;    ///< r0
+    float front;         ///< the front's radius
+    float frontWidth;    ///< the front's half-width
+    float crownFoam;     ///< foam of the crown
+    float crownRadius;   ///< the crown's radius
+    float peakAmplitude; ///< I0
+};
+static_assert(sizeof(ExplosionGpu) == 48 && offsetof(ExplosionGpu, gridRadius) == 8 &&
+                  offsetof(ExplosionGpu, wavenumber) == 16 && offsetof(ExplosionGpu, frontWidth) == 32 &&
+                  offsetof(ExplosionGpu, peakAmplitude) == 44,
+              "ExplosionGpu must match effects.glsl's std430 layout");
+
+/// One ship's wake as effects.glsl reads it (std430, 48 bytes); its points follow in the wake-point buffer
+/// at [wake * MAX_WAKE_POINTS * 2 ...]: (offset from the ship x, y; sigma; age), (amplitude, k0, 0, 0).
+struct WakeGpu {
+    glm::vec2 ship;   ///< ship - camera
+    float gridRadius; ///< the secondary grid's radius
+    float points;     ///< how many points (a float: the buffer is all floats)
+    float shipLength; ///< L, m
+    float beam;       ///< m
+    float waveLife;   ///< s
+    float foamLife;   ///< s
+    glm::vec2 boxMin; ///< the box outside which the wake is 0, relative to the ship
+    glm::vec2 boxMax;
+};
+static_assert(sizeof(WakeGpu) == 48 && offsetof(WakeGpu, points) == 12 &&
+                  offsetof(WakeGpu, shipLength) == 16 && offsetof(WakeGpu, boxMin) == 32 &&
+                  offsetof(WakeGpu, boxMax) == 40,
+              "WakeGpu must match effects.glsl's std430 layout");
+
+} // namespace pacifica::ocean
