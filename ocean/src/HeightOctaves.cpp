@@ -235,7 +235,11 @@ OctaveMap makeOctaveMap(const OctaveImage& image, int frames, const std::string&
     return map;
 }
 
-HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
+namespace {
+
+/// Every field of the description in range (std::invalid_argument naming the field otherwise); the
+/// combined levels are checked by the constructor, which counts them.
+void validate(const HeightOctavesDesc& desc) {
     const auto& oct = desc.octaves;
     require(!oct.empty() && oct.size() <= 8,
             "HeightOctavesDesc.octaves must hold 1..8 octaves, got " + std::to_string(oct.size()));
@@ -276,15 +280,6 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
     require(std::isfinite(desc.combinedRadius) && desc.combinedRadius > 0.0,
             "HeightOctavesDesc.combinedRadius must be finite and > 0, got " +
                 std::to_string(desc.combinedRadius));
-    mCombinedLevels = 1;
-    while (combinedReach(mCombinedLevels - 1) < desc.combinedRadius && mCombinedLevels <= MAX_COMBINED_LEVELS)
-        ++mCombinedLevels;
-    require(mCombinedLevels <= MAX_COMBINED_LEVELS,
-            "HeightOctavesDesc.combinedRadius " + std::to_string(desc.combinedRadius) + " needs more than " +
-                std::to_string(MAX_COMBINED_LEVELS) + " combined levels of combinedSize " +
-                std::to_string(desc.combinedSize) + " from combinedTexel " +
-                std::to_string(desc.combinedTexel));
-
     require(desc.images.empty() || desc.images.size() == oct.size(),
             "HeightOctavesDesc.images must be empty or hold one entry per octave (" +
                 std::to_string(oct.size()) + "), got " + std::to_string(desc.images.size()));
@@ -293,6 +288,61 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
                 "HeightOctavesDesc.images[" + std::to_string(i) +
                     "].size must equal HeightOctavesDesc.mapSize (" + std::to_string(desc.mapSize) +
                     "), got " + std::to_string(desc.images[i].size));
+}
+
+/// The height's mip chain of one map (listing 18-3 needs the packed maps of two levels): 2x2 box average,
+/// rounded to half like the RGBA16F texture the GPU samples.
+std::vector<std::vector<float>> heightMips(const OctaveMap& m) {
+    std::vector<std::vector<float>> levels;
+    for (int fine = m.size; fine > 1; fine /= 2) {
+        const int c = fine / 2;
+        std::vector<float> next(static_cast<size_t>(m.frames) * c * c);
+        for (int f = 0; f < m.frames; ++f) {
+            for (int y = 0; y < c; ++y) {
+                for (int x = 0; x < c; ++x) {
+                    double sum = 0.0;
+                    for (int k = 0; k < 4; ++k) {
+                        const int fx = 2 * x + (k & 1), fy = 2 * y + (k >> 1);
+                        sum += levels.empty()
+                                   ? m.texel(f, fx, fy)[0]
+                                   : levels.back()[(static_cast<size_t>(f) * fine + fy) * fine + fx];
+                    }
+                    next[(static_cast<size_t>(f) * c + y) * c + x] =
+                        glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(0.25 * sum)));
+                }
+            }
+        }
+        levels.push_back(std::move(next));
+    }
+    return levels;
+}
+
+/// The largest height step between neighbouring texels of a map (wrapping).
+double maxStep(const OctaveMap& m) {
+    double step = 0.0;
+    for (int f = 0; f < m.frames; ++f)
+        for (int y = 0; y < m.size; ++y)
+            for (int x = 0; x < m.size; ++x) {
+                const double h = m.texel(f, x, y)[0];
+                step = std::max(step, std::abs(m.texel(f, (x + 1) % m.size, y)[0] - h));
+                step = std::max(step, std::abs(m.texel(f, x, (y + 1) % m.size)[0] - h));
+            }
+    return step;
+}
+
+} // namespace
+
+HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
+    validate(desc);
+    const auto& oct = desc.octaves;
+    mCombinedLevels = 1;
+    while (combinedReach(mCombinedLevels - 1) < desc.combinedRadius && mCombinedLevels <= MAX_COMBINED_LEVELS)
+        ++mCombinedLevels;
+    require(mCombinedLevels <= MAX_COMBINED_LEVELS,
+            "HeightOctavesDesc.combinedRadius " + std::to_string(desc.combinedRadius) + " needs more than " +
+                std::to_string(MAX_COMBINED_LEVELS) + " combined levels of combinedSize " +
+                std::to_string(desc.combinedSize) + " from combinedTexel " +
+                std::to_string(desc.combinedTexel));
 
     std::mt19937_64 rng(desc.seed);
     for (size_t i = 0; i < oct.size(); ++i) {
@@ -313,40 +363,9 @@ HeightOctaves::HeightOctaves(const HeightOctavesDesc& desc) : mDesc(desc) {
             mRms.push_back(1.0);
         }
     }
-    // Mip chain of every map's height (listing 18-3 needs the packed maps of two levels): 2x2 box average,
-    // rounded to half like the RGBA16F texture the GPU samples.
     for (const OctaveMap& m : mMaps) {
-        std::vector<std::vector<float>> levels;
-        for (int fine = m.size; fine > 1; fine /= 2) {
-            const int c = fine / 2;
-            std::vector<float> next(static_cast<size_t>(m.frames) * c * c);
-            for (int f = 0; f < m.frames; ++f) {
-                for (int y = 0; y < c; ++y) {
-                    for (int x = 0; x < c; ++x) {
-                        double sum = 0.0;
-                        for (int k = 0; k < 4; ++k) {
-                            const int fx = 2 * x + (k & 1), fy = 2 * y + (k >> 1);
-                            sum += levels.empty()
-                                       ? m.texel(f, fx, fy)[0]
-                                       : levels.back()[(static_cast<size_t>(f) * fine + fy) * fine + fx];
-                        }
-                        next[(static_cast<size_t>(f) * c + y) * c + x] =
-                            glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(0.25 * sum)));
-                    }
-                }
-            }
-            levels.push_back(std::move(next));
-        }
-        mHeightMips.push_back(std::move(levels));
-        double step = 0.0;
-        for (int f = 0; f < m.frames; ++f)
-            for (int y = 0; y < m.size; ++y)
-                for (int x = 0; x < m.size; ++x) {
-                    const double h = m.texel(f, x, y)[0];
-                    step = std::max(step, std::abs(m.texel(f, (x + 1) % m.size, y)[0] - h));
-                    step = std::max(step, std::abs(m.texel(f, x, (y + 1) % m.size)[0] - h));
-                }
-        mMaxStep.push_back(step);
+        mHeightMips.push_back(heightMips(m));
+        mMaxStep.push_back(maxStep(m));
     }
     for (int i = 0; desc.foamMemory && i < desc.displacedOctaves; ++i) {
         const OctaveDesc& o = oct[static_cast<size_t>(i)];
