@@ -302,7 +302,26 @@ def case_bad_input(c, exe, source_dir, tmp):
     c.check(not os.path.exists(os.path.join(tmp, "v.mp4")), "no video file was written", "")
 
 
-CASES = {"acmi-rigs": case_acmi_rigs, "acmi-ships": case_acmi_ships, "acmi-views": case_acmi_views,
+def case_bundled_sample(c, exe, source_dir, tmp):
+    """The README's replay example on what a clone has: tools/data/sortie.txt.acmi, the game's autopilot
+    sortie recorded with --record (a carrier group, the jet's launch, a bomb that sinks a frigate)."""
+    acmi = os.path.join(source_dir, "tools", "data", "sortie.txt.acmi")
+    p = subprocess.run([exe, "replay", acmi, "--list-objects"], env=child_env(None), capture_output=True,
+                       text=True, timeout=RUN_TIMEOUT_S)
+    names = ["Carrier", "Frigate Alpha", "Frigate Bravo", "Tanker Charlie", "Pacifica Jet", "Mk-82"]
+    c.check(p.returncode == 0 and all(n in p.stdout for n in names), "--list-objects lists its six objects",
+            p.stdout[-600:] + p.stderr[-300:])
+    s = replay(c, exe, [acmi, "--rig", "chase:Pacifica Jet", "--start", "216", "--end", "226", "--fps", "1",
+                        "--size", "160x90", "--no-progress"], os.path.join(tmp, "sortie"))
+    c.check(s["events"]["ships"] == 4 and s["events"]["explosions"] == 1,
+            "its four ships sail and its bomb's impact is an explosion", str(s["events"]))
+    active = [f["counters"]["explosions"]["active"] for f in s["frames"]]
+    c.check(active[0] == 0 and active[-1] == 1, "the explosion starts during the run (the impact at ~223.8 s)",
+            str(active))
+    c.check(all(f["counters"]["wakes"]["active"] >= 1 for f in s["frames"]), "the ships have wakes", "")
+
+
+CASES = {"acmi-rigs": case_acmi_rigs, "bundled-sample": case_bundled_sample, "acmi-ships": case_acmi_ships, "acmi-views": case_acmi_views,
          "acmi-video": case_acmi_video, "formats": case_formats, "bad-input": case_bad_input}
 
 
