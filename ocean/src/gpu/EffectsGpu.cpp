@@ -123,22 +123,26 @@ void EffectsGpu::upload(gl::Buffer& buffer, size_t& capacity, const void* data, 
     ++uploads;
 }
 
-void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, double heightBound,
-                         const EffectGridDesc& grids) {
-    mExplosionUploads = mWakeUploads = 0;
-    mExplosionCount = mWakeCount = mExplosionsDrawn = mWakesDrawn = 0;
-    const glm::dvec3 cam = frame.camera.origin;
-    const double t = frame.time;
-    const double k = 1.0 / (2.0 * EARTH_RADIUS);
-    auto inView = [&](const glm::dvec2& rel, double radius) {
+namespace {
+
+/// Whether an effect's disc (raised by the height bound, dropped by the Earth's curvature) can be in view.
+struct ViewTest {
+    const OceanFrame& frame;
+    double heightBound;
+    bool operator()(const glm::dvec2& rel, double radius) const {
+        const double k = 1.0 / (2.0 * EARTH_RADIUS);
         const double d = glm::length(rel);
         const double drop = d * d * k;
         const double r = radius + heightBound + (2.0 * d * radius + radius * radius) * k;
-        return sphereInView(frame.camera.viewProj, glm::vec3(rel.x, rel.y, -cam.z - drop),
+        return sphereInView(frame.camera.viewProj, glm::vec3(rel.x, rel.y, -frame.camera.origin.z - drop),
                             static_cast<float>(r));
-    };
+    }
+};
 
-    // Explosions: visible ones first, so instance i of the draw is explosion i.
+/// Every explosion under way at t, packed (GpuInterface.h), the ones in view first (instance i of the
+/// draw is explosion i); `drawn` gets how many are in view.
+std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const glm::dvec3& cam, double t,
+                                         const ViewTest& inView, int& drawn) {
     std::vector<ExplosionGpu> visible, hidden;
     registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
         const ExplosionState s = explosionState(e, t);
@@ -159,26 +163,42 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
         g.peakAmplitude = static_cast<float>(e.params.amplitude);
         (inView(rel, s.radius) ? visible : hidden).push_back(g);
     });
-    mExplosionsDrawn = static_cast<int>(visible.size());
+    drawn = static_cast<int>(visible.size());
     visible.insert(visible.end(), hidden.begin(), hidden.end());
-    std::vector<Footprint> footprints;
-    for (const ExplosionGpu& g : visible)
-        footprints.push_back(
-            {glm::dvec2(g.centre), double(g.gridRadius), glm::dvec2(-1e30), glm::dvec2(1e30)});
-    mExplosionCount = static_cast<int>(visible.size());
-    if (mExplosionCount > 0) {
-        ensureMesh(mExplosionMesh, grids.explosionRings, grids.explosionSegments, grids.explosionExponent,
-                   mExplosionUploads);
-        upload(mExplosionBuffer, mExplosionCapacity, visible.data(), visible.size() * sizeof(ExplosionGpu),
-               mExplosionUploads);
-    }
+    return visible;
+}
 
-    // Wakes.
-    struct Packed {
-        WakeGpu header;
-        std::vector<glm::vec4> points;
-    };
-    std::vector<Packed> wVisible, wHidden;
+/// One wake: its header and its 2 * MAX_WAKE_POINTS point vec4s.
+struct PackedWake {
+    WakeGpu header;
+    std::vector<glm::vec4> points;
+};
+
+PackedWake packWake(const WakeState& s, const glm::dvec2& rel) {
+    PackedWake p;
+    p.header.ship = glm::vec2(static_cast<float>(rel.x), static_cast<float>(rel.y));
+    p.header.gridRadius = static_cast<float>(s.radius);
+    p.header.points = static_cast<float>(s.offsets.size());
+    p.header.shipLength = static_cast<float>(s.length);
+    p.header.beam = static_cast<float>(s.beam);
+    p.header.waveLife = static_cast<float>(s.waveLife);
+    p.header.foamLife = static_cast<float>(s.foamLife);
+    p.header.boxMin = glm::vec2(s.boxMin);
+    p.header.boxMax = glm::vec2(s.boxMax);
+    p.points.assign(2 * MAX_WAKE_POINTS, glm::vec4(0.0f));
+    for (size_t i = 0; i < s.offsets.size(); ++i) {
+        p.points[2 * i] = glm::vec4(static_cast<float>(s.offsets[i].x), static_cast<float>(s.offsets[i].y),
+                                    static_cast<float>(s.sigma[i]), static_cast<float>(s.age[i]));
+        p.points[2 * i + 1] =
+            glm::vec4(static_cast<float>(s.amplitude[i]), static_cast<float>(s.k0[i]), 0.0f, 0.0f);
+    }
+    return p;
+}
+
+/// Every active trail at t, packed, the ones in view first; `drawn` gets how many are in view.
+std::vector<PackedWake> packWakes(ecs::Registry& registry, const glm::dvec3& cam, double t,
+                                  const ViewTest& inView, int& drawn) {
+    std::vector<PackedWake> visible, hidden;
     registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
         if (!trail.active)
             return;
@@ -186,40 +206,47 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
         if (s.radius <= 0.0)
             return;
         const glm::dvec2 rel = s.ship - glm::dvec2(cam);
-        Packed p;
-        p.header.ship = glm::vec2(static_cast<float>(rel.x), static_cast<float>(rel.y));
-        p.header.gridRadius = static_cast<float>(s.radius);
-        p.header.points = static_cast<float>(s.offsets.size());
-        p.header.shipLength = static_cast<float>(s.length);
-        p.header.beam = static_cast<float>(s.beam);
-        p.header.waveLife = static_cast<float>(s.waveLife);
-        p.header.foamLife = static_cast<float>(s.foamLife);
-        p.header.boxMin = glm::vec2(s.boxMin);
-        p.header.boxMax = glm::vec2(s.boxMax);
-        p.points.assign(2 * MAX_WAKE_POINTS, glm::vec4(0.0f));
-        for (size_t i = 0; i < s.offsets.size(); ++i) {
-            p.points[2 * i] =
-                glm::vec4(static_cast<float>(s.offsets[i].x), static_cast<float>(s.offsets[i].y),
-                          static_cast<float>(s.sigma[i]), static_cast<float>(s.age[i]));
-            p.points[2 * i + 1] =
-                glm::vec4(static_cast<float>(s.amplitude[i]), static_cast<float>(s.k0[i]), 0.0f, 0.0f);
-        }
-        (inView(rel, s.radius) ? wVisible : wHidden).push_back(std::move(p));
+        (inView(rel, s.radius) ? visible : hidden).push_back(packWake(s, rel));
     });
-    mWakesDrawn = static_cast<int>(wVisible.size());
-    for (Packed& p : wHidden)
-        wVisible.push_back(std::move(p));
-    mWakeCount = static_cast<int>(wVisible.size());
-    for (const Packed& p : wVisible) {
+    drawn = static_cast<int>(visible.size());
+    for (PackedWake& p : hidden)
+        visible.push_back(std::move(p));
+    return visible;
+}
+
+} // namespace
+
+void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, double heightBound,
+                         const EffectGridDesc& grids) {
+    mExplosionUploads = mWakeUploads = 0;
+    mExplosionCount = mWakeCount = mExplosionsDrawn = mWakesDrawn = 0;
+    const ViewTest inView{frame, heightBound};
+    const std::vector<ExplosionGpu> explosions =
+        packExplosions(registry, frame.camera.origin, frame.time, inView, mExplosionsDrawn);
+    const std::vector<PackedWake> wakes =
+        packWakes(registry, frame.camera.origin, frame.time, inView, mWakesDrawn);
+    mExplosionCount = static_cast<int>(explosions.size());
+    mWakeCount = static_cast<int>(wakes.size());
+    std::vector<Footprint> footprints;
+    for (const ExplosionGpu& g : explosions)
+        footprints.push_back(
+            {glm::dvec2(g.centre), double(g.gridRadius), glm::dvec2(-1e30), glm::dvec2(1e30)});
+    for (const PackedWake& p : wakes) {
         const glm::dvec2 ship(p.header.ship);
         footprints.push_back({ship, double(p.header.gridRadius), ship + glm::dvec2(p.header.boxMin),
                               ship + glm::dvec2(p.header.boxMax)});
+    }
+    if (mExplosionCount > 0) {
+        ensureMesh(mExplosionMesh, grids.explosionRings, grids.explosionSegments, grids.explosionExponent,
+                   mExplosionUploads);
+        upload(mExplosionBuffer, mExplosionCapacity, explosions.data(),
+               explosions.size() * sizeof(ExplosionGpu), mExplosionUploads);
     }
     if (mWakeCount > 0) {
         ensureMesh(mWakeMesh, grids.wakeRings, grids.wakeSegments, grids.wakeExponent, mWakeUploads);
         std::vector<WakeGpu> headers;
         std::vector<glm::vec4> points;
-        for (const Packed& p : wVisible) {
+        for (const PackedWake& p : wakes) {
             headers.push_back(p.header);
             points.insert(points.end(), p.points.begin(), p.points.end());
         }
