@@ -362,7 +362,9 @@ std::array<glm::vec4, 4> ProjectedGrid::Frame::cornerUniforms() const {
     return out;
 }
 
-ProjectedGrid::Frame ProjectedGrid::frame(const CameraFrame& camera, double curvatureRadius) const {
+namespace {
+
+void requireCamera(const CameraFrame& camera, double curvatureRadius) {
     const double p00 = camera.proj[0][0], p11 = camera.proj[1][1];
     require(
         std::isfinite(p00) && std::isfinite(p11) && p00 > 0.0 && p11 > 0.0 && camera.proj[2][3] == -1.0f,
@@ -375,43 +377,24 @@ ProjectedGrid::Frame ProjectedGrid::frame(const CameraFrame& camera, double curv
                 std::to_string(curvatureRadius));
     require(std::isfinite(camera.zNear) && camera.zNear > 0.0,
             "ProjectedGrid::frame(): camera.zNear must be > 0, got " + std::to_string(camera.zNear));
+}
 
-    Frame out;
-    const CameraAxes cam = cameraAxes(camera);
-    const double h = camera.origin.z;
-    if (!(h + mDesc.maxDisplacement > 0.0))
-        return out; // the camera is below every trough: no sea surface seen from above
-    const Volume vol = makeVolume(h, mDesc.maxDisplacement, curvatureRadius, camera.zNear);
+/// Visible: a ray of the screen (no guard band) meets V. Seen from above V that depends only on the ray's
+/// elevation, lowest at a corner, at an edge's stationary point or at the nadir, all among these rays.
+bool screenMeetsVolume(const CameraAxes& cam, const Volume& vol) {
+    std::vector<glm::dvec3> rays;
+    boundaryRays(cam, cam.tanX, cam.tanY, FACE_RAYS, {}, rays);
+    glm::dvec3 nadir;
+    if (nadirInView(cam, cam.tanX, cam.tanY, nadir))
+        rays.push_back(nadir);
+    rays.push_back(cam.forward);
+    return std::any_of(rays.begin(), rays.end(),
+                       [&](const glm::dvec3& r) { return !vol.segment(r).empty(); });
+}
 
-    // Visible: a ray of the screen (no guard band) meets V. Seen from above V that depends only on the ray's
-    // elevation, lowest at a corner, at an edge's stationary point or at the nadir, all among these rays.
-    {
-        std::vector<glm::dvec3> rays;
-        boundaryRays(cam, cam.tanX, cam.tanY, FACE_RAYS, {}, rays);
-        glm::dvec3 nadir;
-        if (nadirInView(cam, cam.tanX, cam.tanY, nadir))
-            rays.push_back(nadir);
-        rays.push_back(cam.forward);
-        if (std::none_of(rays.begin(), rays.end(),
-                         [&](const glm::dvec3& r) { return !vol.segment(r).empty(); }))
-            return out;
-    }
-
-    // The base-plane points to cover: V's, traced with the guard band.
-    const double X = cam.tanX * (1.0 + mDesc.guardBand), Y = cam.tanY * (1.0 + mDesc.guardBand);
-    const std::vector<glm::dvec2> points = coverPoints(cam, vol, X, Y);
-    if (points.empty())
-        return out; // V is only in the screen's rays nearer than the near plane
-    out.visible = true;
-    out.farDistance = vol.rimRadius;
-
-    // The projector (Johanson §2.4.1): above the camera, at least a margin above the upper bound surface.
-    const double clearance = 0.1 * vol.maxD + 0.1;
-    const double H = std::max(h, vol.maxD + clearance); // projector height above the base plane
-    out.projectorPosition = glm::dvec3(0.0, 0.0, H - h);
-
-    // Zero roll, heading along the camera's forward; within 3 degrees of vertical, blend towards the screen's
-    // up direction so looking straight down still has a heading (and it turns smoothly).
+/// Zero roll, heading along the camera's forward; within 3 degrees of vertical, blend towards the screen's
+/// up direction so looking straight down still has a heading (and it turns smoothly).
+glm::dvec2 projectorHeading(const CameraAxes& cam) {
     glm::dvec2 heading(cam.forward.x, cam.forward.y);
     const double flatness = glm::length(heading);
     if (flatness < 0.05) {
@@ -419,16 +402,17 @@ ProjectedGrid::Frame ProjectedGrid::frame(const CameraFrame& camera, double curv
         const glm::dvec2 screenUp = glm::dvec2(cam.up.x, cam.up.y) * (cam.forward.z < 0.0 ? 1.0 : -1.0);
         heading += blend * screenUp;
     }
-    heading = glm::length(heading) > 1e-12 ? glm::normalize(heading) : glm::dvec2(0.0, 1.0);
-    const glm::dvec2 side(heading.y, -heading.x); // heading x up = right
-    const glm::dvec3 right(side, 0.0);
+    return glm::length(heading) > 1e-12 ? glm::normalize(heading) : glm::dvec2(0.0, 1.0);
+}
 
-    // Pitch (the aim point on the base plane). A point at (along, across, -H) from the projector has
-    // dot = M cos(p - theta) with M = |(along, H)|, theta = atan2(-H, along); keeping it within
-    // MAX_PROJECTOR_ANGLE of the axis asks cos(p - theta) >= cos(MAX) L / M, L its full distance. Looking
-    // straight down (p = -90 deg) every point is in front, so when the bound cannot hold for all, settle for
-    // "in front" (cos(p - theta) > 0).
-    auto pitchWithin = [&](double cosBound, double& lo, double& hi) {
+/// The pitches [lo, hi] that keep every point within MAX_PROJECTOR_ANGLE of the projector's axis. A point at
+/// (along, across, -H) from the projector has dot = M cos(p - theta) with M = |(along, H)|, theta =
+/// atan2(-H, along); within the angle asks cos(p - theta) >= cos(MAX) L / M, L its full distance. Looking
+/// straight down (p = -90 deg) every point is in front, so when the bound cannot hold for all, settle for
+/// "in front" (cos(p - theta) > 0).
+void pitchRange(const std::vector<glm::dvec2>& points, const glm::dvec2& heading, const glm::dvec2& side,
+                double H, double& lo, double& hi) {
+    auto pitchWithin = [&](double cosBound) {
         lo = -0.5 * PI;
         hi = 0.5 * PI - 1e-6;
         for (const glm::dvec2& q : points) {
@@ -443,43 +427,44 @@ ProjectedGrid::Frame ProjectedGrid::frame(const CameraFrame& camera, double curv
         }
         return lo <= hi;
     };
-    double lo, hi;
-    if (!pitchWithin(std::cos(MAX_PROJECTOR_ANGLE), lo, hi)) {
-        pitchWithin(0.0, lo, hi); // contains -90 degrees: theta lies in (-180, 0) for every point
+    if (!pitchWithin(std::cos(MAX_PROJECTOR_ANGLE))) {
+        pitchWithin(0.0); // contains -90 degrees: theta lies in (-180, 0) for every point
         const double margin = std::min(1e-3, 0.25 * (hi - lo));
         lo += margin;
         hi -= margin;
     }
-    // Aim. When the projector is the camera (h well above the bound surface) its pitch is the camera's: the
-    // range is then the screen's view of the sea, Johanson's ideal, with the vertices spread evenly over
-    // the screen. From inside or just above the wave volume the projector had to be raised by H / h, and the
-    // water under the bound surfaces down to the camera's feet must be covered as well as the horizon.
-    // Looking level, the camera's pitch then gives most rows to that near water (7% of the vertices land
-    // on the screen from 2 m), while the steepest pitch that keeps the rim in bounds (lo) crowds them at
-    // the horizon, which the raised projector sees H / h times larger than the camera does (0.05 rows per
-    // pixel at the bottom of a 1080p screen, 20 at the horizon, from 0.5 m). Half-way (in angle) spreads
-    // them fairly evenly (from 2 m: 0.3 to 0.9 rows per pixel, 35% on the screen). The blend into the
-    // camera's pitch between 1 and 3 times the raising threshold keeps the grid continuous with altitude.
+}
+
+/// Aim. When the projector is the camera (h well above the bound surface) its pitch is the camera's: the
+/// range is then the screen's view of the sea, Johanson's ideal, with the vertices spread evenly over the
+/// screen. From inside or just above the wave volume the projector had to be raised by H / h, and the water
+/// under the bound surfaces down to the camera's feet must be covered as well as the horizon. Looking level,
+/// the camera's pitch then gives most rows to that near water (7% of the vertices land on the screen from
+/// 2 m), while the steepest pitch that keeps the rim in bounds (lo) crowds them at the horizon, which the
+/// raised projector sees H / h times larger than the camera does (0.05 rows per pixel at the bottom of a
+/// 1080p screen, 20 at the horizon, from 0.5 m). Half-way (in angle) spreads them fairly evenly (from 2 m:
+/// 0.3 to 0.9 rows per pixel, 35% on the screen). The blend into the camera's pitch between 1 and 3 times
+/// the raising threshold (the bound surface plus the clearance) keeps the grid continuous with altitude.
+double aimPitch(const CameraAxes& cam, double h, double threshold, double lo, double hi) {
     const double cameraPitch = std::asin(std::clamp(cam.forward.z, -1.0, 1.0));
-    const double threshold = vol.maxD + clearance;
     const double s = std::clamp((h - threshold) / (2.0 * threshold), 0.0, 1.0);
     const double cameraWeight = s * s * (3.0 - 2.0 * s); // smoothstep
     const double lowPitch = glm::mix(lo, std::clamp(cameraPitch, lo, hi), LOW_AIM_BLEND);
-    const double pitch = std::clamp(glm::mix(lowPitch, cameraPitch, cameraWeight), lo, hi);
-    const glm::dvec3 fwd(heading * std::cos(pitch), std::sin(pitch));
-    const glm::dvec3 up(-heading * std::sin(pitch), std::cos(pitch));
-    out.projectorForward = fwd;
+    return std::clamp(glm::mix(lowPitch, cameraPitch, cameraWeight), lo, hi);
+}
 
-    // The range: the points' bounding box in the projector's image (tangent units).
+/// The range: the points' bounding box in the projector's image (tangent units), never degenerate (all
+/// points on one line would leave the homography without an inverse).
+glm::dvec4 imageRange(const std::vector<glm::dvec2>& points, double h, const glm::dvec3& position,
+                      const glm::dvec3& fwd, const glm::dvec3& right, const glm::dvec3& up) {
     glm::dvec4 range(INF, -INF, INF, -INF);
     for (const glm::dvec2& q : points) {
-        const glm::dvec3 v = glm::dvec3(q, -h) - out.projectorPosition;
+        const glm::dvec3 v = glm::dvec3(q, -h) - position;
         const double w = glm::dot(v, fwd);
         const double x = glm::dot(v, right) / w, y = glm::dot(v, up) / w;
         range = glm::dvec4(std::min(range.x, x), std::max(range.y, x), std::min(range.z, y),
                            std::max(range.w, y));
     }
-    // A degenerate box (all points on one line) still needs an area for the homography to be invertible.
     const double minExtent = 1e-9 * (1.0 + std::abs(range.x) + std::abs(range.y) + std::abs(range.z));
     if (range.y - range.x < minExtent) {
         range.x -= minExtent;
@@ -487,10 +472,47 @@ ProjectedGrid::Frame ProjectedGrid::frame(const CameraFrame& camera, double curv
     }
     if (range.w - range.z < minExtent)
         range.z -= minExtent; // downwards: the top stays below the projector's horizon
-    out.range = range;
+    return range;
+}
+
+} // namespace
+
+ProjectedGrid::Frame ProjectedGrid::frame(const CameraFrame& camera, double curvatureRadius) const {
+    requireCamera(camera, curvatureRadius);
+    Frame out;
+    const CameraAxes cam = cameraAxes(camera);
+    const double h = camera.origin.z;
+    if (!(h + mDesc.maxDisplacement > 0.0))
+        return out; // the camera is below every trough: no sea surface seen from above
+    const Volume vol = makeVolume(h, mDesc.maxDisplacement, curvatureRadius, camera.zNear);
+    if (!screenMeetsVolume(cam, vol))
+        return out;
+    // The base-plane points to cover: V's, traced with the guard band.
+    const double X = cam.tanX * (1.0 + mDesc.guardBand), Y = cam.tanY * (1.0 + mDesc.guardBand);
+    const std::vector<glm::dvec2> points = coverPoints(cam, vol, X, Y);
+    if (points.empty())
+        return out; // V is only in the screen's rays nearer than the near plane
+    out.visible = true;
+    out.farDistance = vol.rimRadius;
+
+    // The projector (Johanson §2.4.1): above the camera, at least a margin above the upper bound surface.
+    const double clearance = 0.1 * vol.maxD + 0.1;
+    const double H = std::max(h, vol.maxD + clearance); // projector height above the base plane
+    out.projectorPosition = glm::dvec3(0.0, 0.0, H - h);
+    const glm::dvec2 heading = projectorHeading(cam);
+    const glm::dvec2 side(heading.y, -heading.x); // heading x up = right
+    const glm::dvec3 right(side, 0.0);
+    double lo, hi;
+    pitchRange(points, heading, side, H, lo, hi);
+    const double pitch = aimPitch(cam, h, vol.maxD + clearance, lo, hi);
+    const glm::dvec3 fwd(heading * std::cos(pitch), std::sin(pitch));
+    const glm::dvec3 up(-heading * std::sin(pitch), std::cos(pitch));
+    out.projectorForward = fwd;
+    out.range = imageRange(points, h, out.projectorPosition, fwd, right, up);
 
     // Corners: the base-plane point hit by the projector ray through (x, y) is P + (H / -dir.z) dir; times
     // w = -dir.z it is the homogeneous (H dir.xy, -h w, w) (P.xy = 0), linear in (x, y) and so in (u, v).
+    const glm::dvec4& range = out.range;
     const glm::dvec2 cornerXY[4] = {
         {range.x, range.z}, {range.y, range.z}, {range.x, range.w}, {range.y, range.w}};
     for (int i = 0; i < 4; ++i) {
