@@ -25,6 +25,7 @@
 #include "ocean/OceanConstants.h"
 #include "ocean/RadialGrid.h"
 
+#include "BenchCli.h"
 #include "BenchText.h"
 #include <CLI/CLI.hpp>
 
@@ -44,6 +45,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -606,169 +608,208 @@ bool runGnuplot(const std::string& dir) {
 
 } // namespace
 
-int main(int argc, char** argv) {
-    CLI::App app{"pacifica-accuracy: error and cost of the ocean's quality knobs (docs/ACCURACY.md)"};
+namespace {
+
+struct Args {
     std::string outDir = "accuracy";
     bool quick = false;
     int width = 320, height = 180, frames = 15;
-    app.add_option("--out", outDir, "output directory (accuracy.csv, accuracy.md, accuracy.png)");
-    app.add_flag("--quick", quick, "tiny sweep for the test: baseline + 3 settings, 160x90, 3 frames");
+    bool framesGiven = false;
     std::vector<std::string> knobs;
-    app.add_option("--knob", knobs,
+    std::string commandLine;
+};
+
+std::optional<int> parseArgs(int argc, char** argv, Args& a) {
+    CLI::App app{"pacifica-accuracy: error and cost of the ocean's quality knobs (docs/ACCURACY.md)",
+                 "pacifica-accuracy"};
+    app.add_option("--out", a.outDir, "output directory (accuracy.csv, accuracy.md, accuracy.png)");
+    app.add_flag("--quick", a.quick, "tiny sweep for the test: baseline + 3 settings, 160x90, 3 frames");
+    app.add_option("--knob", a.knobs,
                    "only this knob (repeatable; e.g. min_ring_pixels, grid, vertex_filter): each model's "
                    "reference and baseline and that knob's settings");
-    app.add_option("--width", width, "render width")->check(CLI::Range(16, 4096));
-    app.add_option("--height", height, "render height")->check(CLI::Range(16, 4096));
-    app.add_option("--frames", frames, "timed frames per setting (default 15; 5 on software GL)")
+    app.add_option("--width", a.width, "render width")->check(CLI::Range(16, 4096));
+    app.add_option("--height", a.height, "render height")->check(CLI::Range(16, 4096));
+    app.add_option("--frames", a.frames, "timed frames per setting (default 15; 5 on software GL)")
         ->check(CLI::Range(1, 1000));
-    CLI11_PARSE(app, argc, argv);
-    // llvmpipe renders a 256 x 512 grid in ~0.2 s: 5 frames there keep the full sweep near 3 minutes.
-    const bool framesGiven = app.count("--frames") > 0;
-    if (quick) {
-        width = 160;
-        height = 90;
-        frames = 3;
+    if (const auto code = bench::parseCommandLine(app, argc, argv))
+        return code;
+    a.framesGiven = app.count("--frames") > 0;
+    if (a.quick) {
+        a.width = 160;
+        a.height = 90;
+        a.frames = 3;
     }
-    std::string commandLine;
-    for (int i = 0; i < argc; ++i)
-        commandLine += (i ? " " : "") + std::string(argv[i]);
+    a.commandLine = bench::commandLine(argc, argv);
+    return std::nullopt;
+}
 
+/// The sweep's settings, or with --knob only the references, baselines and that knob's.
+std::vector<Setting> selectSettings(const Args& a) {
+    std::vector<Setting> settings = sweep(a.quick);
+    if (a.knobs.empty())
+        return settings;
+    std::erase_if(settings, [&](const Setting& st) {
+        return st.knob != "reference" && st.knob != "baseline" &&
+               std::find(a.knobs.begin(), a.knobs.end(), st.knob) == a.knobs.end();
+    });
+    size_t matched = 0;
+    for (const Setting& st : settings)
+        matched += st.knob != "reference" && st.knob != "baseline";
+    if (matched == 0)
+        throw std::runtime_error("--knob: no setting has knob '" + a.knobs.front() + "'");
+    return settings;
+}
+
+/// One renderer measuring every setting against its model's reference (measured first).
+struct Sweep {
+    const Args& a;
+    int frames;
+    gl::GpuTimer& timer;
+    gl::FrameTargets targets;
+    ocean::OceanRenderer renderer;
+    ecs::Registry registry;
+    std::vector<Result> results;
+    std::map<ocean::SurfaceKind, std::vector<float>> refImages;
+    std::map<ocean::SurfaceKind, double> refHs;
+
+    Sweep(const Args& args, int f, gl::GpuTimer& t)
+        : a(args), frames(f), timer(t), targets(args.width, args.height) {}
+    void run(const Setting& s, bool isReference);
+    void errors(Result& r, const ocean::OceanComponent& oc);
+};
+
+/// The vertex and normal errors with culling off: every vertex displaced, so every in-view vertex compares.
+void Sweep::errors(Result& r, const ocean::OceanComponent& oc) {
+    const ocean::SurfaceKind m = oc.desc.model;
+    ocean::OceanComponent uncut = oc;
+    uncut.desc.cullVertices = false;
+    const ecs::Entity ev = registry.create();
+    registry.emplace<ocean::OceanComponent>(ev, uncut);
+    const size_t maxSamples =
+        m == ocean::SurfaceKind::Fft
+            ? std::clamp<size_t>(size_t(400.0 * std::pow(256.0 / oc.desc.fft.size, 2)), 400, 4000)
+            : (a.quick ? 4000 : 20000);
+    const VertexError ve = vertexError(renderer, registry, ev, uncut, targets, maxSamples / 3);
+    r.vertexRms = ve.nodeRms / refHs.at(m);
+    r.meshRms = ve.midRms / refHs.at(m);
+    r.samples = ve.samples;
+    const NormalError ne = normalError(renderer, registry, ev, uncut, targets, maxSamples / 3);
+    r.normalMeanDeg = ne.meanDeg;
+    r.normalP95Deg = ne.p95Deg;
+    r.normalSamples = ne.samples;
+    registry.destroy(ev);
+}
+
+void Sweep::run(const Setting& s, bool isReference) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const ecs::Entity e = registry.create();
+    const ocean::OceanComponent& oc = registry.emplace<ocean::OceanComponent>(e, ocean::makeOcean(s.desc));
+    const ocean::SurfaceKind m = s.desc.model;
+    if (isReference)
+        refHs[m] = oc.surface->significantWaveHeight();
+    Result r{s};
+    r.msMedian = timeRender(renderer, registry, targets, timer, frames);
+    r.vertices = renderer.lastStats().vertices;
+    const std::vector<float> img = renderViews(renderer, registry, targets);
+    if (isReference)
+        refImages[m] = img;
+    std::tie(r.imageRmse, r.psnrDb) = imageError(img, refImages.at(m));
+    errors(r, oc);
+    registry.destroy(e);
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr,
+                 "[%s] %s=%s: vertex %.4g Hs, normal %.3g/%.3g deg, image rmse %.4g, %.3f ms (%.1f s)\n",
+                 modelName(m), s.knob.c_str(), s.value.c_str(), r.vertexRms, r.normalMeanDeg, r.normalP95Deg,
+                 r.imageRmse, r.msMedian, secs);
+    results.push_back(r);
+}
+
+std::string csvReport(const std::vector<Result>& results, const std::string& clock,
+                      const std::string& renderer) {
+    std::ostringstream csv;
+    csv << "knob,value,model,vertex_rms_over_hs,mesh_rms_over_hs,normal_mean_deg,normal_p95_deg,normal_"
+           "samples,samples,image_rmse,psnr_db,ms_median,vertices,clock,renderer,pareto\n";
+    for (const Result& r : results)
+        csv << r.setting.knob << ',' << csvQuote(r.setting.value) << ',' << modelName(r.setting.desc.model)
+            << ',' << num(r.vertexRms) << ',' << num(r.meshRms) << ',' << num(r.normalMeanDeg) << ','
+            << num(r.normalP95Deg) << ',' << r.normalSamples << ',' << r.samples << ',' << num(r.imageRmse)
+            << ',' << num(r.psnrDb) << ',' << num(r.msMedian) << ',' << r.vertices << ',' << clock << ','
+            << csvQuote(renderer) << ',' << (r.pareto ? 1 : 0) << '\n';
+    return csv.str();
+}
+
+std::string markdownReport(const std::vector<Result>& results, const Args& a, int frames,
+                           const std::string& clock, const std::string& renderer) {
+    std::ostringstream md;
+    md << "# Pacifica accuracy sweep\n\n"
+       << "- GL_RENDERER: " << renderer << "\n- clock: " << clock << "\n- date: " << bench::utcNow()
+       << "\n- command: `" << a.commandLine << "`\n- image: " << a.width << "x" << a.height
+       << " scene-linear RGB of 3 views vs the model's reference; PSNR peak 1.0 after clamping to [0, "
+          "1]\n"
+       << "- vertex error: RMS height error at the vertices (mesh: at grid-edge midpoints) / Hs of the "
+          "reference, t = "
+       << TIME << " s, in-frustum, r <= rMax, culling off\n"
+       << "- normal error: angle between the mesh normal at interior vertices (central differences of "
+          "the "
+          "4 neighbouring vertices) and the continuous displaced surface's normal, degrees (mean, p95)\n"
+       << "- ms: median of " << frames << " frames of render + glFinish\n"
+       << "- plot: accuracy.png (gnuplot, from accuracy.gp + accuracy.dat): image RMSE vs ms, Pareto "
+          "fronts "
+          "marked\n\n"
+       << "| model | knob | value | vertex rms/Hs | mesh rms/Hs | normal mean° | normal p95° | image "
+          "RMSE | "
+          "PSNR dB | ms | vertices | pareto |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const Result& r : results)
+        md << "| " << modelName(r.setting.desc.model) << " | " << r.setting.knob << " | " << r.setting.value
+           << " | " << num(r.vertexRms, 3) << " | " << num(r.meshRms, 3) << " | " << num(r.normalMeanDeg, 3)
+           << " | " << num(r.normalP95Deg, 3) << " | " << num(r.imageRmse, 3) << " | " << num(r.psnrDb, 3)
+           << " | " << num(r.msMedian, 3) << " | " << r.vertices << " | " << (r.pareto ? "**yes**" : "")
+           << " |\n";
+    return md.str();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Args a;
+    if (const auto code = parseArgs(argc, argv, a))
+        return *code;
     try {
-        std::filesystem::create_directories(outDir);
-        std::filesystem::remove(outDir + "/accuracy.png"); // a stale plot must not pass for this run's
+        std::filesystem::create_directories(a.outDir);
+        std::filesystem::remove(a.outDir + "/accuracy.png"); // a stale plot must not pass for this run's
         auto context = gl::createHeadlessContext({.debug = false});
         const gl::ContextInfo info = context->info();
         gl::GpuTimer timer(info);
-        if (!quick && !framesGiven && info.software)
-            frames = 5;
-        gl::FrameTargets targets(width, height);
-        ocean::OceanRenderer renderer;
-        ecs::Registry registry;
-
-        std::vector<Setting> settings = sweep(quick);
-        if (!knobs.empty()) {
-            std::erase_if(settings, [&](const Setting& st) {
-                return st.knob != "reference" && st.knob != "baseline" &&
-                       std::find(knobs.begin(), knobs.end(), st.knob) == knobs.end();
-            });
-            size_t matched = 0;
-            for (const Setting& st : settings)
-                matched += st.knob != "reference" && st.knob != "baseline";
-            if (matched == 0)
-                throw std::runtime_error("--knob: no setting has knob '" + knobs.front() + "'");
-        }
-        std::vector<Result> results;
-        std::map<ocean::SurfaceKind, std::vector<float>> refImages;
-        std::map<ocean::SurfaceKind, double> refHs;
-        auto run = [&](const Setting& s, bool isReference) {
-            const auto t0 = std::chrono::steady_clock::now();
-            const ecs::Entity e = registry.create();
-            const ocean::OceanComponent& oc =
-                registry.emplace<ocean::OceanComponent>(e, ocean::makeOcean(s.desc));
-            const ocean::SurfaceKind m = s.desc.model;
-            if (isReference)
-                refHs[m] = oc.surface->significantWaveHeight();
-            Result r{s};
-            r.msMedian = timeRender(renderer, registry, targets, timer, frames);
-            r.vertices = renderer.lastStats().vertices;
-            const std::vector<float> img = renderViews(renderer, registry, targets);
-            if (isReference)
-                refImages[m] = img;
-            std::tie(r.imageRmse, r.psnrDb) = imageError(img, refImages.at(m));
-            // Vertex error with culling off: every vertex displaced, so every in-view vertex compares.
-            ocean::OceanComponent uncut = oc;
-            uncut.desc.cullVertices = false;
-            const ecs::Entity ev = registry.create();
-            registry.emplace<ocean::OceanComponent>(ev, uncut);
-            const size_t maxSamples =
-                m == ocean::SurfaceKind::Fft
-                    ? std::clamp<size_t>(size_t(400.0 * std::pow(256.0 / s.desc.fft.size, 2)), 400, 4000)
-                    : (quick ? 4000 : 20000);
-            const VertexError ve = vertexError(renderer, registry, ev, uncut, targets, maxSamples / 3);
-            r.vertexRms = ve.nodeRms / refHs.at(m);
-            r.meshRms = ve.midRms / refHs.at(m);
-            r.samples = ve.samples;
-            const NormalError ne = normalError(renderer, registry, ev, uncut, targets, maxSamples / 3);
-            r.normalMeanDeg = ne.meanDeg;
-            r.normalP95Deg = ne.p95Deg;
-            r.normalSamples = ne.samples;
-            registry.destroy(ev);
-            registry.destroy(e);
-            const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::fprintf(
-                stderr,
-                "[%s] %s=%s: vertex %.4g Hs, normal %.3g/%.3g deg, image rmse %.4g, %.3f ms (%.1f s)\n",
-                modelName(m), s.knob.c_str(), s.value.c_str(), r.vertexRms, r.normalMeanDeg, r.normalP95Deg,
-                r.imageRmse, r.msMedian, secs);
-            results.push_back(r);
-        };
+        // llvmpipe renders a 256 x 512 grid in ~0.2 s: 5 frames there keep the full sweep near 3 minutes.
+        const int frames = !a.quick && !a.framesGiven && info.software ? 5 : a.frames;
+        Sweep sweepRun(a, frames, timer);
+        const std::vector<Setting> settings = selectSettings(a);
         std::vector<ocean::SurfaceKind> models;
         for (const Setting& s : settings)
             if (std::find(models.begin(), models.end(), s.desc.model) == models.end())
                 models.push_back(s.desc.model);
         for (ocean::SurfaceKind m : models) {
-            run({"reference", "512x1024 bilinear no-cull all-octaves N=256", referenceDesc(m)}, true);
+            sweepRun.run({"reference", "512x1024 bilinear no-cull all-octaves N=256", referenceDesc(m)},
+                         true);
             for (const Setting& s : settings)
                 if (s.desc.model == m)
-                    run(s, false);
+                    sweepRun.run(s, false);
         }
+        std::vector<Result>& results = sweepRun.results;
         markPareto(results);
-
-        std::ofstream csv(outDir + "/accuracy.csv");
-        csv << "knob,value,model,vertex_rms_over_hs,mesh_rms_over_hs,normal_mean_deg,normal_p95_deg,normal_"
-               "samples,samples,image_rmse,psnr_db,ms_median,vertices,clock,renderer,pareto\n";
-        for (const Result& r : results)
-            csv << r.setting.knob << ',' << csvQuote(r.setting.value) << ','
-                << modelName(r.setting.desc.model) << ',' << num(r.vertexRms) << ',' << num(r.meshRms) << ','
-                << num(r.normalMeanDeg) << ',' << num(r.normalP95Deg) << ',' << r.normalSamples << ','
-                << r.samples << ',' << num(r.imageRmse) << ',' << num(r.psnrDb) << ',' << num(r.msMedian)
-                << ',' << r.vertices << ',' << timer.clockName() << ',' << csvQuote(info.renderer) << ','
-                << (r.pareto ? 1 : 0) << '\n';
-
-        std::ofstream md(outDir + "/accuracy.md");
-        const std::time_t now = std::time(nullptr);
-        char date[64];
-        std::strftime(date, sizeof date, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
-        md << "# Pacifica accuracy sweep\n\n"
-           << "- GL_RENDERER: " << info.renderer << "\n- clock: " << timer.clockName() << "\n- date: " << date
-           << "\n- command: `" << commandLine << "`\n- image: " << width << "x" << height
-           << " scene-linear RGB of 3 views vs the model's reference; PSNR peak 1.0 after clamping to [0, "
-              "1]\n"
-           << "- vertex error: RMS height error at the vertices (mesh: at grid-edge midpoints) / Hs of the "
-              "reference, t = "
-           << TIME << " s, in-frustum, r <= rMax, culling off\n"
-           << "- normal error: angle between the mesh normal at interior vertices (central differences of "
-              "the "
-              "4 neighbouring vertices) and the continuous displaced surface's normal, degrees (mean, p95)\n"
-           << "- ms: median of " << frames << " frames of render + glFinish\n"
-           << "- plot: accuracy.png (gnuplot, from accuracy.gp + accuracy.dat): image RMSE vs ms, Pareto "
-              "fronts "
-              "marked\n\n"
-           << "| model | knob | value | vertex rms/Hs | mesh rms/Hs | normal mean° | normal p95° | image "
-              "RMSE | "
-              "PSNR dB | ms | vertices | pareto |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-        for (const Result& r : results)
-            md << "| " << modelName(r.setting.desc.model) << " | " << r.setting.knob << " | "
-               << r.setting.value << " | " << num(r.vertexRms, 3) << " | " << num(r.meshRms, 3) << " | "
-               << num(r.normalMeanDeg, 3) << " | " << num(r.normalP95Deg, 3) << " | " << num(r.imageRmse, 3)
-               << " | " << num(r.psnrDb, 3) << " | " << num(r.msMedian, 3) << " | " << r.vertices << " | "
-               << (r.pareto ? "**yes**" : "") << " |\n";
-        csv.close();
-        md.close();
-        if (!csv || !md) {
-            std::cerr << "pacifica-accuracy: cannot write to " << outDir << "\n";
-            return 1;
-        }
-        writePlotFiles(outDir, results, timer.clockName(), info.renderer);
-        const bool plotted = runGnuplot(outDir);
-        std::cout << "wrote " << outDir << "/accuracy.csv, accuracy.md" << (plotted ? ", accuracy.png" : "")
+        bench::writeReport(a.outDir + "/accuracy.csv", csvReport(results, timer.clockName(), info.renderer));
+        bench::writeReport(a.outDir + "/accuracy.md",
+                           markdownReport(results, a, frames, timer.clockName(), info.renderer));
+        writePlotFiles(a.outDir, results, timer.clockName(), info.renderer);
+        const bool plotted = runGnuplot(a.outDir);
+        std::cout << "wrote " << a.outDir << "/accuracy.csv, accuracy.md" << (plotted ? ", accuracy.png" : "")
                   << " (" << results.size() << " settings, " << info.renderer << ", " << timer.clockName()
                   << ")\n";
         if (!plotted)
             std::cerr
                 << "pacifica-accuracy: gnuplot is not installed, so accuracy.png was not drawn: install "
                    "gnuplot-nox, then run `gnuplot accuracy.gp` in "
-                << outDir << "\n";
+                << a.outDir << "\n";
     } catch (const gl::ContextError& e) {
         std::cerr << "pacifica-accuracy: no GL context: " << e.what() << "\n";
         return 2;
