@@ -212,145 +212,149 @@ FlightPath FlightPath::load(const std::filesystem::path& path) {
     return parse(text, name);
 }
 
-FlightPath FlightPath::parse(std::string_view text, const std::string& sourceName) {
-    if (text.starts_with(UTF8_BOM)) {
-        text.remove_prefix(UTF8_BOM.size());
-    }
+namespace {
 
+/// The CSV's records as they are read, each checked with the line it came from (FlightError names it).
+struct CsvRecords {
+    const std::string& sourceName;
     std::vector<FlightSample> samples;
     std::vector<ExplosionEvent> explosions;
     std::vector<ShipTrack> ships;
     std::vector<int> shipLastLine; // per ship: line of its latest record, for the time-order message
     std::unordered_map<std::string, size_t> shipIndex;
-    bool haveHeader = false;
-    int lineNo = 0;
     int previousLineNo = 0;
-    size_t pos = 0;
-    while (pos < text.size()) {
-        size_t newline = text.find('\n', pos);
-        if (newline == std::string_view::npos) {
-            newline = text.size();
-        }
-        const std::string_view line = trim(text.substr(pos, newline - pos));
-        pos = newline + 1;
-        ++lineNo;
 
-        if (line.empty() || line.front() == '#') {
-            continue;
-        }
+    void header(const std::vector<std::string_view>& fields, std::string_view line, int lineNo) const {
+        bool matches = fields.size() == COLUMN_NAMES.size();
+        for (size_t i = 0; matches && i < fields.size(); ++i)
+            matches = fields[i] == COLUMN_NAMES[i];
+        if (!matches)
+            throw FlightError(sourceName, lineNo,
+                              "expected header '" + std::string(HEADER) + "', got '" + std::string(line) +
+                                  "'");
+    }
 
-        const std::vector<std::string_view> fields = splitFields(line);
-        if (!haveHeader) {
-            bool matches = fields.size() == COLUMN_NAMES.size();
-            for (size_t i = 0; matches && i < fields.size(); ++i) {
-                matches = fields[i] == COLUMN_NAMES[i];
-            }
-            if (!matches) {
-                throw FlightError(sourceName, lineNo,
-                                  "expected header '" + std::string(HEADER) + "', got '" + std::string(line) +
-                                      "'");
-            }
-            haveHeader = true;
-            continue;
+    void ship(const std::vector<std::string_view>& fields, int lineNo) {
+        if (fields.size() != SHIP_FIELD_COUNT)
+            throw FlightError(sourceName, lineNo,
+                              "ship record: expected " + std::to_string(SHIP_FIELD_COUNT) +
+                                  " fields (ship,id,time_s,x_m,y_m), got " + std::to_string(fields.size()));
+        const std::string_view id = fields[1];
+        if (!isValidShipId(id))
+            throw FlightError(sourceName, lineNo,
+                              "ship id must match [A-Za-z0-9_-]+, got '" + std::string(id) + "'");
+        ShipSample sample;
+        sample.time = parseRecordField(fields[2], "ship", "time_s", sourceName, lineNo);
+        sample.x = parseRecordField(fields[3], "ship", "x_m", sourceName, lineNo);
+        sample.y = parseRecordField(fields[4], "ship", "y_m", sourceName, lineNo);
+        const auto [it, inserted] = shipIndex.try_emplace(std::string(id), ships.size());
+        if (inserted) {
+            ShipTrack track;
+            track.id = std::string(id);
+            track.line = lineNo;
+            ships.push_back(std::move(track));
+            shipLastLine.push_back(lineNo);
         }
+        ShipTrack& track = ships[it->second];
+        if (!track.samples.empty() && !(sample.time > track.samples.back().time))
+            throw FlightError(sourceName, lineNo,
+                              "ship '" + track.id +
+                                  "': time_s must be strictly increasing: " + formatNumber(sample.time) +
+                                  " does not follow " + formatNumber(track.samples.back().time) + " (line " +
+                                  std::to_string(shipLastLine[it->second]) + ")");
+        track.samples.push_back(sample);
+        shipLastLine[it->second] = lineNo;
+    }
 
-        if (isRecordKeyword(fields[0])) {
-            if (fields[0] == "explosion") {
-                explosions.push_back(parseExplosion(fields, sourceName, lineNo));
-            } else if (fields[0] == "ship") {
-                if (fields.size() != SHIP_FIELD_COUNT) {
-                    throw FlightError(sourceName, lineNo,
-                                      "ship record: expected " + std::to_string(SHIP_FIELD_COUNT) +
-                                          " fields (ship,id,time_s,x_m,y_m), got " +
-                                          std::to_string(fields.size()));
-                }
-                const std::string_view id = fields[1];
-                if (!isValidShipId(id)) {
-                    throw FlightError(sourceName, lineNo,
-                                      "ship id must match [A-Za-z0-9_-]+, got '" + std::string(id) + "'");
-                }
-                ShipSample sample;
-                sample.time = parseRecordField(fields[2], "ship", "time_s", sourceName, lineNo);
-                sample.x = parseRecordField(fields[3], "ship", "x_m", sourceName, lineNo);
-                sample.y = parseRecordField(fields[4], "ship", "y_m", sourceName, lineNo);
-                const auto [it, inserted] = shipIndex.try_emplace(std::string(id), ships.size());
-                if (inserted) {
-                    ShipTrack track;
-                    track.id = std::string(id);
-                    track.line = lineNo;
-                    ships.push_back(std::move(track));
-                    shipLastLine.push_back(lineNo);
-                }
-                ShipTrack& track = ships[it->second];
-                if (!track.samples.empty() && !(sample.time > track.samples.back().time)) {
-                    throw FlightError(sourceName, lineNo,
-                                      "ship '" + track.id + "': time_s must be strictly increasing: " +
-                                          formatNumber(sample.time) + " does not follow " +
-                                          formatNumber(track.samples.back().time) + " (line " +
-                                          std::to_string(shipLastLine[it->second]) + ")");
-                }
-                track.samples.push_back(sample);
-                shipLastLine[it->second] = lineNo;
-            } else {
-                throw FlightError(sourceName, lineNo,
-                                  "unknown record '" + std::string(fields[0]) +
-                                      "': expected a camera sample (a number first), 'explosion' or 'ship'");
-            }
-            continue;
-        }
+    void record(const std::vector<std::string_view>& fields, int lineNo) {
+        if (fields[0] == "explosion")
+            explosions.push_back(parseExplosion(fields, sourceName, lineNo));
+        else if (fields[0] == "ship")
+            ship(fields, lineNo);
+        else
+            throw FlightError(sourceName, lineNo,
+                              "unknown record '" + std::string(fields[0]) +
+                                  "': expected a camera sample (a number first), 'explosion' or 'ship'");
+    }
 
-        if (fields.size() != static_cast<size_t>(FIELD_COUNT)) {
+    void camera(const std::vector<std::string_view>& fields, int lineNo) {
+        if (fields.size() != static_cast<size_t>(FIELD_COUNT))
             throw FlightError(sourceName, lineNo,
                               "expected " + std::to_string(FIELD_COUNT) + " fields, got " +
                                   std::to_string(fields.size()));
-        }
         std::array<double, FIELD_COUNT> v{};
-        for (int i = 0; i < FIELD_COUNT; ++i) {
+        for (int i = 0; i < FIELD_COUNT; ++i)
             v[static_cast<size_t>(i)] = parseField(fields[static_cast<size_t>(i)], i, sourceName, lineNo);
-        }
-
         FlightSample sample;
         sample.time = v[0];
         sample.pose.position = glm::dvec3(v[1], v[2], v[3]);
         sample.pose.headingDeg = v[4];
         sample.pose.pitchDeg = v[5];
         sample.pose.rollDeg = v[6];
-
         // Beyond +-90 degrees the same attitude has a second (heading+180, roll+180) spelling; one
         // spelling per attitude keeps interpolation and the file's meaning unambiguous.
-        if (std::abs(sample.pose.pitchDeg) > 90.0) {
+        if (std::abs(sample.pose.pitchDeg) > 90.0)
             throw FlightError(sourceName, lineNo,
                               "field 'pitch_deg' must be within [-90, 90], got " +
                                   formatNumber(sample.pose.pitchDeg));
-        }
-        if (!samples.empty() && !(sample.time > samples.back().time)) {
+        if (!samples.empty() && !(sample.time > samples.back().time))
             throw FlightError(sourceName, lineNo,
                               "time_s must be strictly increasing: " + formatNumber(sample.time) +
                                   " does not follow " + formatNumber(samples.back().time) + " (line " +
                                   std::to_string(previousLineNo) + ")");
-        }
         samples.push_back(sample);
         previousLineNo = lineNo;
     }
 
-    if (!haveHeader) {
-        throw FlightError(sourceName, 0, "empty flight file: expected header '" + std::string(HEADER) + "'");
+    /// The whole file's checks; then explosions in time order (stable: explosions at the same time keep
+    /// their file order, so a replay is deterministic).
+    void finish(bool haveHeader) {
+        if (!haveHeader)
+            throw FlightError(sourceName, 0,
+                              "empty flight file: expected header '" + std::string(HEADER) + "'");
+        if (samples.size() < 2)
+            throw FlightError(sourceName, 0,
+                              "expected at least 2 samples, got " + std::to_string(samples.size()));
+        for (const ShipTrack& ship : ships)
+            if (ship.samples.size() < 2)
+                throw FlightError(sourceName, ship.line,
+                                  "ship '" + ship.id + "' has " + std::to_string(ship.samples.size()) +
+                                      " sample, expected at least 2");
+        std::stable_sort(explosions.begin(), explosions.end(),
+                         [](const ExplosionEvent& a, const ExplosionEvent& b) { return a.time < b.time; });
     }
-    if (samples.size() < 2) {
-        throw FlightError(sourceName, 0,
-                          "expected at least 2 samples, got " + std::to_string(samples.size()));
-    }
-    for (const ShipTrack& ship : ships) {
-        if (ship.samples.size() < 2) {
-            throw FlightError(sourceName, ship.line,
-                              "ship '" + ship.id + "' has " + std::to_string(ship.samples.size()) +
-                                  " sample, expected at least 2");
+};
+
+} // namespace
+
+FlightPath FlightPath::parse(std::string_view text, const std::string& sourceName) {
+    if (text.starts_with(UTF8_BOM))
+        text.remove_prefix(UTF8_BOM.size());
+    CsvRecords r{sourceName};
+    bool haveHeader = false;
+    int lineNo = 0;
+    size_t pos = 0;
+    while (pos < text.size()) {
+        size_t newline = text.find('\n', pos);
+        if (newline == std::string_view::npos)
+            newline = text.size();
+        const std::string_view line = trim(text.substr(pos, newline - pos));
+        pos = newline + 1;
+        ++lineNo;
+        if (line.empty() || line.front() == '#')
+            continue;
+        const std::vector<std::string_view> fields = splitFields(line);
+        if (!haveHeader) {
+            r.header(fields, line, lineNo);
+            haveHeader = true;
+        } else if (isRecordKeyword(fields[0])) {
+            r.record(fields, lineNo);
+        } else {
+            r.camera(fields, lineNo);
         }
     }
-    // Stable: explosions at the same time keep their file order, so a replay is deterministic.
-    std::stable_sort(explosions.begin(), explosions.end(),
-                     [](const ExplosionEvent& a, const ExplosionEvent& b) { return a.time < b.time; });
-    return FlightPath(std::move(samples), std::move(explosions), std::move(ships));
+    r.finish(haveHeader);
+    return FlightPath(std::move(r.samples), std::move(r.explosions), std::move(r.ships));
 }
 
 Pose FlightPath::poseAt(double t) const {
