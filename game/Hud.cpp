@@ -90,24 +90,10 @@ bool Hud::wantsMouse() const {
     return mReady && ImGui::GetIO().WantCaptureMouse;
 }
 
-void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {
-    mVertices = 0;
-    if (!mReady)
-        return;
-    gl::StateGuard guard; // the backend changes blend, scissor, programs, bindings: the host gets them back
-    ImGuiIO& io = ImGui::GetIO();
-    if (mWindowed)
-        ImGui_ImplGlfw_NewFrame();
-    else {
-        io.DisplaySize = ImVec2(static_cast<float>(w), static_cast<float>(h));
-        io.DeltaTime = 1.0f / 30.0f;
-    }
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui::NewFrame();
-
+/// Flight data, top left.
+void Hud::flightWindow(const GameState& gs, const World& world) {
     const AircraftState& a = world.player();
     const double agl = world.altitudeAboveWaves();
-    // Flight data, top left.
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_Always);
     ImGui::Begin("Flight", nullptr,
@@ -129,8 +115,10 @@ void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {
     if (gs.autopilot || !gs.autopilotPhase.empty())
         ImGui::Text("Autopilot: %s", gs.autopilotPhase.c_str());
     ImGui::End();
+}
 
-    // Performance and the ocean's counters, top right.
+/// Performance and the ocean's counters, top right.
+void Hud::frameWindow(const GameState& gs, int w) {
     ImGui::SetNextWindowPos(ImVec2(static_cast<float>(w) - 270, 10), ImGuiCond_Always);
     ImGui::SetNextWindowSize(ImVec2(260, 0), ImGuiCond_Always);
     ImGui::Begin("Frame", nullptr,
@@ -142,8 +130,10 @@ void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {
                 gs.objectsDrawn);
     ImGui::Text("Gamepad: %s", gs.gamepad.empty() ? "none (keyboard + mouse)" : gs.gamepad.c_str());
     ImGui::End();
+}
 
-    // Live switches, bottom left.
+/// Live switches, bottom left.
+void Hud::settingsWindow(GameState& gs, int h) {
     ImGui::SetNextWindowPos(ImVec2(10, static_cast<float>(h) - 10), ImGuiCond_Always, ImVec2(0, 1));
     ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_Always);
     ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver); // click its title bar to open
@@ -198,7 +188,10 @@ void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {
     if (ImGui::Button("New sortie"))
         gs.restartRequested = true;
     ImGui::End();
+}
 
+/// The banner of the latest event and the wipe line.
+void Hud::overlays(const GameState& gs, const World& world, int w, int h) {
     if (!gs.banner.empty() && world.time() < gs.bannerUntil) {
         ImGui::SetNextWindowPos(ImVec2(0.5f * w, 0.3f * h), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
         ImGui::Begin("##banner", nullptr,
@@ -213,6 +206,26 @@ void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {
         ImGui::GetForegroundDrawList()->AddLine(ImVec2(x, 0), ImVec2(x, static_cast<float>(h)),
                                                 IM_COL32(255, 255, 255, 160), 2.0f);
     }
+}
+
+void Hud::draw(GameState& gs, const World& world, unsigned fbo, int w, int h) {
+    mVertices = 0;
+    if (!mReady)
+        return;
+    gl::StateGuard guard; // the backend changes blend, scissor, programs, bindings: the host gets them back
+    ImGuiIO& io = ImGui::GetIO();
+    if (mWindowed)
+        ImGui_ImplGlfw_NewFrame();
+    else {
+        io.DisplaySize = ImVec2(static_cast<float>(w), static_cast<float>(h));
+        io.DeltaTime = 1.0f / 30.0f;
+    }
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui::NewFrame();
+    flightWindow(gs, world);
+    frameWindow(gs, w);
+    settingsWindow(gs, h);
+    overlays(gs, world, w, h);
     ImGui::Render();
     ImDrawData* dd = ImGui::GetDrawData();
     mVertices = dd->TotalVtxCount;

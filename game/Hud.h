@@ -64,6 +64,11 @@ public:
     long long lastVertexCount() const { return mVertices; }
 
 private:
+    void flightWindow(const GameState& gs, const World& world);
+    void frameWindow(const GameState& gs, int w);
+    void settingsWindow(GameState& gs, int h);
+    void overlays(const GameState& gs, const World& world, int w, int h);
+
     bool mReady = false, mWindowed = false;
     long long mVertices = 0;
     float mWind = 12.0f;
