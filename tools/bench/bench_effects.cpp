@@ -330,123 +330,164 @@ std::string loadAverage() {
 
 // effects.csv (one row per setting), effects.md (the tables docs/EFFECTS_BENCH.md quotes) and effects.json
 // (the per-kind summary, for scripts).
-void writeReports(const std::string& outDir, const std::vector<Row>& rows, const gl::ContextInfo& info,
-                  const gl::GpuTimer& timer, int width, int height, int frames,
-                  const std::string& commandLine) {
+/// What the reports say of the run besides its rows: the plain and zero-effect frames, the paired ratio
+/// (zero-effect / plain frame by frame within a round, adjacent in time, which cancels load that changes
+/// between rounds; its spread p10..p90 shows the noise the ratio of medians carries) and each kind's fit.
+struct RunSummary {
+    const Row& plain;
+    const Row& zero;
+    double plainMs = 0.0, pairedMedian = 0.0, pairedP10 = 0.0, pairedP90 = 0.0;
+    KindSummary kinds[2];
+    std::string renderer, clock, load, commandLine;
+    int width = 0, height = 0, frames = 0;
+};
+
+RunSummary summariseRun(const std::vector<Row>& rows, const gl::ContextInfo& info, const gl::GpuTimer& timer,
+                        int width, int height, int frames, const std::string& commandLine) {
     const Row& plain = findRow(rows, "plain");
     const Row& zero = findRow(rows, "zero_effect");
-    const double plainMs = plain.msMedian;
-    // Paired: zero-effect / plain frame by frame within a round (adjacent in time), which cancels load that
-    // changes between rounds; its spread (p10..p90) shows the noise the ratio of medians carries.
     std::vector<double> paired;
     for (size_t i = 0; i < std::min(zero.samples.size(), plain.samples.size()); ++i)
         paired.push_back(zero.samples[i] / plain.samples[i]);
-    const double pairedMedian = quantile(paired, 0.5), pairedP10 = quantile(paired, 0.1),
-                 pairedP90 = quantile(paired, 0.9);
-    const KindSummary kinds[] = {summarise(rows, Kind::Explosion, plainMs),
-                                 summarise(rows, Kind::Wake, plainMs)};
-    const std::string clock = timer.clockName();
-    const std::string load = loadAverage();
+    return RunSummary{
+        plain,
+        zero,
+        plain.msMedian,
+        quantile(paired, 0.5),
+        quantile(paired, 0.1),
+        quantile(paired, 0.9),
+        {summarise(rows, Kind::Explosion, plain.msMedian), summarise(rows, Kind::Wake, plain.msMedian)},
+        info.renderer,
+        timer.clockName(),
+        loadAverage(),
+        commandLine,
+        width,
+        height,
+        frames};
+}
 
-    std::ofstream csv(outDir + "/effects.csv");
+double perEffectUs(const Row& r, double plainMs) {
+    return r.count > 0 ? 1000.0 * (r.msMedian - plainMs) / r.count : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string effectsCsv(const std::vector<Row>& rows, const RunSummary& s) {
+    std::ostringstream csv;
     csv << "setting,kind,count,active,drawn,ms_median,ms_p90,us_per_effect_vs_plain,update_us_median,"
            "render_cpu_ms_median,vertices,fx_vertices,fx_passes,fx_draws,fx_uploads,passes,draws,uploads,"
            "programs_built,clock,renderer\n";
-    for (const Row& r : rows) {
-        const double perEffect = r.count > 0 ? 1000.0 * (r.msMedian - plainMs) / r.count
-                                             : std::numeric_limits<double>::quiet_NaN();
+    for (const Row& r : rows)
         csv << r.setting << ',' << kindName(r.kind) << ',' << r.count << ',' << r.active << ',' << r.drawn
-            << ',' << num(r.msMedian) << ',' << num(r.msP90) << ',' << num(perEffect) << ','
+            << ',' << num(r.msMedian) << ',' << num(r.msP90) << ',' << num(perEffectUs(r, s.plainMs)) << ','
             << num(r.updateUsMedian) << ',' << num(r.renderCpuMsMedian) << ',' << r.vertices << ','
             << r.fxVertices << ',' << r.fxPasses << ',' << r.fxDraws << ',' << r.fxUploads << ',' << r.passes
-            << ',' << r.draws << ',' << r.uploads << ',' << r.programsBuilt << ',' << csvQuote(clock) << ','
-            << csvQuote(info.renderer) << '\n';
-    }
+            << ',' << r.draws << ',' << r.uploads << ',' << r.programsBuilt << ',' << csvQuote(s.clock) << ','
+            << csvQuote(s.renderer) << '\n';
+    return csv.str();
+}
 
-    std::ofstream md(outDir + "/effects.md");
+void settingsTable(std::ostringstream& md, const std::vector<Row>& rows, const RunSummary& s) {
     md << "# Pacifica effects benchmark\n\n"
-       << "- GL_RENDERER: " << info.renderer << "\n- clock: " << clock << "\n- date: " << utcNow()
-       << "\n- command: `" << commandLine << "`\n- size: " << width << "x" << height << ", " << frames
+       << "- GL_RENDERER: " << s.renderer << "\n- clock: " << s.clock << "\n- date: " << utcNow()
+       << "\n- command: `" << s.commandLine << "`\n- size: " << s.width << "x" << s.height << ", " << s.frames
        << " timed frames per setting (+" << WARMUP_FRAMES
        << " warm-up), settings interleaved frame by frame; ms = median (p90) of render + glFinish\n"
        << "- camera: (" << CAMERA.x << ", " << CAMERA.y << ", " << CAMERA.z << ") m, heading " << HEADING_DEG
        << " deg, pitch " << PITCH_DEG << " deg, " << FOV_Y_DEG << " deg vertical fov; default OceanDesc\n"
-       << "- load average at the end: " << load << "\n\n"
+       << "- load average at the end: " << s.load << "\n\n"
        << "| setting | kind | count | active | drawn | ms median | ms p90 | µs/effect vs plain | update µs | "
           "render CPU ms | vertices | fx vertices | fx passes | fx draws | fx uploads |\n"
        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const Row& r : rows) {
-        const double perEffect = r.count > 0 ? 1000.0 * (r.msMedian - plainMs) / r.count
-                                             : std::numeric_limits<double>::quiet_NaN();
+    for (const Row& r : rows)
         md << "| " << r.setting << " | " << kindName(r.kind) << " | " << r.count << " | " << r.active << " | "
            << r.drawn << " | " << fixed(r.msMedian, 3) << " | " << fixed(r.msP90, 3) << " | "
-           << fixed(perEffect, 1) << " | " << fixed(r.updateUsMedian, 1) << " | "
+           << fixed(perEffectUs(r, s.plainMs), 1) << " | " << fixed(r.updateUsMedian, 1) << " | "
            << fixed(r.renderCpuMsMedian, 3) << " | " << r.vertices << " | " << r.fxVertices << " | "
            << r.fxPasses << " | " << r.fxDraws << " | " << r.fxUploads << " |\n";
-    }
-    md << "\n## Per effect\n\nplain = " << fixed(plainMs, 3)
+}
+
+void perEffectTable(std::ostringstream& md, const RunSummary& s) {
+    md << "\n## Per effect\n\nplain = " << fixed(s.plainMs, 3)
        << " ms. Slope and intercept: least squares through (count, ms median) of the kind's settings.\n\n"
        << "| kind | counts | µs per effect (slope) | intercept ms | fixed cost ms (intercept − plain) "
        << "| µs per effect at max count ((ms(N) − plain) / N) | update() µs per effect (slope) "
        << "| vertices per effect |\n"
        << "|---|---|---|---|---|---|---|---|\n";
-    for (const KindSummary& k : kinds) {
+    for (const KindSummary& k : s.kinds) {
         std::string counts;
         for (int c : k.counts)
             counts += (counts.empty() ? "" : ", ") + std::to_string(c);
         md << "| " << kindName(k.kind) << " | " << counts << " | " << fixed(1000.0 * k.ms.slope, 1) << " | "
-           << fixed(k.ms.intercept, 3) << " | " << fixed(k.ms.intercept - plainMs, 3) << " | "
+           << fixed(k.ms.intercept, 3) << " | " << fixed(k.ms.intercept - s.plainMs, 3) << " | "
            << fixed(k.usPerEffectAtMax, 1) << " | " << fixed(k.updateUs.slope, 2) << " | "
            << k.verticesPerEffect << " |\n";
     }
+}
+
+void zeroEffectTable(std::ostringstream& md, const RunSummary& s) {
+    const Row& zero = s.zero;
     md << "\n## Zero-effect frame\n\n"
        << "| zero-effect ms | plain ms | ratio of medians | paired ratio median (p10–p90) | Δ ms | update() "
           "µs "
        << "| fx passes | fx draws | fx uploads | fx vertices |\n|---|---|---|---|---|---|---|---|---|---|\n"
-       << "| " << fixed(zero.msMedian, 3) << " | " << fixed(plainMs, 3) << " | "
-       << fixed(zero.msMedian / plainMs, 3) << " | " << fixed(pairedMedian, 3) << " (" << fixed(pairedP10, 3)
-       << "–" << fixed(pairedP90, 3) << ") | " << fixed(zero.msMedian - plainMs, 3) << " | "
-       << fixed(zero.updateUsMedian, 2) << " | " << zero.fxPasses << " | " << zero.fxDraws << " | "
-       << zero.fxUploads << " | " << zero.fxVertices << " |\n\n"
+       << "| " << fixed(zero.msMedian, 3) << " | " << fixed(s.plainMs, 3) << " | "
+       << fixed(zero.msMedian / s.plainMs, 3) << " | " << fixed(s.pairedMedian, 3) << " ("
+       << fixed(s.pairedP10, 3) << "–" << fixed(s.pairedP90, 3) << ") | "
+       << fixed(zero.msMedian - s.plainMs, 3) << " | " << fixed(zero.updateUsMedian, 2) << " | "
+       << zero.fxPasses << " | " << zero.fxDraws << " | " << zero.fxUploads << " | " << zero.fxVertices
+       << " |\n\n"
        << "fx counters are the maximum over the timed frames (both kinds summed), so 0 means no effect work "
           "in "
           "any of them.\n";
+}
 
+std::string effectsJson(const RunSummary& s) {
     nlohmann::json j;
-    j["renderer"] = info.renderer;
-    j["clock"] = clock;
-    j["size"] = {width, height};
-    j["frames"] = frames;
-    j["command"] = commandLine;
-    j["load_average"] = load;
-    j["plain_ms"] = plainMs;
-    j["zero_effect"] = {
-        {"ms", zero.msMedian},        {"ratio", zero.msMedian / plainMs}, {"update_us", zero.updateUsMedian},
-        {"fx_passes", zero.fxPasses}, {"fx_draws", zero.fxDraws},         {"fx_uploads", zero.fxUploads}};
+    j["renderer"] = s.renderer;
+    j["clock"] = s.clock;
+    j["size"] = {s.width, s.height};
+    j["frames"] = s.frames;
+    j["command"] = s.commandLine;
+    j["load_average"] = s.load;
+    j["plain_ms"] = s.plainMs;
+    const Row& zero = s.zero;
+    j["zero_effect"] = {{"ms", zero.msMedian},
+                        {"ratio", zero.msMedian / s.plainMs},
+                        {"update_us", zero.updateUsMedian},
+                        {"fx_passes", zero.fxPasses},
+                        {"fx_draws", zero.fxDraws},
+                        {"fx_uploads", zero.fxUploads}};
     auto jnum = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
-    for (const KindSummary& k : kinds)
+    for (const KindSummary& k : s.kinds)
         j["kinds"][kindName(k.kind)] = {{"counts", k.counts},
                                         {"us_per_effect_slope", jnum(1000.0 * k.ms.slope)},
                                         {"intercept_ms", jnum(k.ms.intercept)},
                                         {"us_per_effect_at_max", jnum(k.usPerEffectAtMax)},
                                         {"update_us_per_effect_slope", jnum(k.updateUs.slope)},
                                         {"vertices_per_effect", k.verticesPerEffect}};
-    std::ofstream js(outDir + "/effects.json");
-    js << j.dump(2) << '\n';
-    csv.close();
-    md.close();
-    js.close();
-    if (!csv || !md || !js)
-        throw std::runtime_error("cannot write the reports to " + outDir);
-    std::cout << "wrote " << outDir << "/effects.csv, effects.md, effects.json (" << info.renderer << ", "
-              << clock << ")\n"
+    return j.dump(2) + "\n";
+}
+
+void writeReports(const std::string& outDir, const std::vector<Row>& rows, const gl::ContextInfo& info,
+                  const gl::GpuTimer& timer, int width, int height, int frames,
+                  const std::string& commandLine) {
+    const RunSummary s = summariseRun(rows, info, timer, width, height, frames, commandLine);
+    std::ostringstream md;
+    settingsTable(md, rows, s);
+    perEffectTable(md, s);
+    zeroEffectTable(md, s);
+    bench::writeReport(outDir + "/effects.csv", effectsCsv(rows, s));
+    bench::writeReport(outDir + "/effects.md", md.str());
+    bench::writeReport(outDir + "/effects.json", effectsJson(s));
+    const KindSummary* kinds = s.kinds;
+    std::cout << "wrote " << outDir << "/effects.csv, effects.md, effects.json (" << s.renderer << ", "
+              << s.clock << ")\n"
               << "explosion: " << fixed(1000.0 * kinds[0].ms.slope, 1) << " us/effect (slope), "
               << fixed(kinds[0].usPerEffectAtMax, 1) << " us/effect at " << kinds[0].counts.back()
               << "; wake: " << fixed(1000.0 * kinds[1].ms.slope, 1) << " us/effect (slope), "
               << fixed(kinds[1].usPerEffectAtMax, 1) << " us/effect at " << kinds[1].counts.back()
-              << "; zero-effect/plain " << fixed(zero.msMedian / plainMs, 3) << " (paired "
-              << fixed(pairedMedian, 3) << ", p10-p90 " << fixed(pairedP10, 3) << "-" << fixed(pairedP90, 3)
-              << ")\n";
+              << "; zero-effect/plain " << fixed(s.zero.msMedian / s.plainMs, 3) << " (paired "
+              << fixed(s.pairedMedian, 3) << ", p10-p90 " << fixed(s.pairedP10, 3) << "-"
+              << fixed(s.pairedP90, 3) << ")\n";
 }
 
 struct Args {
