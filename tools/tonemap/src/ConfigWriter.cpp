@@ -89,14 +89,14 @@ constexpr const char* CLAMP01 =
 
 } // namespace
 
-GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
-    if (lut3dSize < 2 || lut3dSize > 129)
-        throw std::invalid_argument("3D LUT size " + std::to_string(lut3dSize) + " is outside 2..129");
+namespace {
+
+/// The LUTs the config's transforms read, in DIR/luts; returns the 3D LUT's file name.
+std::string writeLuts(const fs::path& dir, int lut3dSize) {
     std::error_code ec;
     fs::create_directories(dir / "luts", ec);
     if (ec)
         throw std::runtime_error((dir / "luts").string() + ": cannot create: " + ec.message());
-
     writeFileAtomically(dir / "luts" / "hable.clf", halfDomainClf("hable", tonemapper("hable").name, hable));
     writeFileAtomically(dir / "luts" / "reinhard.clf",
                         halfDomainClf("reinhard", tonemapper("reinhard").name, reinhardExtended));
@@ -105,13 +105,16 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
                         halfDomainClf("agx-sigmoid", "AgX log2 encoding and sigmoid", agxSigmoid));
     const std::string cube = "pbr-neutral-" + std::to_string(lut3dSize) + ".spi3d";
     writeFileAtomically(dir / "luts" / cube, pbrNeutralSpi3d(lut3dSize));
+    return cube;
+}
 
-    GeneratedConfig g;
-    g.path = dir / "pacifica-tonemappers.ocio";
-    struct Space {
-        std::string id, view, colorspace;
-        std::vector<std::string> steps;
-    };
+/// One shipped tonemapper as an sRGB display colour space: its view, and its transform's steps.
+struct DisplaySpace {
+    std::string id, view, colorspace;
+    std::vector<std::string> steps;
+};
+
+std::vector<DisplaySpace> displaySpaces(const std::string& cube) {
     const std::string agxHead =
         matrixYaml(AGX_INSET) + ",\n          !<FileTransform> {src: agx-sigmoid.clf}";
     const std::string agxTail = matrixYaml(AGX_OUTSET) +
@@ -120,7 +123,7 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
                                 CLAMP01 + ",\n          " + SRGB_ENCODE;
     // OCIO's ExponentTransform "pass_thru" leaves negatives as they are, so the clamp after it matches the
     // closed form's pow(max(x, 0), 2.2) for the negatives the outset matrix can produce.
-    const std::vector<Space> spaces = {
+    return {
         {"agx", "AgX Base", "AgX Base sRGB", {agxHead, agxTail}},
         {"agx-punchy",
          "AgX Punchy",
@@ -139,7 +142,10 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
          {"!<FileTransform> {src: reinhard.clf}", SRGB_ENCODE}},
         {"clamp", "Clamp", "Clamp sRGB", {"!<FileTransform> {src: clamp.clf}", SRGB_ENCODE}},
     };
-    std::ostringstream y;
+}
+
+/// The header, roles and displays (one sRGB view per tonemapper, the HDR view); fills g.views.
+void displaysYaml(std::ostringstream& y, const std::vector<DisplaySpace>& spaces, GeneratedConfig& g) {
     y << "ocio_profile_version: 2.1\n"
       << "name: pacifica-tonemappers\n"
       << "description: The closed-form tonemappers of pacifica tonemap as LUTs (generated; see "
@@ -149,7 +155,7 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
       << "file_rules:\n  - !<Rule> {name: Default, colorspace: default}\n"
       << "displays:\n  sRGB:\n";
     std::string active;
-    for (const Space& s : spaces) {
+    for (const DisplaySpace& s : spaces) {
         const std::string view = s.view; // plain names: OCIO splits active view lists at commas
         g.views[s.id] = view;
         y << "    - !<View> {name: \"" << view << "\", colorspace: " << s.colorspace << "}\n";
@@ -158,11 +164,14 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
     y << "  " << g.hdrDisplay << ":\n    - !<View> {name: \"" << g.hdrView
       << "\", colorspace: Rec.2100-PQ 1000 nits}\n";
     y << "active_displays: [sRGB, " << g.hdrDisplay << "]\nactive_views: [" << active << ", \"" << g.hdrView
-      << "\"]\n"
-      << "colorspaces:\n"
+      << "\"]\n";
+}
+
+void colorspacesYaml(std::ostringstream& y, const std::vector<DisplaySpace>& spaces) {
+    y << "colorspaces:\n"
       << "  - !<ColorSpace>\n    name: Linear Rec.709\n    family: Scene-linear\n    encoding: scene-linear\n"
       << "  - !<ColorSpace>\n    name: Raw\n    isdata: true\n";
-    for (const Space& s : spaces) {
+    for (const DisplaySpace& s : spaces) {
         y << "  - !<ColorSpace>\n    name: " << s.colorspace
           << "\n    family: Display\n    encoding: sdr-video\n"
           << "    from_scene_reference: !<GroupTransform>\n        children:\n";
@@ -180,8 +189,10 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
       << "          !<BuiltinTransform> {style: \"ACES-OUTPUT - ACES2065-1_to_CIE-XYZ-D65 - "
          "HDR-VIDEO-1000nit-15nit-REC2020lim_1.1\"}\n"
       << "          !<BuiltinTransform> {style: \"DISPLAY - CIE-XYZ-D65_to_REC.2100-PQ\"}\n";
-    // Steps joined with ",\n" above are YAML flow items on separate lines: turn them into list items.
-    std::string text = y.str();
+}
+
+/// Steps joined with ",\n" are YAML flow items on separate lines: turn them into list items.
+std::string asListItems(const std::string& text) {
     std::string fixed;
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
@@ -192,7 +203,22 @@ GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
         }
         fixed += line + "\n";
     }
-    writeFileAtomically(g.path, fixed);
+    return fixed;
+}
+
+} // namespace
+
+GeneratedConfig writeTonemapConfig(const fs::path& dir, int lut3dSize) {
+    if (lut3dSize < 2 || lut3dSize > 129)
+        throw std::invalid_argument("3D LUT size " + std::to_string(lut3dSize) + " is outside 2..129");
+    const std::string cube = writeLuts(dir, lut3dSize);
+    GeneratedConfig g;
+    g.path = dir / "pacifica-tonemappers.ocio";
+    const std::vector<DisplaySpace> spaces = displaySpaces(cube);
+    std::ostringstream y;
+    displaysYaml(y, spaces, g);
+    colorspacesYaml(y, spaces);
+    writeFileAtomically(g.path, asListItems(y.str()));
     return g;
 }
 
