@@ -381,6 +381,101 @@ bool ColorPipeline::decodeDisplayCpu(float* rgba, std::size_t pixelCount) const 
     }
 }
 
+namespace {
+
+/// The 1D LUTs: OCIO declares a sampler1D when height == 1 and a sampler2D when it had to fold a long LUT
+/// into rows (GpuShaderCreator::addTexture: "Add a 2D texture (1D texture if height equals 1)").
+void addLuts1D(const OCIO::GpuShaderDescRcPtr& desc, std::vector<ColorPipeline::GpuShader::Lut>& luts) {
+    for (unsigned i = 0; i < desc->getNumTextures(); ++i) {
+        const char* textureName = nullptr;
+        const char* samplerName = nullptr;
+        unsigned width = 0, height = 0;
+        OCIO::GpuShaderDesc::TextureType channel = OCIO::GpuShaderDesc::TEXTURE_RGB_CHANNEL;
+        OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
+        desc->getTexture(i, textureName, samplerName, width, height, channel, interpolation);
+        const float* values = nullptr;
+        desc->getTextureValues(i, values);
+        ColorPipeline::GpuShader::Lut lut;
+        lut.samplerName = samplerName;
+        lut.dims = height > 1 ? 2 : 1;
+        lut.width = static_cast<int>(width);
+        lut.height = static_cast<int>(height);
+        lut.depth = 1;
+        lut.channels = channel == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL ? 1 : 3;
+        lut.linear = interpolation != OCIO::INTERP_NEAREST;
+        lut.values.assign(values, values + static_cast<size_t>(width) * height * lut.channels);
+        luts.push_back(std::move(lut));
+    }
+}
+
+void addLuts3D(const OCIO::GpuShaderDescRcPtr& desc, std::vector<ColorPipeline::GpuShader::Lut>& luts) {
+    for (unsigned i = 0; i < desc->getNum3DTextures(); ++i) {
+        const char* textureName = nullptr;
+        const char* samplerName = nullptr;
+        unsigned edge = 0;
+        OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
+        desc->get3DTexture(i, textureName, samplerName, edge, interpolation);
+        const float* values = nullptr;
+        desc->get3DTextureValues(i, values);
+        ColorPipeline::GpuShader::Lut lut;
+        lut.samplerName = samplerName;
+        lut.dims = 3;
+        lut.width = lut.height = lut.depth = static_cast<int>(edge);
+        lut.channels = 3;
+        lut.linear = interpolation != OCIO::INTERP_NEAREST;
+        lut.values.assign(values, values + static_cast<size_t>(edge) * edge * edge * 3);
+        luts.push_back(std::move(lut));
+    }
+}
+
+/// Dynamic uniforms: OCIO's getters read dynamic properties owned by the shader description, so every
+/// wrapper holds `desc` to keep them alive as long as the GpuShader is. `where` names the pipeline in the
+/// error for a uniform of an unknown type.
+void addUniforms(const OCIO::GpuShaderDescRcPtr& desc,
+                 std::vector<ColorPipeline::GpuShader::Uniform>& uniforms, const std::string& where) {
+    using Uniform = ColorPipeline::GpuShader::Uniform;
+    for (unsigned i = 0; i < desc->getNumUniforms(); ++i) {
+        OCIO::GpuShaderDesc::UniformData data;
+        const char* name = desc->getUniform(i, data);
+        Uniform u;
+        u.name = name;
+        switch (data.m_type) {
+        case OCIO::UNIFORM_DOUBLE:
+            u.kind = Uniform::Kind::Double;
+            u.getDouble = [desc, get = data.m_getDouble] { return get(); };
+            break;
+        case OCIO::UNIFORM_BOOL:
+            u.kind = Uniform::Kind::Bool;
+            u.getBool = [desc, get = data.m_getBool] { return get(); };
+            break;
+        case OCIO::UNIFORM_FLOAT3:
+            u.kind = Uniform::Kind::Float3;
+            u.getFloat3 = [desc, get = data.m_getFloat3] { return std::array<float, 3>(get()); };
+            break;
+        case OCIO::UNIFORM_VECTOR_FLOAT:
+            u.kind = Uniform::Kind::VectorFloat;
+            u.getVectorFloat = [desc, v = data.m_vectorFloat] {
+                const float* p = v.m_getVector();
+                return std::vector<float>(p, p + v.m_getSize());
+            };
+            break;
+        case OCIO::UNIFORM_VECTOR_INT:
+            u.kind = Uniform::Kind::VectorInt;
+            u.getVectorInt = [desc, v = data.m_vectorInt] {
+                const int* p = v.m_getVector();
+                return std::vector<int>(p, p + v.m_getSize());
+            };
+            break;
+        case OCIO::UNIFORM_UNKNOWN:
+            throw ColorError("ColorPipeline::gpuShader(): " + where + ": uniform '" + u.name +
+                             "' has an unknown type");
+        }
+        uniforms.push_back(std::move(u));
+    }
+}
+
+} // namespace
+
 ColorPipeline::GpuShader ColorPipeline::gpuShader() const {
     const Impl& impl = *mImpl;
     GpuShader out;
@@ -390,90 +485,11 @@ ColorPipeline::GpuShader ColorPipeline::gpuShader() const {
         desc->setFunctionName(GPU_FUNCTION_NAME);
         desc->setResourcePrefix(GPU_RESOURCE_PREFIX);
         impl.processor->getDefaultGPUProcessor()->extractGpuShaderInfo(desc);
-
         out.functionName = desc->getFunctionName();
         out.glslText = desc->getShaderText();
-
-        // 1D LUTs: OCIO declares a sampler1D when height == 1 and a sampler2D when it had to fold a long LUT
-        // into rows (GpuShaderCreator::addTexture: "Add a 2D texture (1D texture if height equals 1)").
-        for (unsigned i = 0; i < desc->getNumTextures(); ++i) {
-            const char* textureName = nullptr;
-            const char* samplerName = nullptr;
-            unsigned width = 0, height = 0;
-            OCIO::GpuShaderDesc::TextureType channel = OCIO::GpuShaderDesc::TEXTURE_RGB_CHANNEL;
-            OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
-            desc->getTexture(i, textureName, samplerName, width, height, channel, interpolation);
-            const float* values = nullptr;
-            desc->getTextureValues(i, values);
-            GpuShader::Lut lut;
-            lut.samplerName = samplerName;
-            lut.dims = height > 1 ? 2 : 1;
-            lut.width = static_cast<int>(width);
-            lut.height = static_cast<int>(height);
-            lut.depth = 1;
-            lut.channels = channel == OCIO::GpuShaderDesc::TEXTURE_RED_CHANNEL ? 1 : 3;
-            lut.linear = interpolation != OCIO::INTERP_NEAREST;
-            lut.values.assign(values, values + static_cast<size_t>(width) * height * lut.channels);
-            out.luts.push_back(std::move(lut));
-        }
-        for (unsigned i = 0; i < desc->getNum3DTextures(); ++i) {
-            const char* textureName = nullptr;
-            const char* samplerName = nullptr;
-            unsigned edge = 0;
-            OCIO::Interpolation interpolation = OCIO::INTERP_LINEAR;
-            desc->get3DTexture(i, textureName, samplerName, edge, interpolation);
-            const float* values = nullptr;
-            desc->get3DTextureValues(i, values);
-            GpuShader::Lut lut;
-            lut.samplerName = samplerName;
-            lut.dims = 3;
-            lut.width = lut.height = lut.depth = static_cast<int>(edge);
-            lut.channels = 3;
-            lut.linear = interpolation != OCIO::INTERP_NEAREST;
-            lut.values.assign(values, values + static_cast<size_t>(edge) * edge * edge * 3);
-            out.luts.push_back(std::move(lut));
-        }
-
-        // Dynamic uniforms: OCIO's getters read dynamic properties owned by the shader description, so
-        // every wrapper holds `desc` to keep them alive as long as the GpuShader is.
-        for (unsigned i = 0; i < desc->getNumUniforms(); ++i) {
-            OCIO::GpuShaderDesc::UniformData data;
-            const char* name = desc->getUniform(i, data);
-            GpuShader::Uniform u;
-            u.name = name;
-            switch (data.m_type) {
-            case OCIO::UNIFORM_DOUBLE:
-                u.kind = GpuShader::Uniform::Kind::Double;
-                u.getDouble = [desc, get = data.m_getDouble] { return get(); };
-                break;
-            case OCIO::UNIFORM_BOOL:
-                u.kind = GpuShader::Uniform::Kind::Bool;
-                u.getBool = [desc, get = data.m_getBool] { return get(); };
-                break;
-            case OCIO::UNIFORM_FLOAT3:
-                u.kind = GpuShader::Uniform::Kind::Float3;
-                u.getFloat3 = [desc, get = data.m_getFloat3] { return std::array<float, 3>(get()); };
-                break;
-            case OCIO::UNIFORM_VECTOR_FLOAT:
-                u.kind = GpuShader::Uniform::Kind::VectorFloat;
-                u.getVectorFloat = [desc, v = data.m_vectorFloat] {
-                    const float* p = v.m_getVector();
-                    return std::vector<float>(p, p + v.m_getSize());
-                };
-                break;
-            case OCIO::UNIFORM_VECTOR_INT:
-                u.kind = GpuShader::Uniform::Kind::VectorInt;
-                u.getVectorInt = [desc, v = data.m_vectorInt] {
-                    const int* p = v.m_getVector();
-                    return std::vector<int>(p, p + v.m_getSize());
-                };
-                break;
-            case OCIO::UNIFORM_UNKNOWN:
-                throw ColorError("ColorPipeline::gpuShader(): " + impl.where() + ": uniform '" + u.name +
-                                 "' has an unknown type");
-            }
-            out.uniforms.push_back(std::move(u));
-        }
+        addLuts1D(desc, out.luts);
+        addLuts3D(desc, out.luts);
+        addUniforms(desc, out.uniforms, impl.where());
     } catch (const OCIO::Exception& e) {
         throw ColorError("ColorPipeline::gpuShader(): " + impl.where() + ", display '" + impl.display +
                          "', view '" + impl.view + "': " + e.what());
