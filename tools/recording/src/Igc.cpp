@@ -85,80 +85,72 @@ std::string headerValue(std::string_view line) {
 
 } // namespace
 
-Recording parseIgc(std::string_view text, const std::string& source) {
+namespace {
+
+/// "YYYY-MM-DDTHH:MM:SSZ" of a Unix time (civil from days, Hinnant).
+std::string isoUtc(double unix) {
+    const auto t = static_cast<long long>(unix);
+    const long long days = t / 86400, rem = t % 86400;
+    const long long z = days + 719468, era = z / 146097, doe = z - era * 146097;
+    const long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+    const long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100), mp = (5 * doy + 2) / 153;
+    const long long d = doy - (153 * mp + 2) / 5 + 1, m = mp < 10 ? mp + 3 : mp - 9,
+                    y = yoe + era * 400 + (m <= 2);
+    char iso[96];
+    std::snprintf(iso, sizeof iso, "%04lld-%02lld-%02lldT%02lld:%02lld:%02lldZ", y, m, d, rem / 3600,
+                  rem / 60 % 60, rem % 60);
+    return iso;
+}
+
+/// One IGC file's records, line by line: H headers (date, datum, pilot, glider, callsign) and B fixes.
+struct IgcReader {
+    const std::string& source;
     Recording rec;
-    rec.source = source;
-    rec.format = "igc";
-    rec.fileVersion = "IGC";
-    rec.bytes = text.size();
     RecordedObject o;
-    o.id = 1;
-    o.type = "Air+FixedWing";
-    o.line = 1;
     std::optional<double> dayUnix; // 00:00 UTC of the flight's date
     double firstSeconds = 0.0, lastSeconds = -1.0, dayOffset = 0.0;
-    bool sawA = false;
-    long long lineNo = 0, glitches = 0;
-    auto fail = [&](const char* field, const std::string& msg) -> RecordingError {
+    long long lineNo = 0;
+
+    RecordingError fail(const char* field, const std::string& msg) const {
         return RecordingError(source, lineNo, field, msg);
-    };
-    size_t pos = 0;
-    while (pos < text.size()) {
-        const size_t nl = text.find('\n', pos);
-        std::string_view line =
-            text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
-        pos = nl == std::string_view::npos ? text.size() : nl + 1;
-        ++lineNo;
-        if (!line.empty() && line.back() == '\r')
-            line.remove_suffix(1);
-        if (lineNo == 1 && line.substr(0, 3) == "\xEF\xBB\xBF")
-            line.remove_prefix(3);
-        if (line.empty())
-            continue;
-        if (!sawA) {
-            if (line.front() != 'A')
-                throw fail("A record",
-                           "not an IGC file: the first record must be the A (manufacturer) record");
-            sawA = true;
-            continue;
-        }
-        const char kind = line.front();
-        if (kind == 'H') {
-            const std::string_view key = line.substr(0, std::min<size_t>(line.size(), 5));
-            if (key == "HFDTE" || key == "HPDTE") {
-                // "HFDTE150717" or "HFDTEDATE:150717,01"
-                std::string_view d = line.substr(5);
-                const size_t colon = d.find(':');
-                if (colon != std::string_view::npos)
-                    d = d.substr(colon + 1);
-                d = trimmed(d.substr(0, 6));
-                int dd = 0, mm = 0, yy = 0;
-                if (d.size() != 6 || !digits(d.substr(0, 2), dd) || !digits(d.substr(2, 2), mm) ||
-                    !digits(d.substr(4, 2), yy) || dd < 1 || dd > 31 || mm < 1 || mm > 12)
-                    throw fail("HFDTE",
-                               "expected the date as DDMMYY, got '" + std::string(line.substr(5, 20)) + "'");
-                char iso[48];
-                std::snprintf(iso, sizeof iso, "%04d-%02d-%02dT00:00:00Z", yy < 80 ? 2000 + yy : 1900 + yy,
-                              mm, dd);
-                dayUnix = parseIsoUtc(iso);
-            } else {
-                // HxPLT, HxGTY, ... (a header shorter than its key is ignored, like any unknown header)
-                const std::string_view tag = line.size() >= 5 ? line.substr(2, 3) : std::string_view{};
-                if (tag == "ALG") { // HFALGALTGPS:GEO / ELL (the GNSS altitude datum)
-                    const std::string datum = headerValue(line);
-                    if (datum.rfind("ELL", 0) == 0 || datum.rfind("GEO", 0) == 0)
-                        rec.altitudeDatum = datum.substr(0, 3);
-                } else if (tag == "PLT")
-                    o.pilot = headerValue(line);
-                else if (tag == "GTY")
-                    o.name = headerValue(line);
-                else if (tag == "CID" || (tag == "GID" && o.callsign.empty()))
-                    o.callsign = headerValue(line);
-            }
-            continue;
-        }
-        if (kind != 'B')
-            continue; // I, J, C, L, E, F, G, K records: not needed for the track
+    }
+
+    /// "HFDTE150717" or "HFDTEDATE:150717,01".
+    void date(std::string_view line) {
+        std::string_view d = line.substr(5);
+        const size_t colon = d.find(':');
+        if (colon != std::string_view::npos)
+            d = d.substr(colon + 1);
+        d = trimmed(d.substr(0, 6));
+        int dd = 0, mm = 0, yy = 0;
+        if (d.size() != 6 || !digits(d.substr(0, 2), dd) || !digits(d.substr(2, 2), mm) ||
+            !digits(d.substr(4, 2), yy) || dd < 1 || dd > 31 || mm < 1 || mm > 12)
+            throw fail("HFDTE", "expected the date as DDMMYY, got '" + std::string(line.substr(5, 20)) + "'");
+        char iso[48];
+        std::snprintf(iso, sizeof iso, "%04d-%02d-%02dT00:00:00Z", yy < 80 ? 2000 + yy : 1900 + yy, mm, dd);
+        dayUnix = parseIsoUtc(iso);
+    }
+
+    void header(std::string_view line) {
+        const std::string_view key = line.substr(0, std::min<size_t>(line.size(), 5));
+        if (key == "HFDTE" || key == "HPDTE")
+            return date(line);
+        // HxPLT, HxGTY, ... (a header shorter than its key is ignored, like any unknown header)
+        const std::string_view tag = line.size() >= 5 ? line.substr(2, 3) : std::string_view{};
+        if (tag == "ALG") { // HFALGALTGPS:GEO / ELL (the GNSS altitude datum)
+            const std::string datum = headerValue(line);
+            if (datum.rfind("ELL", 0) == 0 || datum.rfind("GEO", 0) == 0)
+                rec.altitudeDatum = datum.substr(0, 3);
+        } else if (tag == "PLT")
+            o.pilot = headerValue(line);
+        else if (tag == "GTY")
+            o.name = headerValue(line);
+        else if (tag == "CID" || (tag == "GID" && o.callsign.empty()))
+            o.callsign = headerValue(line);
+    }
+
+    /// A B record's fix: time, position, validity, pressure and GNSS altitudes, each checked.
+    void fix(std::string_view line) {
         if (line.size() < 35)
             throw fail("B record", "a fix needs at least 35 characters, got " + std::to_string(line.size()));
         int hh = 0, mi = 0, ss = 0, latD = 0, latM = 0, lonD = 0, lonM = 0, pAlt = 0, gAlt = 0;
@@ -182,18 +174,23 @@ Recording parseIgc(std::string_view text, const std::string& source) {
         const double lon = (lonD + lonM / 60000.0) * (line[23] == 'W' ? -1.0 : 1.0);
         if (std::abs(lat) > 90.0 || std::abs(lon) > 180.0)
             throw fail("B latitude", "position out of range");
-        double seconds = hh * 3600.0 + mi * 60.0 + ss + dayOffset;
+        addFix(hh * 3600.0 + mi * 60.0 + ss + dayOffset, lat, lon, gAlt != 0 ? gAlt : pAlt);
+    }
+
+    /// Time order: a fix earlier by more than an hour is past midnight UTC; a smaller step back is a logger
+    /// glitch and a repeated time a repeated fix (both dropped). alt: GNSS altitude (00000 = no data), else
+    /// pressure altitude.
+    void addFix(double seconds, double lat, double lon, int alt) {
         if (lastSeconds >= 0.0 && seconds < lastSeconds) {
-            if (lastSeconds - seconds > 3600.0) { // past midnight UTC
+            if (lastSeconds - seconds > 3600.0) {
                 dayOffset += 86400.0;
                 seconds += 86400.0;
             } else {
-                ++glitches;
-                continue;
+                return;
             }
         }
         if (lastSeconds >= 0.0 && seconds == lastSeconds)
-            continue; // repeated fix
+            return;
         if (lastSeconds < 0.0)
             firstSeconds = seconds;
         lastSeconds = seconds;
@@ -201,40 +198,71 @@ Recording parseIgc(std::string_view text, const std::string& source) {
         s.time = seconds - firstSeconds;
         s.lat = lat;
         s.lon = lon;
-        s.alt = gAlt != 0 ? gAlt : pAlt; // GNSS altitude (00000 = no data), else pressure altitude
+        s.alt = alt;
         o.track.push_back(s);
     }
-    if (!sawA)
-        throw RecordingError(source, 0, "", "empty file: not an IGC file");
-    if (o.track.size() < 2)
-        throw RecordingError(source, 0, "B record",
-                             "an IGC flight needs at least 2 fixes, got " + std::to_string(o.track.size()));
-    if (dayUnix) {
-        rec.referenceUnix = *dayUnix + firstSeconds;
-        const auto t = static_cast<long long>(*rec.referenceUnix);
-        const long long days = t / 86400, rem = t % 86400;
-        // civil from days (Hinnant)
-        const long long z = days + 719468, era = z / 146097, doe = z - era * 146097;
-        const long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-        const long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100), mp = (5 * doy + 2) / 153;
-        const long long d = doy - (153 * mp + 2) / 5 + 1, m = mp < 10 ? mp + 3 : mp - 9,
-                        y = yoe + era * 400 + (m <= 2);
-        char iso[96];
-        std::snprintf(iso, sizeof iso, "%04lld-%02lld-%02lldT%02lld:%02lld:%02lldZ", y, m, d, rem / 3600,
-                      rem / 60 % 60, rem % 60);
-        rec.referenceTime = iso;
+
+    Recording finish(bool sawA) {
+        if (!sawA)
+            throw RecordingError(source, 0, "", "empty file: not an IGC file");
+        if (o.track.size() < 2)
+            throw RecordingError(source, 0, "B record",
+                                 "an IGC flight needs at least 2 fixes, got " +
+                                     std::to_string(o.track.size()));
+        if (dayUnix) {
+            rec.referenceUnix = *dayUnix + firstSeconds;
+            rec.referenceTime = isoUtc(*rec.referenceUnix);
+        }
+        if (o.name.empty())
+            o.name = "glider";
+        deriveAttitude(o);
+        rec.samples = static_cast<long long>(o.track.size());
+        rec.startTime = o.track.front().time;
+        rec.endTime = o.track.back().time;
+        rec.lines = lineNo;
+        rec.title = "IGC " + o.name + (o.pilot.empty() ? "" : " (" + o.pilot + ")");
+        rec.objects.push_back(std::move(o));
+        return std::move(rec);
     }
-    if (o.name.empty())
-        o.name = "glider";
-    deriveAttitude(o);
-    rec.samples = static_cast<long long>(o.track.size());
-    rec.startTime = o.track.front().time;
-    rec.endTime = o.track.back().time;
-    rec.lines = lineNo;
-    rec.title = "IGC " + o.name + (o.pilot.empty() ? "" : " (" + o.pilot + ")");
-    (void)glitches;
-    rec.objects.push_back(std::move(o));
-    return rec;
+};
+
+} // namespace
+
+Recording parseIgc(std::string_view text, const std::string& source) {
+    IgcReader r{source};
+    r.rec.source = source;
+    r.rec.format = "igc";
+    r.rec.fileVersion = "IGC";
+    r.rec.bytes = text.size();
+    r.o.id = 1;
+    r.o.type = "Air+FixedWing";
+    r.o.line = 1;
+    bool sawA = false;
+    size_t pos = 0;
+    while (pos < text.size()) {
+        const size_t nl = text.find('\n', pos);
+        std::string_view line =
+            text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        pos = nl == std::string_view::npos ? text.size() : nl + 1;
+        ++r.lineNo;
+        if (!line.empty() && line.back() == '\r')
+            line.remove_suffix(1);
+        if (r.lineNo == 1 && line.substr(0, 3) == "\xEF\xBB\xBF")
+            line.remove_prefix(3);
+        if (line.empty())
+            continue;
+        if (!sawA) {
+            if (line.front() != 'A')
+                throw r.fail("A record",
+                             "not an IGC file: the first record must be the A (manufacturer) record");
+            sawA = true;
+        } else if (line.front() == 'H') {
+            r.header(line);
+        } else if (line.front() == 'B') {
+            r.fix(line);
+        } // I, J, C, L, E, F, G, K records: not needed for the track
+    }
+    return r.finish(sawA);
 }
 
 } // namespace pacifica::recording
