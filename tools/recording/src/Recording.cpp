@@ -39,7 +39,10 @@ double angleDiff(double a, double b) {
     return d;
 }
 
-void parseZip(const std::filesystem::path& file, AcmiParser& parser) {
+using ZipArchive = std::unique_ptr<zip_t, int (*)(zip_t*)>;
+using ZipFile = std::unique_ptr<zip_file_t, int (*)(zip_file_t*)>;
+
+ZipArchive openZip(const std::filesystem::path& file) {
     int err = 0;
     zip_t* za = zip_open(file.c_str(), ZIP_RDONLY, &err);
     if (!za) {
@@ -49,66 +52,64 @@ void parseZip(const std::filesystem::path& file, AcmiParser& parser) {
         zip_error_fini(&ze);
         throw RecordingError(file.string(), 0, "", "cannot open the zip archive: " + msg);
     }
-    std::unique_ptr<zip_t, int (*)(zip_t*)> guard(za, zip_close);
+    return ZipArchive(za, zip_close);
+}
+
+/// The archive's first file (folders skipped).
+zip_uint64_t firstMember(zip_t* za, const std::filesystem::path& file) {
     const zip_int64_t n = zip_get_num_entries(za, 0);
-    zip_int64_t member = -1;
-    std::string names;
     for (zip_int64_t i = 0; i < n; ++i) {
         const char* name = zip_get_name(za, static_cast<zip_uint64_t>(i), 0);
         const std::string s = name ? name : "";
         if (!s.empty() && s.back() == '/')
             continue;
-        names += (names.empty() ? "" : ", ") + s;
-        if (member < 0)
-            member = i;
+        return static_cast<zip_uint64_t>(i);
     }
-    if (member < 0)
-        throw RecordingError(file.string(), 0, "", "the zip archive holds no file (expected one .txt.acmi)");
-    zip_stat_t st;
-    zip_stat_init(&st);
-    const bool known = zip_stat_index(za, static_cast<zip_uint64_t>(member), 0, &st) == 0 &&
-                       (st.valid & (ZIP_STAT_COMP_METHOD | ZIP_STAT_CRC | ZIP_STAT_ENCRYPTION_METHOD)) ==
-                           (ZIP_STAT_COMP_METHOD | ZIP_STAT_CRC | ZIP_STAT_ENCRYPTION_METHOD);
-    // Deflate members are inflated here with Intel's ISA-L (igzip, raw RFC 1951 stream) over 1 MiB buffers
-    // and checked against the member's CRC-32, which ISA-L computes as it inflates (crc_flag
-    // ISAL_GZIP_NO_HDR: the gzip CRC, the same CRC-32 as zip's, PKWARE APPNOTE 4.4.7). On this project's
-    // machine it inflates the bench's 200 MB recording at ~640 MB/s against zlib 1.2.13's ~225 MB/s
-    // (docs/RECORDINGS.md), and libzip's own decoder feeds zlib 8 KiB at a time through layered sources.
-    // Anything else (stored, bzip2, encrypted...) goes through libzip.
-    const bool raw = known && st.comp_method == ZIP_CM_DEFLATE && st.encryption_method == ZIP_EM_NONE;
-    zip_file_t* zf = zip_fopen_index(za, static_cast<zip_uint64_t>(member), raw ? ZIP_FL_COMPRESSED : 0);
-    if (!zf)
-        throw RecordingError(file.string(), 0, "",
-                             std::string("cannot read the zip member: ") + zip_strerror(za));
-    std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> fguard(zf, zip_fclose);
+    throw RecordingError(file.string(), 0, "", "the zip archive holds no file (expected one .txt.acmi)");
+}
+
+RecordingError corruptMember(const std::filesystem::path& file, const std::string& why) {
+    return RecordingError(file.string(), 0, "", "corrupt zip member: " + why);
+}
+
+/// Any member libzip decodes itself (stored, bzip2, encrypted...), fed to the parser as it is read.
+void feedThroughLibzip(zip_file_t* zf, const std::filesystem::path& file, AcmiParser& parser) {
     std::vector<char> buf(CHUNK);
-    auto corrupt = [&](const std::string& why) {
-        return RecordingError(file.string(), 0, "", "corrupt zip member: " + why);
-    };
-    if (!raw) {
-        while (true) {
-            const zip_int64_t got = zip_fread(zf, buf.data(), buf.size());
-            if (got < 0)
-                throw corrupt(zip_file_strerror(zf));
-            if (got == 0)
-                break;
-            parser.feed(std::string_view(buf.data(), static_cast<size_t>(got)));
-        }
-        return;
+    while (true) {
+        const zip_int64_t got = zip_fread(zf, buf.data(), buf.size());
+        if (got < 0)
+            throw corruptMember(file, zip_file_strerror(zf));
+        if (got == 0)
+            return;
+        parser.feed(std::string_view(buf.data(), static_cast<size_t>(got)));
     }
+}
+
+std::string inflateError(int rc) {
+    return std::string("inflate: ") + (rc == ISAL_INVALID_BLOCK      ? "invalid deflate block"
+                                       : rc == ISAL_INVALID_SYMBOL   ? "invalid deflate symbol"
+                                       : rc == ISAL_INVALID_LOOKBACK ? "invalid distance back"
+                                                                     : "error " + std::to_string(rc));
+}
+
+/// A deflate member's raw stream inflated with ISA-L and fed to the parser, then checked against the
+/// member's CRC-32 (`crc`). A parse error is held until the CRC says whether the archive or the recording
+/// is at fault: damage usually shows first as nonsense text.
+void inflateWithIsal(zip_file_t* zf, uint32_t crc, const std::filesystem::path& file, AcmiParser& parser) {
     // inflate_state holds ISA-L's 32 KiB history and decode tables: on the heap, not the stack.
     const auto zs = std::make_unique<inflate_state>();
     isal_inflate_init(zs.get());
     zs->crc_flag = ISAL_GZIP_NO_HDR;
     std::vector<unsigned char> in(CHUNK);
+    std::vector<char> buf(CHUNK);
     std::unique_ptr<RecordingError> parseError;
     while (zs->block_state != ISAL_BLOCK_FINISH) {
         if (zs->avail_in == 0) {
             const zip_int64_t got = zip_fread(zf, in.data(), in.size());
             if (got < 0)
-                throw corrupt(zip_file_strerror(zf));
+                throw corruptMember(file, zip_file_strerror(zf));
             if (got == 0)
-                throw corrupt("the deflate stream ends early");
+                throw corruptMember(file, "the deflate stream ends early");
             zs->next_in = in.data();
             zs->avail_in = static_cast<uint32_t>(got);
         }
@@ -117,30 +118,50 @@ void parseZip(const std::filesystem::path& file, AcmiParser& parser) {
         zs->avail_out = static_cast<uint32_t>(buf.size());
         const int rc = isal_inflate(zs.get());
         if (rc < 0)
-            throw corrupt(std::string("inflate: ") + (rc == ISAL_INVALID_BLOCK    ? "invalid deflate block"
-                                                      : rc == ISAL_INVALID_SYMBOL ? "invalid deflate symbol"
-                                                      : rc == ISAL_INVALID_LOOKBACK
-                                                          ? "invalid distance back"
-                                                          : "error " + std::to_string(rc)));
+            throw corruptMember(file, inflateError(rc));
         const size_t produced = buf.size() - zs->avail_out;
         if (produced == 0 && zs->avail_in == inBefore && zs->block_state != ISAL_BLOCK_FINISH)
-            throw corrupt("inflate made no progress");
+            throw corruptMember(file, "inflate made no progress");
         if (produced > 0 && !parseError) {
             try {
                 parser.feed(std::string_view(buf.data(), produced));
             } catch (const RecordingError& e) {
-                // Damage usually shows first as nonsense text: finish inflating (without parsing) so the CRC
-                // can say whether the archive or the recording is at fault.
-                parseError = std::make_unique<RecordingError>(e);
+                parseError = std::make_unique<RecordingError>(e); // finish inflating (without parsing)
             }
         }
     }
-    const uint32_t crc = zs->crc;
-    if (crc != st.crc)
-        throw corrupt("CRC-32 mismatch (the archive is damaged)" +
+    if (zs->crc != crc)
+        throw corruptMember(
+            file, "CRC-32 mismatch (the archive is damaged)" +
                       (parseError ? "; its damaged text gave: " + std::string(parseError->what()) : ""));
     if (parseError)
         throw *parseError;
+}
+
+/// A zip ACMI: its first file, parsed as it is inflated. Deflate members are inflated here with Intel's
+/// ISA-L (igzip, raw RFC 1951 stream) over 1 MiB buffers and checked against the member's CRC-32, which
+/// ISA-L computes as it inflates (crc_flag ISAL_GZIP_NO_HDR: the gzip CRC, the same CRC-32 as zip's, PKWARE
+/// APPNOTE 4.4.7). On this project's machine it inflates the bench's 200 MB recording at ~640 MB/s against
+/// zlib 1.2.13's ~225 MB/s (docs/RECORDINGS.md), and libzip's own decoder feeds zlib 8 KiB at a time through
+/// layered sources. Anything else (stored, bzip2, encrypted...) goes through libzip.
+void parseZip(const std::filesystem::path& file, AcmiParser& parser) {
+    const ZipArchive za = openZip(file);
+    const zip_uint64_t member = firstMember(za.get(), file);
+    zip_stat_t st;
+    zip_stat_init(&st);
+    const bool known = zip_stat_index(za.get(), member, 0, &st) == 0 &&
+                       (st.valid & (ZIP_STAT_COMP_METHOD | ZIP_STAT_CRC | ZIP_STAT_ENCRYPTION_METHOD)) ==
+                           (ZIP_STAT_COMP_METHOD | ZIP_STAT_CRC | ZIP_STAT_ENCRYPTION_METHOD);
+    const bool raw = known && st.comp_method == ZIP_CM_DEFLATE && st.encryption_method == ZIP_EM_NONE;
+    zip_file_t* zf = zip_fopen_index(za.get(), member, raw ? ZIP_FL_COMPRESSED : 0);
+    if (!zf)
+        throw RecordingError(file.string(), 0, "",
+                             std::string("cannot read the zip member: ") + zip_strerror(za.get()));
+    const ZipFile fguard(zf, zip_fclose);
+    if (raw)
+        inflateWithIsal(zf, st.crc, file, parser);
+    else
+        feedThroughLibzip(zf, file, parser);
 }
 
 std::string readHead(const std::filesystem::path& file, size_t n) {
