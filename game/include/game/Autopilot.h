@@ -38,6 +38,8 @@ public:
     static glm::dvec2 predictImpact(const World& world, double& fallTime);
 
 private:
+    int chooseTarget(const World& world);
+
     uint64_t mBombInFlight = 0;
     double mLastRelease = -1e9;
     int mTarget = -1;
