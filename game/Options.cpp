@@ -26,6 +26,58 @@ const char* toString(CameraMode m) {
     return "?";
 }
 
+namespace {
+
+CameraMode parseCamera(const std::string& camera) {
+    if (camera == "cockpit")
+        return CameraMode::Cockpit;
+    if (camera == "chase")
+        return CameraMode::Chase;
+    if (camera == "orbit")
+        return CameraMode::Orbit;
+    if (camera == "weapon")
+        return CameraMode::Weapon;
+    throw UsageError("--camera: unknown camera '" + camera + "' (valid: cockpit, chase, orbit, weapon)");
+}
+
+/// "WxH", 64..8192 each (a window smaller than 64 has no room for the HUD).
+void parseWindowSize(const std::string& size, Options& o) {
+    const size_t x = size.find('x');
+    int w = 0, h = 0;
+    if (x == std::string::npos || std::from_chars(size.data(), size.data() + x, w).ptr != size.data() + x ||
+        std::from_chars(size.data() + x + 1, size.data() + size.size(), h).ptr != size.data() + size.size() ||
+        w < 64 || h < 64 || w > 8192 || h > 8192)
+        throw UsageError("--size must be WxH with 64 <= W, H <= 8192, got '" + size + "'");
+    o.width = w;
+    o.height = h;
+}
+
+/// "T:FILE" pairs, T seconds of game time >= 0.
+void parseScreenshots(const std::vector<std::string>& shots, Options& o) {
+    for (const std::string& s : shots) {
+        const size_t c = s.find(':');
+        double t = 0.0;
+        if (c == std::string::npos || c + 1 >= s.size() ||
+            std::from_chars(s.data(), s.data() + c, t).ptr != s.data() + c || !std::isfinite(t) || t < 0.0)
+            throw UsageError("--screenshot must be T:FILE with T >= 0 seconds of game time, got '" + s + "'");
+        o.screenshots.emplace_back(t, s.substr(c + 1));
+    }
+}
+
+/// Every value in range, named in the error when it is not.
+void checkRanges(Options& o) {
+    if (o.frames < 0)
+        throw UsageError("--frames must be >= 0, got " + std::to_string(o.frames));
+    if (!(std::isfinite(o.fps) && o.fps >= 1.0 && o.fps <= 1000.0))
+        throw UsageError("--fps must be in [1, 1000]");
+    if (!(std::isfinite(o.sea.windSpeed) && o.sea.windSpeed >= 2.0 && o.sea.windSpeed <= 25.0))
+        throw UsageError("--wind must be a wind speed in [2, 25] m/s");
+    if (!(std::isfinite(o.wipePosition) && o.wipePosition >= 0.0 && o.wipePosition <= 1.0))
+        throw UsageError("--wipe-position must be in [0, 1]");
+}
+
+} // namespace
+
 Options parseOptions(int argc, char** argv) {
     Options o;
     CLI::App app{
@@ -61,46 +113,16 @@ Options parseOptions(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         throw UsageError(e.what());
     }
-    if (o.frames < 0)
-        throw UsageError("--frames must be >= 0, got " + std::to_string(o.frames));
-    if (!(std::isfinite(o.fps) && o.fps >= 1.0 && o.fps <= 1000.0))
-        throw UsageError("--fps must be in [1, 1000]");
-    if (!(std::isfinite(o.sea.windSpeed) && o.sea.windSpeed >= 2.0 && o.sea.windSpeed <= 25.0))
-        throw UsageError("--wind must be a wind speed in [2, 25] m/s");
-    if (!(std::isfinite(o.wipePosition) && o.wipePosition >= 0.0 && o.wipePosition <= 1.0))
-        throw UsageError("--wipe-position must be in [0, 1]");
-    if (camera == "cockpit")
-        o.camera = CameraMode::Cockpit;
-    else if (camera == "chase")
-        o.camera = CameraMode::Chase;
-    else if (camera == "orbit")
-        o.camera = CameraMode::Orbit;
-    else if (camera == "weapon")
-        o.camera = CameraMode::Weapon;
-    else
-        throw UsageError("--camera: unknown camera '" + camera + "' (valid: cockpit, chase, orbit, weapon)");
+    checkRanges(o);
+    o.camera = parseCamera(camera);
     try {
         ocean::parseQuality(o.sea.quality);
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--quality: ") + e.what());
     }
     parseSurfaceModelIndex(o.sea.model);
-    const size_t x = size.find('x');
-    int w = 0, h = 0;
-    if (x == std::string::npos || std::from_chars(size.data(), size.data() + x, w).ptr != size.data() + x ||
-        std::from_chars(size.data() + x + 1, size.data() + size.size(), h).ptr != size.data() + size.size() ||
-        w < 64 || h < 64 || w > 8192 || h > 8192)
-        throw UsageError("--size must be WxH with 64 <= W, H <= 8192, got '" + size + "'");
-    o.width = w;
-    o.height = h;
-    for (const std::string& s : shots) {
-        const size_t c = s.find(':');
-        double t = 0.0;
-        if (c == std::string::npos || c + 1 >= s.size() ||
-            std::from_chars(s.data(), s.data() + c, t).ptr != s.data() + c || !std::isfinite(t) || t < 0.0)
-            throw UsageError("--screenshot must be T:FILE with T >= 0 seconds of game time, got '" + s + "'");
-        o.screenshots.emplace_back(t, s.substr(c + 1));
-    }
+    parseWindowSize(size, o);
+    parseScreenshots(shots, o);
     if (!o.bench.empty() && o.frames <= 0)
         o.frames = 120;
     if (o.bench.empty() && o.headless && o.frames <= 0)
