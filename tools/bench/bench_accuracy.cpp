@@ -126,107 +126,132 @@ ocean::OceanDesc referenceDesc(ocean::SurfaceKind model) {
     return d;
 }
 
-std::vector<Setting> sweep(bool quick) {
-    using ocean::SurfaceKind;
+/// The settings of a sweep, each the model's baseline with one edit.
+struct SettingList {
     std::vector<Setting> out;
-    auto add = [&](SurfaceKind m, std::string knob, std::string value, auto&& edit) {
+    template <class Edit>
+    void add(ocean::SurfaceKind m, std::string knob, std::string value, Edit&& edit) {
         ocean::OceanDesc d = baselineDesc(m);
         edit(d);
         out.push_back({std::move(knob), std::move(value), d});
-    };
-    auto none = [](ocean::OceanDesc&) {};
-    auto grid = [&](SurfaceKind m, int rings, int segments) {
+    }
+    void baseline(ocean::SurfaceKind m) {
+        add(m, "baseline", "default", [](ocean::OceanDesc&) {});
+    }
+    void grid(ocean::SurfaceKind m, int rings, int segments) {
         add(m, "grid", std::to_string(rings) + "x" + std::to_string(segments), [&](ocean::OceanDesc& d) {
             d.grid.rings = rings;
             d.grid.segments = segments;
         });
-    };
-    if (quick) {
-        add(SurfaceKind::Octaves, "baseline", "default", none);
-        grid(SurfaceKind::Octaves, 64, 128);
-        grid(SurfaceKind::Octaves, 512, 1024);
-        add(SurfaceKind::Octaves, "vertex_filter", "nearest",
-            [](ocean::OceanDesc& d) { d.octaves.vertexFilter = ocean::VertexFilter::Nearest; });
-        return out;
     }
-    for (SurfaceKind m : {SurfaceKind::Octaves, SurfaceKind::Gerstner, SurfaceKind::Fft}) {
-        add(m, "baseline", "default", none);
-        if (m == SurfaceKind::Octaves) {
-            for (int n : {2, 3, 4}) // lighting octaves (5 = baseline); displaced = min(3, n)
-                add(m, "octaves", std::to_string(n), [n](ocean::OceanDesc& d) {
-                    d.octaves.octaves.resize(static_cast<size_t>(n));
-                    d.octaves.displacedOctaves = std::min(d.octaves.displacedOctaves, n);
-                });
-            for (int n : {1, 2, 5}) // displaced octaves (3 = baseline)
-                add(m, "displaced_octaves", std::to_string(n),
-                    [n](ocean::OceanDesc& d) { d.octaves.displacedOctaves = n; });
-            for (ocean::VertexFilter f : {ocean::VertexFilter::Nearest, ocean::VertexFilter::HardwareBilinear,
-                                          ocean::VertexFilter::Packed4Tap, ocean::VertexFilter::Trilinear})
-                add(m, "vertex_filter", ocean::toString(f),
-                    [f](ocean::OceanDesc& d) { d.octaves.vertexFilter = f; });
-            add(m, "combined", "on", [](ocean::OceanDesc& d) { d.octaves.combinedDisplacement = true; });
-            add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.octaves.foamMemory = false; });
-        }
-        for (auto [r, s] : {std::pair{64, 128}, {128, 256}, {512, 1024}}) // 256x512 = baseline
-            grid(m, r, s);
-        add(m, "grid_kind", "projected",
-            [](ocean::OceanDesc& d) { d.gridKind = ocean::GridKind::Projected; });
-        if (m == SurfaceKind::Fft)
-            for (int n : {64, 128}) // 256 = baseline
-                add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
-        if (m == SurfaceKind::Fft) // living whitecaps off: foam on the current crests only
-            add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.fft.foamMemory = false; });
-        if (m == SurfaceKind::Fft) { // the near sea's cascades (4 = baseline) and their aperiodic mix (on)
-            for (int n : {1, 2, 3})
-                add(m, "fft_cascades", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.cascades = n; });
-            add(m, "fft_cascades", "1-tile-500m", [](ocean::OceanDesc& d) {
-                d.fft.cascades = 1;
-                d.fft.aperiodic = false;
-                d.fft.tileSize = 500.0;
-            });
-            add(m, "fft_mix", "off", [](ocean::OceanDesc& d) { d.fft.aperiodic = false; });
-            add(m, "fft_detail_size", "64", [](ocean::OceanDesc& d) { d.fft.detailSize = 64; });
-        }
-        if (m == SurfaceKind::Gerstner)
-            add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.gerstner.foamMemory = false; });
-        add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
-        // Where the lighting runs: one compute pass (baseline, OceanDesc::computeShading) or the grids'
-        // fragment stage.
-        add(m, "shading", "forward", [](ocean::OceanDesc& d) { d.computeShading = false; });
-        // Look features (issue 10): what switching each off changes in the image, and saves.
-        add(m, "subsurface", "off", [](ocean::OceanDesc& d) { d.lighting.subsurface = 0.0f; });
-        add(m, "fog_noise", "off", [](ocean::OceanDesc& d) { d.lighting.fogNoise = 0.0f; });
-        add(m, "glitter", "blinn-phong",
-            [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
-        // The sky: the older gradient instead of the physical clear sky (nothing to compute or
-        // upload; its image error is the look the physical sky changed).
-        add(m, "sky", "gradient",
-            [](ocean::OceanDesc& d) { d.lighting.sky = ocean::LightingDesc::Sky::Gradient; });
-        for (double px : {0.5, 1.0, 2.0}) // screen-space ring thinning (0 = baseline: every ring)
-            add(m, "min_ring_pixels", bench::num(px),
-                [px](ocean::OceanDesc& d) { d.grid.minRingPixels = px; });
-    }
-    // Presets: a cheap setting per model and a combined-displacement octave sea.
-    add(SurfaceKind::Octaves, "preset", "fast", [](ocean::OceanDesc& d) {
+};
+
+/// The octave sea's own knobs: lighting and displaced octaves, vertex filter, combined displacement, foam.
+void octaveKnobs(SettingList& l) {
+    const ocean::SurfaceKind m = ocean::SurfaceKind::Octaves;
+    for (int n : {2, 3, 4}) // lighting octaves (5 = baseline); displaced = min(3, n)
+        l.add(m, "octaves", std::to_string(n), [n](ocean::OceanDesc& d) {
+            d.octaves.octaves.resize(static_cast<size_t>(n));
+            d.octaves.displacedOctaves = std::min(d.octaves.displacedOctaves, n);
+        });
+    for (int n : {1, 2, 5}) // displaced octaves (3 = baseline)
+        l.add(m, "displaced_octaves", std::to_string(n),
+              [n](ocean::OceanDesc& d) { d.octaves.displacedOctaves = n; });
+    for (ocean::VertexFilter f : {ocean::VertexFilter::Nearest, ocean::VertexFilter::HardwareBilinear,
+                                  ocean::VertexFilter::Packed4Tap, ocean::VertexFilter::Trilinear})
+        l.add(m, "vertex_filter", ocean::toString(f),
+              [f](ocean::OceanDesc& d) { d.octaves.vertexFilter = f; });
+    l.add(m, "combined", "on", [](ocean::OceanDesc& d) { d.octaves.combinedDisplacement = true; });
+    l.add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.octaves.foamMemory = false; });
+}
+
+/// The FFT sea's own knobs: grid size, living whitecaps, the near sea's cascades (4 = baseline) and their
+/// aperiodic mix (on), the detail grid.
+void fftKnobs(SettingList& l) {
+    const ocean::SurfaceKind m = ocean::SurfaceKind::Fft;
+    for (int n : {64, 128}) // 256 = baseline
+        l.add(m, "fft_size", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.size = n; });
+    // Living whitecaps off: foam on the current crests only.
+    l.add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.fft.foamMemory = false; });
+    for (int n : {1, 2, 3})
+        l.add(m, "fft_cascades", std::to_string(n), [n](ocean::OceanDesc& d) { d.fft.cascades = n; });
+    l.add(m, "fft_cascades", "1-tile-500m", [](ocean::OceanDesc& d) {
+        d.fft.cascades = 1;
+        d.fft.aperiodic = false;
+        d.fft.tileSize = 500.0;
+    });
+    l.add(m, "fft_mix", "off", [](ocean::OceanDesc& d) { d.fft.aperiodic = false; });
+    l.add(m, "fft_detail_size", "64", [](ocean::OceanDesc& d) { d.fft.detailSize = 64; });
+}
+
+/// Knobs every model has, after the grid's: culling, where the lighting runs (one compute pass, the
+/// baseline, or the grids' fragment stage), the look features (what switching each off changes in the image,
+/// and saves), the sky (the older gradient instead of the physical clear sky: nothing to compute or upload;
+/// its image error is the look the physical sky changed) and screen-space ring thinning (0 = baseline).
+void sharedKnobs(SettingList& l, ocean::SurfaceKind m) {
+    l.add(m, "cull", "off", [](ocean::OceanDesc& d) { d.cullVertices = false; });
+    l.add(m, "shading", "forward", [](ocean::OceanDesc& d) { d.computeShading = false; });
+    l.add(m, "subsurface", "off", [](ocean::OceanDesc& d) { d.lighting.subsurface = 0.0f; });
+    l.add(m, "fog_noise", "off", [](ocean::OceanDesc& d) { d.lighting.fogNoise = 0.0f; });
+    l.add(m, "glitter", "blinn-phong",
+          [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
+    l.add(m, "sky", "gradient",
+          [](ocean::OceanDesc& d) { d.lighting.sky = ocean::LightingDesc::Sky::Gradient; });
+    for (double px : {0.5, 1.0, 2.0})
+        l.add(m, "min_ring_pixels", bench::num(px), [px](ocean::OceanDesc& d) { d.grid.minRingPixels = px; });
+}
+
+/// Presets: a cheap setting per model and a combined-displacement octave sea.
+void presets(SettingList& l) {
+    using ocean::SurfaceKind;
+    l.add(SurfaceKind::Octaves, "preset", "fast", [](ocean::OceanDesc& d) {
         d.grid.rings = 128;
         d.grid.segments = 256;
         d.octaves.octaves.resize(3);
         d.octaves.vertexFilter = ocean::VertexFilter::HardwareBilinear;
     });
-    add(SurfaceKind::Octaves, "preset", "combined-packed", [](ocean::OceanDesc& d) {
+    l.add(SurfaceKind::Octaves, "preset", "combined-packed", [](ocean::OceanDesc& d) {
         d.octaves.vertexFilter = ocean::VertexFilter::Packed4Tap;
         d.octaves.combinedDisplacement = true;
     });
-    add(SurfaceKind::Gerstner, "preset", "fast", [](ocean::OceanDesc& d) {
+    l.add(SurfaceKind::Gerstner, "preset", "fast", [](ocean::OceanDesc& d) {
         d.grid.rings = 128;
         d.grid.segments = 256;
     });
-    add(SurfaceKind::Fft, "preset", "fast", [](ocean::OceanDesc& d) {
+    l.add(SurfaceKind::Fft, "preset", "fast", [](ocean::OceanDesc& d) {
         d.grid.rings = 128;
         d.grid.segments = 256;
         d.fft.size = 64;
     });
-    return out;
+}
+
+std::vector<Setting> sweep(bool quick) {
+    using ocean::SurfaceKind;
+    SettingList l;
+    if (quick) {
+        l.baseline(SurfaceKind::Octaves);
+        l.grid(SurfaceKind::Octaves, 64, 128);
+        l.grid(SurfaceKind::Octaves, 512, 1024);
+        l.add(SurfaceKind::Octaves, "vertex_filter", "nearest",
+              [](ocean::OceanDesc& d) { d.octaves.vertexFilter = ocean::VertexFilter::Nearest; });
+        return l.out;
+    }
+    for (SurfaceKind m : {SurfaceKind::Octaves, SurfaceKind::Gerstner, SurfaceKind::Fft}) {
+        l.baseline(m);
+        if (m == SurfaceKind::Octaves)
+            octaveKnobs(l);
+        for (auto [r, s] : {std::pair{64, 128}, {128, 256}, {512, 1024}}) // 256x512 = baseline
+            l.grid(m, r, s);
+        l.add(m, "grid_kind", "projected",
+              [](ocean::OceanDesc& d) { d.gridKind = ocean::GridKind::Projected; });
+        if (m == SurfaceKind::Fft)
+            fftKnobs(l);
+        if (m == SurfaceKind::Gerstner)
+            l.add(m, "foam_memory", "off", [](ocean::OceanDesc& d) { d.gerstner.foamMemory = false; });
+        sharedKnobs(l, m);
+    }
+    presets(l);
+    return l.out;
 }
 
 ocean::OceanFrame makeFrame(const Pose& pose, const gl::FrameTargets& targets, double time) {

@@ -112,19 +112,15 @@ void fftSettings(const AddHighRow& high) {
         });
 }
 
-std::vector<Setting> settings(bool quick) {
+/// Adds a setting: the high preset with one change.
+using AddHighRow = std::function<void(const std::string&, const std::string&,
+                                      const std::function<void(ocean::OceanDesc&)>&)>;
+
+/// The high preset's geometry knobs: sky pass, vertex filters, octaves, grid, culling, hidden rings, and
+/// the view from 3 km where the inner rings out to 3.5 km are off screen (what leaving them out saves where a
+/// flight sim spends its time).
+void geometrySettings(const AddHighRow& high, std::vector<Setting>& out) {
     using ocean::Quality;
-    std::vector<Setting> out;
-    for (Quality q : {Quality::Low, Quality::Medium, Quality::High})
-        out.push_back({ocean::toString(q), "preset", ocean::oceanPreset(q)});
-    if (quick)
-        return out;
-    auto high = [&](const std::string& name, const std::string& knob,
-                    const std::function<void(ocean::OceanDesc&)>& change) {
-        ocean::OceanDesc d = ocean::oceanPreset(Quality::High);
-        change(d);
-        out.push_back({name, knob, d});
-    };
     high("high/no-sky", "sky pass off", [](ocean::OceanDesc& d) { d.drawSky = false; });
     high("high/vertex-nearest", "vertex filter nearest (1 fetch/octave/slice)",
          [](ocean::OceanDesc& d) { d.octaves.vertexFilter = ocean::VertexFilter::Nearest; });
@@ -154,7 +150,10 @@ std::vector<Setting> settings(bool quick) {
         s.pitchDeg = -10.0;
         out.push_back(s);
     }
-    // Look knobs (issue 10): what each addition costs in the frame.
+}
+
+/// Look knobs: what each addition costs in the frame.
+void lookSettings(const AddHighRow& high) {
     high("high/glitter-blinn-phong",
          "the Blinn-Phong lobe instead of Cox-Munk glitter (LightingDesc::glitter)",
          [](ocean::OceanDesc& d) { d.lighting.glitter = ocean::LightingDesc::Glitter::BlinnPhong; });
@@ -174,7 +173,10 @@ std::vector<Setting> settings(bool quick) {
          });
     high("high/no-octave-mix", "the high preset without the lighting octaves' aperiodic mix",
          [](ocean::OceanDesc& d) { d.octaves.aperiodic = false; });
-    fftSettings(high);
+}
+
+/// The other surface models with and without their living whitecaps.
+void modelSettings(const AddHighRow& high) {
     high("high/gerstner", "Gerstner sum (8 waves) with its living whitecaps",
          [](ocean::OceanDesc& d) { d.model = ocean::SurfaceKind::Gerstner; });
     high("high/gerstner-no-foam-memory",
@@ -187,6 +189,12 @@ std::vector<Setting> settings(bool quick) {
              d.model = ocean::SurfaceKind::Fft;
              d.fft.foamMemory = false;
          });
+}
+
+/// Each preset with the other shading path (OceanDesc::computeShading), and compute shading by tiles
+/// (OceanDesc::shadeTiles): the other side of Auto on this renderer, each preset.
+void shadingSettings(std::vector<Setting>& out) {
+    using ocean::Quality;
     for (Quality q : {Quality::Low, Quality::Medium, Quality::High}) {
         ocean::OceanDesc d = ocean::oceanPreset(q);
         d.computeShading = !d.computeShading;
@@ -210,6 +218,26 @@ std::vector<Setting> settings(bool quick) {
             out.push_back(s);
         }
     }
+}
+
+std::vector<Setting> settings(bool quick) {
+    using ocean::Quality;
+    std::vector<Setting> out;
+    for (Quality q : {Quality::Low, Quality::Medium, Quality::High})
+        out.push_back({ocean::toString(q), "preset", ocean::oceanPreset(q)});
+    if (quick)
+        return out;
+    const AddHighRow high = [&](const std::string& name, const std::string& knob,
+                                const std::function<void(ocean::OceanDesc&)>& change) {
+        ocean::OceanDesc d = ocean::oceanPreset(Quality::High);
+        change(d);
+        out.push_back({name, knob, d});
+    };
+    geometrySettings(high, out);
+    lookSettings(high);
+    fftSettings(high);
+    modelSettings(high);
+    shadingSettings(out);
     return out;
 }
 
