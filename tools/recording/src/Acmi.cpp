@@ -539,10 +539,15 @@ struct AcmiParser::Impl {
         }
         // U, V (DCS's flat-world metres) and Heading (relative to that flat world's north) are not used --
         // the replay places objects on the ellipsoid -- so they are not read either.
+        storeSample(obj, s);
+    }
+
+    /// The object's state at `now` as a track sample in absolute degrees (one sample per frame time). Offsets
+    /// become absolute here, with the reference known when the first sample is stored (the header sets it
+    /// first in every recording seen); finish() corrects the rare file that moves it later. Doing it at the
+    /// end meant a second pass over all tracks, ~5% of a parse.
+    void storeSample(uint32_t obj, const State& s) {
         RecordedObject& o = rec.objects[obj];
-        // Offsets become absolute degrees here, with the reference known when the first sample is stored
-        // (the header sets it first in every recording seen); finish() corrects the rare file that moves it
-        // later. Doing it at the end meant a second pass over all tracks, ~5% of a parse.
         if (!referenceFrozen) {
             appliedLon = rec.referenceLongitude;
             appliedLat = rec.referenceLatitude;
