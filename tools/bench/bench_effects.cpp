@@ -580,12 +580,68 @@ struct GridRow {
 
 /// Times `count` explosions (or wakes) at each grid density, round robin, and measures each density's mesh
 /// interpolation error of the field of the scene's first effect (relative to its amplitude).
+/// The mesh error of one setting's first effect against its continuous field (relative to its amplitude).
+void gridError(Scene& sc, GridRow& r) {
+    const double t = sc.time;
+    if (r.kind == "wake") {
+        sc.registry.view<ocean::Ship, ocean::ShipTrail>().each(
+            [&](ecs::Entity, ocean::Ship& ship, ocean::ShipTrail& trail) {
+                if (r.radius > 0.0)
+                    return;
+                const ocean::WakeState ws = ocean::wakeState(ship, trail, t);
+                r.radius = ws.radius;
+                r.amplitude = ws.peak;
+                const MeshError e = meshError(ws.radius, r.rings, r.segments, r.exponent,
+                                              [&](const glm::dvec2& q) { return ocean::wakeWave(ws, q).x; });
+                r.rmsRel = e.rms / ws.peak;
+                r.maxRel = e.max / ws.peak;
+            });
+        return;
+    }
+    sc.registry.view<ocean::Explosion>().each([&](ecs::Entity, ocean::Explosion& ex) {
+        if (r.radius > 0.0)
+            return;
+        const ocean::ExplosionState es = ocean::explosionState(ex, t);
+        r.radius = es.radius;
+        r.amplitude = es.amplitude;
+        const MeshError e = meshError(es.radius, r.rings, r.segments, r.exponent, [&](const glm::dvec2& q) {
+            return ocean::explosionWave(ex.params, es, q).x;
+        });
+        r.rmsRel = e.rms / es.amplitude;
+        r.maxRel = e.max / es.amplitude;
+    });
+}
+
+struct Density {
+    const char* kind;
+    int rings, segments;
+    double exponent;
+};
+
+/// A scene of `explosions` explosions or one wake, its secondary grids at density d.
+std::unique_ptr<Scene> densityScene(const Density& d, int explosions) {
+    const bool isWake = std::string(d.kind) == "wake";
+    std::unique_ptr<Scene> sc = isWake ? wakeScene(1) : explosionScene(explosions);
+    sc->row.setting =
+        std::string(d.kind) + "_grid_" + std::to_string(d.rings) + "x" + std::to_string(d.segments);
+    sc->registry.view<ocean::OceanComponent>().each([&](ecs::Entity, ocean::OceanComponent& oc) {
+        ocean::EffectGridDesc& g = oc.desc.effectGrids;
+        if (isWake) {
+            g.wakeRings = d.rings;
+            g.wakeSegments = d.segments;
+            g.wakeExponent = d.exponent;
+        } else {
+            g.explosionRings = d.rings;
+            g.explosionSegments = d.segments;
+            g.explosionExponent = d.exponent;
+        }
+    });
+    return sc;
+}
+
+/// The grid density knob (OceanDesc::effectGrids): each density's frame time (round robin after the warm-up)
+/// and its mesh error.
 std::vector<GridRow> gridKnob(gl::GpuTimer& timer, const gl::FrameTargets& targets, int frames, bool quick) {
-    struct Density {
-        const char* kind;
-        int rings, segments;
-        double exponent;
-    };
     std::vector<Density> densities = {{"explosion", 24, 48, 1.5},  {"explosion", 48, 96, 1.5},
                                       {"explosion", 96, 192, 1.5}, {"wake", 48, 96, 2.0},
                                       {"wake", 96, 192, 2.0},      {"wake", 192, 384, 2.0}};
@@ -595,26 +651,10 @@ std::vector<GridRow> gridKnob(gl::GpuTimer& timer, const gl::FrameTargets& targe
     std::vector<std::unique_ptr<Scene>> scenes;
     std::vector<GridRow> rows;
     for (const Density& d : densities) {
-        const bool isWake = std::string(d.kind) == "wake";
-        scenes.push_back(isWake ? wakeScene(1) : explosionScene(explosions));
-        Scene& sc = *scenes.back();
-        sc.row.setting =
-            std::string(d.kind) + "_grid_" + std::to_string(d.rings) + "x" + std::to_string(d.segments);
-        sc.registry.view<ocean::OceanComponent>().each([&](ecs::Entity, ocean::OceanComponent& oc) {
-            ocean::EffectGridDesc& g = oc.desc.effectGrids;
-            if (isWake) {
-                g.wakeRings = d.rings;
-                g.wakeSegments = d.segments;
-                g.wakeExponent = d.exponent;
-            } else {
-                g.explosionRings = d.rings;
-                g.explosionSegments = d.segments;
-                g.explosionExponent = d.exponent;
-            }
-        });
+        scenes.push_back(densityScene(d, explosions));
         GridRow r;
         r.kind = d.kind;
-        r.count = isWake ? 1 : explosions;
+        r.count = std::string(d.kind) == "wake" ? 1 : explosions;
         r.rings = d.rings;
         r.segments = d.segments;
         r.exponent = d.exponent;
@@ -627,38 +667,11 @@ std::vector<GridRow> gridKnob(gl::GpuTimer& timer, const gl::FrameTargets& targe
         for (size_t k = 0; k < scenes.size(); ++k)
             scenes[(k + size_t(f)) % scenes.size()]->frame(timer, targets, true);
     for (size_t i = 0; i < scenes.size(); ++i) {
-        Scene& sc = *scenes[i];
         GridRow& r = rows[i];
-        r.msMedian = quantile(sc.ms, 0.5);
-        r.fxVertices = sc.renderer->lastStats().explosions.vertices + sc.renderer->lastStats().wakes.vertices;
-        const double t = sc.time;
-        if (r.kind == "wake") {
-            sc.registry.view<ocean::Ship, ocean::ShipTrail>().each([&](ecs::Entity, ocean::Ship& ship,
-                                                                       ocean::ShipTrail& trail) {
-                if (r.radius > 0.0)
-                    return;
-                const ocean::WakeState ws = ocean::wakeState(ship, trail, t);
-                r.radius = ws.radius;
-                r.amplitude = ws.peak;
-                const MeshError e = meshError(ws.radius, r.rings, r.segments, r.exponent,
-                                              [&](const glm::dvec2& q) { return ocean::wakeWave(ws, q).x; });
-                r.rmsRel = e.rms / ws.peak;
-                r.maxRel = e.max / ws.peak;
-            });
-        } else {
-            sc.registry.view<ocean::Explosion>().each([&](ecs::Entity, ocean::Explosion& ex) {
-                if (r.radius > 0.0)
-                    return;
-                const ocean::ExplosionState es = ocean::explosionState(ex, t);
-                r.radius = es.radius;
-                r.amplitude = es.amplitude;
-                const MeshError e =
-                    meshError(es.radius, r.rings, r.segments, r.exponent,
-                              [&](const glm::dvec2& q) { return ocean::explosionWave(ex.params, es, q).x; });
-                r.rmsRel = e.rms / es.amplitude;
-                r.maxRel = e.max / es.amplitude;
-            });
-        }
+        r.msMedian = quantile(scenes[i]->ms, 0.5);
+        const ocean::OceanStats& st = scenes[i]->renderer->lastStats();
+        r.fxVertices = st.explosions.vertices + st.wakes.vertices;
+        gridError(*scenes[i], r);
         std::fprintf(stderr, "[grid] %s %dx%d: %.3f ms, mesh error rms %.3g max %.3g of the amplitude\n",
                      r.kind.c_str(), r.rings, r.segments, r.msMedian, r.rmsRel, r.maxRel);
     }

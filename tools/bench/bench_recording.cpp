@@ -37,42 +37,48 @@ using pacifica::recording::Recording;
 namespace {
 
 /// Writes a synthetic ACMI recording of at least `bytes` bytes. Deterministic (fixed LCG).
-uint64_t generate(const fs::path& file, uint64_t bytes) {
-    std::ofstream out(file, std::ios::binary);
-    out << "\xEF\xBB\xBF"
-        << "FileType=text/acmi/tacview\nFileVersion=2.2\n"
-        << "0,ReferenceTime=2024-06-01T10:00:00Z\n0,ReferenceLongitude=36\n0,ReferenceLatitude=44\n"
-        << "0,Title=Generated busy recording\\, for the parser benchmark\n";
-    uint64_t state = 12345;
-    auto rnd = [&] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return static_cast<double>(state >> 11) / 9007199254740992.0;
-    };
-    const int aircraft = 40, ships = 6;
-    std::vector<double> lon(aircraft), lat(aircraft), alt(aircraft), hdg(aircraft);
-    for (int i = 0; i < aircraft; ++i) {
-        lon[i] = 0.5 + rnd();
-        lat[i] = 0.5 + rnd();
-        alt[i] = 500 + 8000 * rnd();
-        hdg[i] = 360 * rnd();
-    }
+/// The generated recording's writer: 40 aircraft every frame, 6 ships every second, shells that live ~3 s,
+/// a message every minute, from a fixed-seed LCG (the same bytes every run).
+struct BusyRecording {
+    static constexpr int AIRCRAFT = 40, SHIPS = 6;
     struct Shell {
         uint64_t id;
         double lon, lat, alt, dies;
     };
+    std::ofstream out;
+    uint64_t state = 12345, nextId = 0x10000, written = 0;
+    std::vector<double> lon, lat, alt, hdg;
     std::vector<Shell> shells;
-    uint64_t nextId = 0x10000, written = 0;
     char line[512];
-    for (long frame = 0; written < bytes; ++frame) {
-        const double t = frame * 0.1;
-        int n = std::snprintf(line, sizeof line, "#%.2f\n", t);
+
+    explicit BusyRecording(const fs::path& file)
+        : out(file, std::ios::binary), lon(AIRCRAFT), lat(AIRCRAFT), alt(AIRCRAFT), hdg(AIRCRAFT) {
+        out << "\xEF\xBB\xBF"
+            << "FileType=text/acmi/tacview\nFileVersion=2.2\n"
+            << "0,ReferenceTime=2024-06-01T10:00:00Z\n0,ReferenceLongitude=36\n0,ReferenceLatitude=44\n"
+            << "0,Title=Generated busy recording\\, for the parser benchmark\n";
+        for (int i = 0; i < AIRCRAFT; ++i) {
+            lon[i] = 0.5 + rnd();
+            lat[i] = 0.5 + rnd();
+            alt[i] = 500 + 8000 * rnd();
+            hdg[i] = 360 * rnd();
+        }
+    }
+    double rnd() {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<double>(state >> 11) / 9007199254740992.0;
+    }
+    void emit(int n) {
         out.write(line, n);
         written += static_cast<uint64_t>(n);
-        for (int i = 0; i < aircraft; ++i) {
+    }
+    void aircraft(long frame) {
+        for (int i = 0; i < AIRCRAFT; ++i) {
             hdg[i] += (rnd() - 0.5) * 2.0;
             lon[i] += 0.00003 * std::sin(hdg[i] * M_PI / 180.0);
             lat[i] += 0.00002 * std::cos(hdg[i] * M_PI / 180.0);
             alt[i] += (rnd() - 0.5) * 4.0;
+            int n = 0;
             if (frame == 0)
                 n = std::snprintf(
                     line, sizeof line,
@@ -85,52 +91,54 @@ uint64_t generate(const fs::path& file, uint64_t bytes) {
                                   "%x,T=%.7f|%.7f|%.2f|%.1f|%.1f|%.1f|%.2f|%.2f|%.1f,IAS=%.1f,AOA=%.1f\n",
                                   0x100 + i, lon[i], lat[i], alt[i], (rnd() - 0.5) * 60, (rnd() - 0.5) * 20,
                                   hdg[i], 1000 * rnd(), 1000 * rnd(), hdg[i], 150 + 100 * rnd(), 10 * rnd());
-            out.write(line, n);
-            written += static_cast<uint64_t>(n);
+            emit(n);
         }
-        if (frame % 10 == 0)
-            for (int s = 0; s < ships; ++s) {
-                n = std::snprintf(line, sizeof line, "%x,T=%.7f|%.7f||||%.1f%s\n", 0x200 + s,
-                                  0.8 + 0.0001 * t, 0.8 + 0.01 * s, 120.0,
-                                  frame == 0 ? ",Type=Sea+Watercraft+Warship" : "");
-                out.write(line, n);
-                written += static_cast<uint64_t>(n);
-            }
-        // Shells: a few new per frame, each living ~3 s with 3-field updates, then removed.
+    }
+    void ships(long frame, double t) {
+        for (int s = 0; s < SHIPS; ++s)
+            emit(std::snprintf(line, sizeof line, "%x,T=%.7f|%.7f||||%.1f%s\n", 0x200 + s, 0.8 + 0.0001 * t,
+                               0.8 + 0.01 * s, 120.0, frame == 0 ? ",Type=Sea+Watercraft+Warship" : ""));
+    }
+    /// A few new shells per frame, each living ~3 s with 3-field updates, then removed.
+    void shellLines(double t) {
         for (int k = 0; k < 4; ++k) {
-            const int a = static_cast<int>(rnd() * aircraft);
+            const int a = static_cast<int>(rnd() * AIRCRAFT);
             shells.push_back({nextId++, lon[a], lat[a], alt[a], t + 2.0 + 2.0 * rnd()});
             const Shell& s = shells.back();
-            n = std::snprintf(line, sizeof line, "%llx,T=%.7f|%.7f|%.1f,Type=Projectile+Shell\n",
-                              static_cast<unsigned long long>(s.id), s.lon, s.lat, s.alt);
-            out.write(line, n);
-            written += static_cast<uint64_t>(n);
+            emit(std::snprintf(line, sizeof line, "%llx,T=%.7f|%.7f|%.1f,Type=Projectile+Shell\n",
+                               static_cast<unsigned long long>(s.id), s.lon, s.lat, s.alt));
         }
         for (size_t k = 0; k < shells.size();) {
             Shell& s = shells[k];
             if (t >= s.dies) {
-                n = std::snprintf(line, sizeof line, "-%llx\n", static_cast<unsigned long long>(s.id));
-                out.write(line, n);
-                written += static_cast<uint64_t>(n);
+                emit(std::snprintf(line, sizeof line, "-%llx\n", static_cast<unsigned long long>(s.id)));
                 s = shells.back();
                 shells.pop_back();
                 continue;
             }
             s.lon += 0.0001;
             s.alt -= 20.0;
-            n = std::snprintf(line, sizeof line, "%llx,T=%.7f||%.1f\n", static_cast<unsigned long long>(s.id),
-                              s.lon, s.alt);
-            out.write(line, n);
-            written += static_cast<uint64_t>(n);
+            emit(std::snprintf(line, sizeof line, "%llx,T=%.7f||%.1f\n",
+                               static_cast<unsigned long long>(s.id), s.lon, s.alt));
             ++k;
         }
-        if (frame % 600 == 0) {
-            n = std::snprintf(line, sizeof line, "0,Event=Message|%x|Generated event at %.1f s\n", 0x100, t);
-            out.write(line, n);
-            written += static_cast<uint64_t>(n);
-        }
     }
-    return written;
+};
+
+uint64_t generate(const fs::path& file, uint64_t bytes) {
+    BusyRecording g(file);
+    for (long frame = 0; g.written < bytes; ++frame) {
+        const double t = frame * 0.1;
+        g.emit(std::snprintf(g.line, sizeof g.line, "#%.2f\n", t));
+        g.aircraft(frame);
+        if (frame % 10 == 0)
+            g.ships(frame, t);
+        g.shellLines(t);
+        if (frame % 600 == 0)
+            g.emit(std::snprintf(g.line, sizeof g.line, "0,Event=Message|%x|Generated event at %.1f s\n",
+                                 0x100, t));
+    }
+    return g.written;
 }
 
 void zipFile(const fs::path& text, const fs::path& zipped) {
