@@ -1,7 +1,8 @@
 // BenchCli: the benchmarks' shared command line (CLI11): the --size validator (WxH, 16..8192 each, the
 // same bounds as `pacifica replay --size`), one way to end on a bad argument (the program's name, the
-// message, exit 2; --help exits 0), the command line as it was typed for the reports, and the report
-// writer (every report file appears whole or not at all). Header-only.
+// message, exit 2; --help exits 0) and the command line as it was typed for the reports. Reports are
+// written with writeFileAtomically (engine/AtomicFile.h): every report file appears whole or not at all.
+// Header-only.
 #pragma once
 
 #include "BenchText.h"
@@ -46,11 +47,6 @@ inline std::string commandLine(int argc, char** argv) {
     for (int i = 0; i < argc; ++i)
         s += (i ? " " : "") + std::string(argv[i]);
     return s;
-}
-
-/// A report file of DIR, written atomically (engine/AtomicFile.h).
-inline void writeReport(const std::filesystem::path& file, const std::string& text) {
-    writeFileAtomically(file, text);
 }
 
 } // namespace pacifica::bench

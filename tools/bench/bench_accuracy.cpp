@@ -822,9 +822,9 @@ int main(int argc, char** argv) {
         }
         std::vector<Result>& results = sweepRun.results;
         markPareto(results);
-        bench::writeReport(a.outDir + "/accuracy.csv", csvReport(results, timer.clockName(), info.renderer));
-        bench::writeReport(a.outDir + "/accuracy.md",
-                           markdownReport(results, a, frames, timer.clockName(), info.renderer));
+        writeFileAtomically(a.outDir + "/accuracy.csv", csvReport(results, timer.clockName(), info.renderer));
+        writeFileAtomically(a.outDir + "/accuracy.md",
+                            markdownReport(results, a, frames, timer.clockName(), info.renderer));
         writePlotFiles(a.outDir, results, timer.clockName(), info.renderer);
         const bool plotted = runGnuplot(a.outDir);
         std::cout << "wrote " << a.outDir << "/accuracy.csv, accuracy.md" << (plotted ? ", accuracy.png" : "")

@@ -475,9 +475,9 @@ void writeReports(const std::string& outDir, const std::vector<Row>& rows, const
     settingsTable(md, rows, s);
     perEffectTable(md, s);
     zeroEffectTable(md, s);
-    bench::writeReport(outDir + "/effects.csv", effectsCsv(rows, s));
-    bench::writeReport(outDir + "/effects.md", md.str());
-    bench::writeReport(outDir + "/effects.json", effectsJson(s));
+    writeFileAtomically(outDir + "/effects.csv", effectsCsv(rows, s));
+    writeFileAtomically(outDir + "/effects.md", md.str());
+    writeFileAtomically(outDir + "/effects.json", effectsJson(s));
     const KindSummary* kinds = s.kinds;
     std::cout << "wrote " << outDir << "/effects.csv, effects.md, effects.json (" << s.renderer << ", "
               << s.clock << ")\n"

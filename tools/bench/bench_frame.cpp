@@ -479,9 +479,9 @@ int main(int argc, char** argv) {
         for (const auto& [width, height] : sizes)
             runSize(a, width, height, timer, info, rows);
         const std::filesystem::path dir(a.outDir);
-        bench::writeReport(dir / "frame.csv", csvReport(rows, info));
-        bench::writeReport(dir / "frame.md", markdownReport(rows, info));
-        bench::writeReport(dir / "frame.json", jsonReport(rows, info));
+        writeFileAtomically(dir / "frame.csv", csvReport(rows, info));
+        writeFileAtomically(dir / "frame.md", markdownReport(rows, info));
+        writeFileAtomically(dir / "frame.json", jsonReport(rows, info));
         return 0;
     } catch (const CLI::ValidationError& e) {
         std::cerr << "pacifica-bench-frame: " << e.what() << "\n";

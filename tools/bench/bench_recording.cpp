@@ -298,8 +298,8 @@ int main(int argc, char** argv) {
                                   {"memory", "ru_maxrss of the parsing child minus its VmRSS before parsing"},
                                   {"tracks_kept", "samples x sizeof(ObjectSample) (40 bytes)"},
                                   {"results", results}};
-        pacifica::bench::writeReport(a.outDir / "recording_bench.json", summary.dump(2) + "\n");
-        pacifica::bench::writeReport(a.outDir / "recording_bench.md", md);
+        pacifica::writeFileAtomically(a.outDir / "recording_bench.json", summary.dump(2) + "\n");
+        pacifica::writeFileAtomically(a.outDir / "recording_bench.md", md);
         if (!a.keep) {
             fs::remove(text);
             fs::remove(zipped);

@@ -198,8 +198,8 @@ int main(int argc, char** argv) {
         std::snprintf(total, sizeof total,
                       "\n%zu transforms x %d frames: GPU %.2f s, CPU (extrapolated) %.1f s\n", entries.size(),
                       a.frames, gpuTotal / 1000.0, cpuTotal / 1000.0);
-        bench::writeReport(a.outDir / "tonemap_bench.json", report.dump(2) + "\n");
-        bench::writeReport(a.outDir / "tonemap_bench.md", markdownReport(report) + total);
+        pacifica::writeFileAtomically(a.outDir / "tonemap_bench.json", report.dump(2) + "\n");
+        pacifica::writeFileAtomically(a.outDir / "tonemap_bench.md", markdownReport(report) + total);
         std::fputs(total, stderr);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "pacifica-bench-tonemap: error: %s\n", e.what());

@@ -400,14 +400,7 @@ public:
     void renderFrame(long long k);
     /// Waits for every image (or the first failure), finishes the video, writes summary.json last.
     void finish();
-    const ReplayRunInfo& info() {
-        mInfo.glRenderer = context->info().renderer;
-        mInfo.glVersion = context->info().version;
-        mInfo.gpuClock = gpuTimer.clockName();
-        mInfo.gpuMs = &gpuTimer.samples();
-        mInfo.ocioConfig = colour.configDescription();
-        return mInfo;
-    }
+    const ReplayRunInfo& info() const { return mInfo; }
 
 private:
     // --profile: the replay's own GPU passes, timed with the ocean's clock.
@@ -497,6 +490,8 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
     if (o.video)
         video = std::make_unique<VideoWriter>(*o.video, input.views.front().width, input.views.front().height,
                                               o.fps);
+    mInfo = {context->info().renderer, context->info().version, gpuTimer.clockName(),
+             colour.configDescription(), &gpuTimer.samples()};
 }
 
 void ReplayRun::renderFrame(long long k) {
