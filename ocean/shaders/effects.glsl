@@ -1,9 +1,9 @@
-// effects.glsl: the GLSL twin of ocean/src/Effects.cpp — the field of every active explosion and ship
-// trail (GPU Gems 2 §18.3 local perturbations), summed and softly saturated. Compiled in only when the scene
-// has effects (EFFECTS_EXPLOSIONS / EFFECTS_WAKES name the kinds present); constants come from the C++ side
-// as #defines (EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_MIN_WAVELENGTH).
-// Coordinates are camera-relative metres; the grid being drawn passes its own effect-local offset too, so
-// its own effect is evaluated without the float rounding of a camera-relative difference (40 km away).
+// effects.glsl: the GLSL twin of ocean/src/Effects.cpp — the field of each explosion and ship trail (GPU
+// Gems 2 §18.3 local perturbations), band-limited at a wave number kMax. effects_field.comp sums them into
+// the effects field's texels; the grids read the field (effects_sample.glsl). Compiled in only when the
+// scene has effects (EFFECTS_EXPLOSIONS / EFFECTS_WAKES name the kinds present); constants come from the C++
+// side as #defines (EFFECT_HEIGHT_LIMIT, MAX_WAKE_POINTS, EFFECT_K_MAX). Coordinates are camera-relative
+// metres.
 
 // The buffers' structs are declared in C++ (ocean/src/gpu/GpuInterface.h, with what each member means); these
 // declare the same members in the same order, and test_gpu_interface_gl checks the driver's offsets against
@@ -36,13 +36,13 @@ struct WakeGpu {
 layout(std430, binding = EFFECT_EXPLOSIONS_BINDING) readonly buffer EffectExplosions { ExplosionGpu uExplosions[]; };
 layout(std430, binding = EFFECT_WAKES_BINDING) readonly buffer EffectWakes { WakeGpu uWakes[]; };
 layout(std430, binding = EFFECT_WAKE_POINTS_BINDING) readonly buffer EffectWakePoints { vec4 uWakePoints[]; };
-// Per effect g (explosions first, then wakes): [4 g .. 4 g + 3] = (offset, count) of the explosions and
-// (offset, count) of the wakes whose field reaches g's grid, then the index lists (EffectsGpu.cpp).
-layout(std430, binding = EFFECT_NEIGHBOURS_BINDING) readonly buffer EffectNeighbours { int uNeighbours[]; };
-uniform int uExplosionCount;
-uniform int uWakeCount;
 
 const float EFFECT_TWO_PI = 6.28318530717958647;
+
+// effectBandFade() in Effects.cpp: 1 - smoothstep(kMax / 2, kMax, k).
+float effectBandFade(float k, float kMax) {
+    return 1.0 - smoothstep(0.5 * kMax, kMax, k);
+}
 
 float effectSmoothstepDerivative(float e0, float e1, float x) {
     float t = (x - e0) / (e1 - e0);
@@ -52,12 +52,12 @@ float effectSmoothstepDerivative(float e0, float e1, float x) {
 }
 
 // (h, dh/dx, dh/dy) of explosion i at offset q from its centre: explosionWave() in Effects.cpp.
-vec3 explosionWave(int i, vec2 q) {
+vec3 explosionWave(int i, vec2 q, float kMax) {
     ExplosionGpu e = uExplosions[i];
-    float R = e.gridRadius, amplitude = e.amplitude, k = e.wavenumber, phase = e.phase, r0 = e.coreRadius,
-          front = e.front;
+    float R = e.gridRadius, k = e.wavenumber, phase = e.phase, r0 = e.coreRadius, front = e.front;
     float width = e.frontWidth;
-    if (R <= 0.0)
+    float amplitude = e.amplitude * effectBandFade(k, kMax);
+    if (R <= 0.0 || amplitude == 0.0)
         return vec3(0.0);
     float s = sqrt(dot(q, q) + r0 * r0);
     float rim = sqrt(R * R + r0 * r0);
@@ -121,7 +121,7 @@ WakeCoords wakeCoords(int i, vec2 q) {
     return best;
 }
 
-float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
+float kelvinHeight(int i, WakeCoords c, float behind, float lateral, float kMax) {
     float x = behind;
     int n = int(uWakes[i].points);
     if (!(x > 0.0) || c.amplitude <= 0.0 || n < 2)
@@ -131,7 +131,6 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
     float u = 8.0 * ta * ta;
     if (u >= 1.0)
         return 0.0;
-    float kMax = EFFECT_TWO_PI / EFFECT_MIN_WAVELENGTH;
     float sd = sqrt(1.0 - u);
     float roots[2] = float[2](2.0 * ta / (1.0 + sd), min((1.0 + sd) / (4.0 * max(ta, 1e-6)), 1000.0));
     float weights[2] = float[2](1.0, 0.6);
@@ -139,7 +138,7 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
     for (int j = 0; j < 2; ++j) {
         float tt = roots[j];
         float k = c.k0 * (1.0 + tt * tt);
-        float fade = (1.0 - smoothstep(0.5 * kMax, kMax, k)) * exp(-x * k / (EFFECT_TWO_PI * KELVIN_DECAY_WAVELENGTHS));
+        float fade = effectBandFade(k, kMax) * exp(-x * k / (EFFECT_TWO_PI * KELVIN_DECAY_WAVELENGTHS));
         if (fade <= 0.0)
             continue;
         float phase = c.k0 * sqrt(1.0 + tt * tt) * (x + y * tt);
@@ -156,20 +155,22 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral) {
 }
 
 // (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship).
-vec4 wakeWave(int i, vec2 q) {
+vec4 wakeWave(int i, vec2 q, float kMax) {
     float R = uWakes[i].gridRadius;
     vec2 boxMin = uWakes[i].boxMin, boxMax = uWakes[i].boxMax;
     // insideWakeBox() in Effects.cpp
     if (R <= 0.0 || dot(q, q) >= R * R || q.x <= boxMin.x || q.y <= boxMin.y || q.x >= boxMax.x || q.y >= boxMax.y)
         return vec4(0.0);
     WakeCoords c = wakeCoords(i, q);
-    float h = kelvinHeight(i, c, c.behind, c.lateral);
+    float h = kelvinHeight(i, c, c.behind, c.lateral, kMax);
     const float e = 0.1;
     bool outside = c.behind + e <= 0.0 || abs(c.lateral) - e >= sqrt(KELVIN_TAN2) * (c.behind + e);
     float dx = 0.0, dy = 0.0;
     if (!outside) {
-        dx = (kelvinHeight(i, c, c.behind + e, c.lateral) - kelvinHeight(i, c, c.behind - e, c.lateral)) / (2.0 * e);
-        dy = (kelvinHeight(i, c, c.behind, c.lateral + e) - kelvinHeight(i, c, c.behind, c.lateral - e)) / (2.0 * e);
+        dx = (kelvinHeight(i, c, c.behind + e, c.lateral, kMax) - kelvinHeight(i, c, c.behind - e, c.lateral, kMax)) /
+             (2.0 * e);
+        dy = (kelvinHeight(i, c, c.behind, c.lateral + e, kMax) - kelvinHeight(i, c, c.behind, c.lateral - e, kMax)) /
+             (2.0 * e);
     }
     vec2 left = vec2(-c.direction.y, c.direction.x);
     vec2 g = -dx * c.direction + dy * left;
@@ -186,58 +187,4 @@ vec4 wakeWave(int i, vec2 q) {
         foam = clamp(min(1.0, c.amplitude / 0.2) * exp(-c.age / wake.foamLife) * strip * start * end, 0.0, 1.0);
     }
     return vec4(h, g, foam);
-}
-
-// The field of all effects at a camera-relative point qCam: (E, dE/dx, dE/dy, foam), E = L tanh(sum / L).
-// selfKind/selfIndex name the effect whose grid is drawn; qSelf is the point relative to it. Only the
-// effects that reach that grid are visited (their lists in uNeighbours): the others are 0 there.
-vec4 effectField(vec2 qCam, vec2 qSelf, int selfKind, int selfIndex) {
-    vec3 sum = vec3(0.0);
-    float foam = 0.0;
-    int g = 4 * (selfKind == 0 ? selfIndex : uExplosionCount + selfIndex);
-#ifdef EFFECTS_EXPLOSIONS
-    for (int k = 0; k < uNeighbours[g + 1]; ++k) {
-        int i = uNeighbours[uNeighbours[g] + k];
-        vec2 q = (selfKind == 0 && i == selfIndex) ? qSelf : qCam - uExplosions[i].centre;
-        float R = uExplosions[i].gridRadius;
-        if (dot(q, q) >= R * R)
-            continue;
-        vec3 w = explosionWave(i, q);
-        sum += w;
-        foam = max(foam, explosionFoam(i, q, w.x));
-    }
-#endif
-#ifdef EFFECTS_WAKES
-    for (int k = 0; k < uNeighbours[g + 3]; ++k) {
-        int i = uNeighbours[uNeighbours[g + 2] + k];
-        vec2 q = (selfKind == 1 && i == selfIndex) ? qSelf : qCam - uWakes[i].ship;
-        vec4 w = wakeWave(i, q);
-        sum += w.xyz;
-        foam = max(foam, w.w);
-    }
-#endif
-    float th = tanh(sum.x / EFFECT_HEIGHT_LIMIT);
-    return vec4(EFFECT_HEIGHT_LIMIT * th, sum.yz * (1.0 - th * th), foam);
-}
-
-// True where an effect's grid draws the sea instead of the base grid: inside 0.98 of any effect's radius
-// (the rims overlap by 2% so no crack opens between the grids).
-bool insideEffectGrid(vec2 rel) {
-#ifdef EFFECTS_EXPLOSIONS
-    for (int i = 0; i < uExplosionCount; ++i) {
-        vec2 q = rel - uExplosions[i].centre;
-        float R = 0.98 * uExplosions[i].gridRadius;
-        if (dot(q, q) < R * R)
-            return true;
-    }
-#endif
-#ifdef EFFECTS_WAKES
-    for (int i = 0; i < uWakeCount; ++i) {
-        vec2 q = rel - uWakes[i].ship;
-        float R = 0.98 * uWakes[i].gridRadius;
-        if (dot(q, q) < R * R)
-            return true;
-    }
-#endif
-    return false;
 }

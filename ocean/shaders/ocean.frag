@@ -27,16 +27,9 @@ in vec2 vGrid; // camera-relative undisplaced grid point
 out vec4 fragColor;
 #endif
 
-// Effects (Effects.h): the variant drawing an effect's secondary grid (effects.vert) adds the effect's slope
-// and foam; the base grid's variant with effects present leaves out the discs the effect grids cover.
-// Neither is compiled into a scene without effects.
-#ifdef EFFECT_GRID
-#ifdef SHADE_COMPUTE
-vec3 vEffect = vec3(0.0); // (dE/dx, dE/dy, foam); 0 on the base grid's pixels
-#else
-in vec3 vEffect; // (dE/dx, dE/dy, foam)
-#endif
-#endif
+// Effects (Effects.h): with effects present (EFFECT_FIELD) every pixel adds the effects field's slope and
+// foam at its surface point (effects_sample.glsl, included before this file); the base grid's variant leaves
+// out the discs the secondary grids cover (EFFECT_HOLES). Neither is compiled into a scene without effects.
 
 uniform float uNormalTilt;
 uniform float uMicroSlopeVariance; // LightingDesc::microSlopeVariance
@@ -138,8 +131,9 @@ vec3 shadeSea() {
     float dist = length(vRel);
     vec3 v = -vRel / max(dist, 1e-6); // towards the eye
     vec3 g = modelLighting(vGrid);
-#ifdef EFFECT_GRID
-    g.xy += vEffect.xy;
+#ifdef EFFECT_FIELD
+    vec4 effect = effectFieldAt(vRel.xy); // (E, dE/dx, dE/dy, foam)
+    g.xy += effect.yz;
 #endif
     vec3 n = normalize(vec3(-g.xy, 1.0));
     // §18.2.6: the surface is lit as if flat under the displacement; tilt toward the viewer so back faces
@@ -187,8 +181,8 @@ vec3 shadeSea() {
     vec2 dnx = dFdx(nearUv), dny = dFdy(nearUv);
 #endif
     vec3 color = water;
-#ifdef EFFECT_GRID
-    float effectFoam = vEffect.z * uFoamIntensity;
+#ifdef EFFECT_FIELD
+    float effectFoam = effect.w * uFoamIntensity;
     if (coverage > 0.0 || effectFoam > 0.0) {
 #else
     if (coverage > 0.0) {
@@ -200,10 +194,10 @@ vec3 shadeSea() {
         float lod = log2(max(max(length(dnx), length(dny)) * float(FOAM_PATTERN_SIZE), 1e-6));
         float resolved = 1.0 - smoothstep(0.5, 2.5, lod);
         float foam = mix(foamOpacity(coverage), foamThreshold(foamRank(a, b), coverage), resolved);
-#ifdef EFFECT_GRID
+#ifdef EFFECT_FIELD
         // Effect foam (crown, crests, wake strip) is churned white water: its coverage is the foam itself,
-        // textured by the pattern, and not faded with distance (the effect grid resolves it wherever it is,
-        // and a wake must stay visible from 10 km).
+        // textured by the pattern, and not faded with distance (the field resolves it wherever it is, and a
+        // wake must stay visible from 10 km).
         foam = max(foam, clamp(effectFoam * (0.7 + 0.3 * (0.6 * a + 0.4 * b)), 0.0, 1.0));
 #endif
         vec3 foamColor =

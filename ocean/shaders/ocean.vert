@@ -31,6 +31,11 @@ void main() {
         displace = displace && all(lessThan(abs(c.xy), vec2(c.w * uCull.y + uCull.z))) && c.w > -uCull.z;
     }
     vec3 d = displace ? modelDisplacement(rel) : vec3(0.0);
+#ifdef EFFECT_FIELD
+    // The effects (Effects.h): the field's height at the displaced point (effects_sample.glsl).
+    if (displace)
+        d.z += effectFieldAt(rel + d.xy).x;
+#endif
     vRel = base + d;
     vGrid = rel;
     gl_Position = uViewProj * vec4(vRel, 1.0);

@@ -9,10 +9,6 @@ in vec3 vRel;
 in vec2 vGrid;
 layout(location = 0) out vec4 gFootprint; // (dFdx(vGrid), dFdy(vGrid))
 layout(location = 1) out vec4 gOffset;    // (vGrid - vRel.xy, 0, 0): GBUFFER_DISPLACED only
-#ifdef EFFECT_GRID
-in vec3 vEffect;
-layout(location = 2) out vec4 gEffect; // (dE/dx, dE/dy, foam, 1); cleared to 0 on the base grid
-#endif
 
 void main() {
 #ifdef EFFECT_HOLES
@@ -21,7 +17,4 @@ void main() {
 #endif
     gFootprint = vec4(dFdx(vGrid), dFdy(vGrid));
     gOffset = vec4(vGrid - vRel.xy, 0.0, 0.0);
-#ifdef EFFECT_GRID
-    gEffect = vec4(vEffect, 1.0);
-#endif
 }

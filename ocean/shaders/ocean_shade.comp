@@ -11,9 +11,6 @@ uniform sampler2D uGeometry; // (dFdx, dFdy of the grid point)
 #ifdef GBUFFER_DISPLACED
 uniform sampler2D uOffset; // grid point - surface point (.xy)
 #endif
-#ifdef EFFECT_GRID
-uniform sampler2D uEffectGeometry; // (dE/dx, dE/dy, foam, 1 on an effect grid)
-#endif
 uniform bool uShadeSky; // OceanDesc::drawSky
 
 // The camera-relative surface point drawn at pixel q (inside the viewport: main() checks) -- the depth
@@ -39,9 +36,6 @@ vec3 seaColor(ivec2 p, vec3 rel) {
     vGrid = rel.xy + texelFetch(uOffset, p, 0).xy;
 #else
     vGrid = rel.xy; // vertical displacement only: the grid point is the surface point's
-#endif
-#ifdef EFFECT_GRID
-    vEffect = texelFetch(uEffectGeometry, p, 0).xyz;
 #endif
     // The lighting and foam lookups: the quad's derivatives the G-buffer kept.
     gGridDx = g.xy;

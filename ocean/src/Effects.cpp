@@ -96,8 +96,14 @@ ExplosionState explosionState(const Explosion& e, double t) {
     return s;
 }
 
-glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q) {
-    if (s.radius <= 0.0)
+double effectBandFade(double k, double kMax) {
+    return 1.0 - smoothstep(0.5 * kMax, kMax, k);
+}
+
+glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q,
+                         double kMax) {
+    const double band = effectBandFade(p.wavenumber, kMax);
+    if (s.radius <= 0.0 || band <= 0.0)
         return glm::dvec3(0.0);
     const double r0 = p.coreRadius;
     const double sr = std::sqrt(glm::dot(q, q) + r0 * r0); // s = sqrt(r^2 + r0^2) >= r0
@@ -109,14 +115,15 @@ glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, cons
     const double c = std::cos(arg);
     const double w = 1.0 - smoothstep(s.front - s.frontWidth, s.front + s.frontWidth, sr);
     const double taper = 1.0 - smoothstep(0.8 * rim, rim, sr);
-    const double h = s.amplitude * spread * w * c * taper;
+    const double h = band * s.amplitude * spread * w * c * taper;
     // dh/ds, then grad h = dh/ds * q / s (ds/dq = q / s): smooth at r = 0.
     const double dSpread = -r0 / (sr * sr);
     const double dc = -p.wavenumber * std::sin(arg);
     const double dw = -smoothstepDerivative(s.front - s.frontWidth, s.front + s.frontWidth, sr);
     const double dTaper = -smoothstepDerivative(0.8 * rim, rim, sr);
-    const double dh = s.amplitude * (dSpread * w * c * taper + spread * dw * c * taper +
-                                     spread * w * dc * taper + spread * w * c * dTaper);
+    const double dh = band * s.amplitude *
+                      (dSpread * w * c * taper + spread * dw * c * taper + spread * w * dc * taper +
+                       spread * w * c * dTaper);
     return {h, dh * q.x / sr, dh * q.y / sr};
 }
 
@@ -216,7 +223,7 @@ WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q) {
     return best;
 }
 
-double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral) {
+double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral, double kMax) {
     const double x = behind;
     if (!(x > 0.0) || c.amplitude <= 0.0 || s.sigma.empty())
         return 0.0;
@@ -225,7 +232,6 @@ double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, doub
     const double u = 8.0 * ta * ta; // tan^2 a / tan^2 a_Kelvin
     if (u >= 1.0)
         return 0.0;
-    const double kMax = TWO_PI / EFFECT_MIN_WAVELENGTH;
     const double sd = std::sqrt(1.0 - u);
     // Roots of 2 tan(a) T^2 - T + tan(a) = 0, written so neither divides by a vanishing tan(a).
     const double t1 = 2.0 * ta / (1.0 + sd);
@@ -237,7 +243,7 @@ double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, doub
         const double tt = roots[j];
         const double k = c.k0 * (1.0 + tt * tt);
         const double fade =
-            (1.0 - smoothstep(0.5 * kMax, kMax, k)) *
+            effectBandFade(k, kMax) *
             std::exp(-x * k / (TWO_PI * KELVIN_DECAY_WAVELENGTHS)); // short waves fade first (Effects.h)
         if (fade <= 0.0)
             continue;
@@ -258,26 +264,26 @@ bool insideWakeBox(const WakeState& s, const glm::dvec2& q) {
            q.x < s.boxMax.x && q.y < s.boxMax.y;
 }
 
-glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q) {
+glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q, double kMax) {
     if (!insideWakeBox(s, q))
         return glm::dvec3(0.0);
-    return wakeWaveAt(s, wakeCoords(s, q));
+    return wakeWaveAt(s, wakeCoords(s, q), kMax);
 }
 
-glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c) {
-    const double h = kelvinHeight(s, c, c.behind, c.lateral);
+glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax) {
+    const double h = kelvinHeight(s, c, c.behind, c.lateral, kMax);
     // Slope by central differences in the path's frame (e = 0.1 m: 0.2% error at the shortest 3 m wave),
     // turned into world axes: d(behind)/dq = -direction, d(lateral)/dq = the left normal. Where all four
     // difference points lie outside the wedge (or ahead of the ship) they are 0: skipped.
     const double e = 0.1;
     if (c.behind + e <= 0.0 || std::abs(c.lateral) - e >= std::sqrt(KELVIN_TAN2) * (c.behind + e))
         return {h, 0.0, 0.0};
-    const double dx =
-        (kelvinHeight(s, c, c.behind + e, c.lateral) - kelvinHeight(s, c, c.behind - e, c.lateral)) /
-        (2.0 * e);
-    const double dy =
-        (kelvinHeight(s, c, c.behind, c.lateral + e) - kelvinHeight(s, c, c.behind, c.lateral - e)) /
-        (2.0 * e);
+    const double dx = (kelvinHeight(s, c, c.behind + e, c.lateral, kMax) -
+                       kelvinHeight(s, c, c.behind - e, c.lateral, kMax)) /
+                      (2.0 * e);
+    const double dy = (kelvinHeight(s, c, c.behind, c.lateral + e, kMax) -
+                       kelvinHeight(s, c, c.behind, c.lateral - e, kMax)) /
+                      (2.0 * e);
     const glm::dvec2 left(-c.direction.y, c.direction.x);
     const glm::dvec2 g = -dx * c.direction + dy * left;
     return {h, g.x, g.y};
@@ -304,12 +310,12 @@ struct FieldSample {
     double foam = 0.0;
 };
 
-FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double t) {
+FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax) {
     FieldSample f;
     registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
         const ExplosionState s = explosionState(e, t);
         const glm::dvec2 q = xy - e.center;
-        const glm::dvec3 w = explosionWave(e.params, s, q);
+        const glm::dvec3 w = explosionWave(e.params, s, q, kMax);
         f.wave += w;
         f.foam = std::max(f.foam, explosionFoam(e.params, s, q, w.x));
     });
@@ -321,24 +327,116 @@ FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double 
         if (!insideWakeBox(s, q))
             return;
         const WakeCoords c = wakeCoords(s, q); // one path walk for both
-        f.wave += wakeWaveAt(s, c);
+        f.wave += wakeWaveAt(s, c, kMax);
         f.foam = std::max(f.foam, wakeFoam(s, c));
     });
     return f;
 }
 
-} // namespace
-
-glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t) {
-    const glm::dvec3 sum = sampleEffects(registry, xy, t).wave;
-    // Soft saturation E = L tanh(sum / L); its slope scales by 1 - tanh^2.
+/// Soft saturation E = L tanh(sum / L); its slope scales by 1 - tanh^2.
+glm::dvec3 saturate(const glm::dvec3& sum) {
     const double th = std::tanh(sum.x / EFFECT_HEIGHT_LIMIT);
     const double slope = 1.0 - th * th;
     return {EFFECT_HEIGHT_LIMIT * th, sum.y * slope, sum.z * slope};
 }
 
+} // namespace
+
+glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax) {
+    return saturate(sampleEffects(registry, xy, t, kMax).wave);
+}
+
 double effectsFoamAt(ecs::Registry& registry, const glm::dvec2& xy, double t) {
-    return sampleEffects(registry, xy, t).foam;
+    return sampleEffects(registry, xy, t, EFFECT_K_MAX).foam;
+}
+
+glm::dvec4 effectsFieldAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax) {
+    const FieldSample f = sampleEffects(registry, xy, t, kMax);
+    return glm::dvec4(saturate(f.wave), f.foam);
+}
+
+// ---- The effects field ----------------------------------------------------------------------------------
+
+void validate(const EffectFieldDesc& d) {
+    if (d.size < 16 || d.size > 2048 || d.size % 8 != 0)
+        throw std::invalid_argument("EffectFieldDesc.size must be a multiple of 8 in 16..2048, got " +
+                                    std::to_string(d.size));
+    if (d.levels < 1 || d.levels > 16)
+        throw std::invalid_argument("EffectFieldDesc.levels must be in 1..16, got " +
+                                    std::to_string(d.levels));
+    if (!(d.finestTexel >= 0.01 && d.finestTexel <= 100.0))
+        throw std::invalid_argument("EffectFieldDesc.finestTexel must be in 0.01..100 m");
+}
+
+EffectFieldLayout::EffectFieldLayout(const EffectFieldDesc& desc, const glm::dvec2& cameraWorld,
+                                     double finestUseful)
+    : mDesc(desc) {
+    validate(desc);
+    double texel = desc.finestTexel;
+    while (std::isfinite(finestUseful) && texel * 2.0 <= finestUseful && texel < 1e6)
+        texel *= 2.0;
+    for (int l = 0; l < desc.levels; ++l, texel *= 2.0) {
+        EffectFieldLevel level;
+        level.texel = texel;
+        // Snapped to the texel grid: the texels stay put in the world while the camera moves.
+        level.centre = glm::floor(cameraWorld / texel) * texel;
+        level.kMax = std::min(EFFECT_K_MAX, TWO_PI / (4.0 * texel));
+        level.inner = (0.5 * desc.size - 2.0) * texel;
+        level.band = desc.size / 8.0 * texel;
+        mLevels.push_back(level);
+    }
+}
+
+glm::dvec2 EffectFieldLayout::texelCentre(int l, int i, int j) const {
+    const EffectFieldLevel& level = mLevels[static_cast<size_t>(l)];
+    const double half = 0.5 * mDesc.size;
+    return level.centre + glm::dvec2(i + 0.5 - half, j + 0.5 - half) * level.texel;
+}
+
+EffectFieldLayout::Pick EffectFieldLayout::pick(const glm::dvec2& world) const {
+    for (int l = 0; l < levels(); ++l) {
+        const EffectFieldLevel& level = mLevels[static_cast<size_t>(l)];
+        const glm::dvec2 d = glm::abs(world - level.centre);
+        const double a = std::max(d.x, d.y);
+        if (a < level.inner)
+            return {l, std::clamp((a - (level.inner - level.band)) / level.band, 0.0, 1.0)};
+    }
+    return {};
+}
+
+namespace {
+
+/// Level l read bilinearly at `world` from texel values computed on the CPU (effects.glsl's
+/// effectFieldLevel()).
+glm::dvec4 bilinear(ecs::Registry& registry, const EffectFieldLayout& layout, int l, const glm::dvec2& world,
+                    double t) {
+    const EffectFieldLevel& level = layout.level(l);
+    const int size = layout.desc().size;
+    const glm::dvec2 u = (world - level.centre) / level.texel + 0.5 * size - 0.5;
+    const glm::dvec2 f = glm::floor(u);
+    const glm::dvec2 w = u - f;
+    const int i = std::clamp(static_cast<int>(f.x), 0, size - 2);
+    const int j = std::clamp(static_cast<int>(f.y), 0, size - 2);
+    auto at = [&](int di, int dj) {
+        return effectsFieldAt(registry, layout.texelCentre(l, i + di, j + dj), t, level.kMax);
+    };
+    return glm::mix(glm::mix(at(0, 0), at(1, 0), w.x), glm::mix(at(0, 1), at(1, 1), w.x), w.y);
+}
+
+} // namespace
+
+glm::dvec4 sampleEffectField(ecs::Registry& registry, const EffectFieldLayout& layout, const glm::dvec2& xy,
+                             double t) {
+    const EffectFieldLayout::Pick p = layout.pick(xy);
+    if (p.level < 0)
+        return glm::dvec4(0.0);
+    glm::dvec4 v = bilinear(registry, layout, p.level, xy, t);
+    if (p.blend > 0.0) {
+        const glm::dvec4 next =
+            p.level + 1 < layout.levels() ? bilinear(registry, layout, p.level + 1, xy, t) : glm::dvec4(0.0);
+        v = glm::mix(v, next, p.blend);
+    }
+    return v;
 }
 
 double oceanHeightAt(ecs::Registry& registry, ecs::Entity ocean, const glm::dvec2& xy, double t) {

@@ -45,6 +45,13 @@ OceanFrame makeOceanFrame(const Pose& pose, float fovYRadians, int width, int he
     return f;
 }
 
+EffectFieldLayout effectFieldLayout(const EffectFieldDesc& desc, const OceanFrame& frame) {
+    const double focal = std::abs(static_cast<double>(frame.camera.proj[1][1])); // 1 / tan(fovY / 2)
+    const double pixelAngle = focal > 0.0 && frame.height > 0 ? 2.0 / (focal * frame.height) : 0.0;
+    return EffectFieldLayout(desc, glm::dvec2(frame.camera.origin),
+                             pixelAngle * std::max(std::abs(frame.camera.origin.z), 1.0));
+}
+
 namespace {
 
 void validateEffectGrids(const EffectGridDesc& g) {
@@ -62,6 +69,11 @@ void validateEffectGrids(const EffectGridDesc& g) {
         check(std::isfinite(exponent) && exponent >= 0.25 && exponent <= 8.0,
               std::string(name) + "Exponent must be in [0.25, 8], got " + std::to_string(exponent));
     }
+    check(g.maxExplosionGrids >= 0 && g.maxExplosionGrids <= 4096 && g.maxWakeGrids >= 0 &&
+              g.maxWakeGrids <= 4096,
+          "maxExplosionGrids and maxWakeGrids must be in [0, 4096]");
+    check(std::isfinite(g.minAngularSize) && g.minAngularSize >= 0.0,
+          "minAngularSize must be finite and >= 0, got " + std::to_string(g.minAngularSize));
 }
 
 } // namespace
@@ -69,6 +81,7 @@ void validateEffectGrids(const EffectGridDesc& g) {
 OceanComponent makeOcean(const OceanDesc& desc) {
     validateLighting(desc.lighting); // names the field (ocean/include/ocean/Lighting.h)
     validateEffectGrids(desc.effectGrids);
+    validate(desc.effectField);
     (void)RadialGrid(desc.grid); // validates the grid description, naming the field
     OceanComponent c;
     c.desc = desc;
@@ -79,7 +92,8 @@ OceanComponent makeOcean(const OceanDesc& desc) {
 struct OceanRenderer::Programs {
     std::map<std::string, gl::Program> sea;         // per surface model's GLSL set
     std::map<std::string, gl::Program> seaFeedback; // vertex stage only, captures vRel
-    std::map<std::string, gl::Program> effects;     // per model and kinds present: secondary grids
+    std::map<std::string, gl::Program> effectField; // per kinds present: the effects field's compute pass
+    std::map<std::string, gl::Program> effects;     // per model: secondary grids
     std::map<std::string, gl::Program> effectsFeedback;
     std::map<std::string, gl::Program> seaGeometry; // compute shading: the grids into the G-buffer
     std::map<std::string, gl::Program> effectsGeometry;
@@ -310,6 +324,8 @@ double effectHeightBound(const OceanComponent& ocean) {
 }
 
 void countEffectUploads(const EffectsGpu& fx, OceanStats& stats) {
+    stats.effectField = fx.fieldStats();
+    stats.uploads += stats.effectField.uploads;
     stats.explosions.active = fx.count(EffectKind::Explosion);
     stats.explosions.drawn = fx.drawn(EffectKind::Explosion);
     stats.explosions.uploads = fx.uploads(EffectKind::Explosion);
@@ -346,20 +362,19 @@ OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& 
 }
 
 unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback, bool geometry) {
-    const std::string kinds = mEffects->defines();
     gl::Program& program = (feedback   ? mPrograms->effectsFeedback
                             : geometry ? mPrograms->effectsGeometry
-                                       : mPrograms->effects)[gpu.programKey + kinds];
+                                       : mPrograms->effects)[gpu.programKey];
     if (!program) {
         ++mStats.programsBuilt;
         const std::vector<std::string> model = gpu.model->glslFiles();
         const std::string name = "ocean effect grids (" + gpu.programKey + ")";
-        auto vertex = sources(concat(model, {"effects.glsl", "effects.vert"}), kinds);
+        const std::string field = "#define EFFECT_FIELD\n";
+        auto vertex = sources(concat(model, {"effects_sample.glsl", "effects.vert"}), field);
         if (geometry)
-            program = gl::buildProgram(
-                {{gl::ShaderStage::Vertex, vertex},
-                 {gl::ShaderStage::Fragment, sources({"ocean_gbuffer.frag"}, "#define EFFECT_GRID\n")}},
-                name + " geometry");
+            program = gl::buildProgram({{gl::ShaderStage::Vertex, vertex},
+                                        {gl::ShaderStage::Fragment, sources({"ocean_gbuffer.frag"})}},
+                                       name + " geometry");
         else if (feedback)
             program =
                 gl::buildProgram({{gl::ShaderStage::Vertex, vertex}}, name + " feedback", {"vRel", "vLocal"});
@@ -367,8 +382,20 @@ unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback, bool geometry) {
             program = gl::buildProgram(
                 {{gl::ShaderStage::Vertex, vertex},
                  {gl::ShaderStage::Fragment,
-                  sources(concat(model, {"sky.glsl", "ocean.frag"}), "#define EFFECT_GRID\n")}},
+                  sources(concat(model, {"effects_sample.glsl", "sky.glsl", "ocean.frag"}), field)}},
                 name);
+    }
+    return program.id();
+}
+
+unsigned OceanRenderer::effectFieldProgram() {
+    const std::string kinds = mEffects->defines();
+    gl::Program& program = mPrograms->effectField[kinds];
+    if (!program) {
+        ++mStats.programsBuilt;
+        program = gl::buildProgram(
+            {{gl::ShaderStage::Compute, sources({"effects.glsl", "effects_field.comp"}, kinds)}},
+            "ocean effects field");
     }
     return program.id();
 }
@@ -441,7 +468,8 @@ struct OceanRenderer::FramePasses {
     const glm::mat4 invViewProj;
     const FrameMarks& marks;
     // Decided by compute():
-    bool holes = false;     ///< effects in the frame: the sea has holes, the secondary grids draw
+    bool effects = false;   ///< effects in the frame: every grid and the shading read the effects field
+    bool holes = false;     ///< ... and secondary grids are drawn: the base grid has holes where they are
     bool displaced = false; ///< the surface moves sideways (Gerstner, FFT)
     bool deferred = false;  ///< compute shading (OceanDesc::computeShading) is attached
     bool tiled = false;     ///< ... by tiles (OceanDesc::shadeTiles)
@@ -450,7 +478,7 @@ struct OceanRenderer::FramePasses {
     void compute();
     /// The base grid; false when no sea is in view (nothing drawn).
     bool sea();
-    void effects();
+    void grids();
     void sky();
     void shade();
     /// The frame's last pass: shade under compute shading, else the sky.
@@ -466,18 +494,24 @@ void OceanRenderer::FramePasses::compute() {
     const SurfaceGpuStats work = gpu.model->update(frame.time, frame.camera.origin);
     r.mStats.passes += work.computePasses;
     r.mStats.uploads += work.uploads;
-    marks.mark(PassCompute);
     // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
     if (hasEffects(registry)) {
-        r.mEffects->prepare(registry, frame, effectHeightBound(ocean), ocean.desc.effectGrids);
+        r.mEffects->prepare(registry, frame, effectHeightBound(ocean), ocean.desc.effectGrids,
+                            ocean.desc.effectField);
+        effects = r.mEffects->any();
+        holes = effects && r.mEffects->drawn(EffectKind::Explosion) + r.mEffects->drawn(EffectKind::Wake) > 0;
+        if (effects)
+            r.mEffects->computeField(r.effectFieldProgram());
         countEffectUploads(*r.mEffects, r.mStats);
-        holes = r.mEffects->any();
+        r.mStats.passes += r.mStats.effectField.passes;
     }
-    fxDefines = holes ? r.mEffects->defines() : std::string();
+    fxDefines =
+        std::string(effects ? "#define EFFECT_FIELD\n" : "") + (holes ? "#define EFFECT_HOLES\n" : "");
+    marks.mark(PassCompute); // the surface model's passes and the effects field's
     // Compute shading: the grids only fill a G-buffer sharing the host's depth (ComputeShading.h).
     displaced = horizontalGuard(ocean) > 0.0;
     deferred = ocean.desc.computeShading &&
-               r.mCompute->attach(frame.targetFramebuffer, frame.width, frame.height, displaced, holes);
+               r.mCompute->attach(frame.targetFramebuffer, frame.width, frame.height, displaced);
     r.mStats.computeShaded = deferred;
     // Tiles (OceanDesc::shadeTiles): Auto asks the renderer's name once.
     if (r.mPrograms->softwareRenderer < 0) {
@@ -528,7 +562,7 @@ GLuint OceanRenderer::FramePasses::shadeProgram(int kind) {
     const std::string base = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
                              r.mCompute->outputFormat() + "\n" + ComputeShading::tileDefines();
     const std::string seaDefines =
-        base + (holes ? "#define EFFECT_GRID\n" : "") + (displaced ? "#define GBUFFER_DISPLACED\n" : "");
+        base + (effects ? "#define EFFECT_FIELD\n" : "") + (displaced ? "#define GBUFFER_DISPLACED\n" : "");
     const bool skyOnly = ComputeShading::skyOnly(kind);
     const std::string variant =
         (skyOnly ? base : seaDefines) + (kind < 0 ? std::string()
@@ -543,6 +577,8 @@ GLuint OceanRenderer::FramePasses::shadeProgram(int kind) {
         if (!skyOnly)
             for (const std::string& f : gpu.model->glslFiles())
                 files.push_back(f);
+        if (!skyOnly && effects)
+            files.push_back("effects_sample.glsl");
         files.insert(files.end(), {"sky.glsl", "sky.frag", "shade_pixels.glsl"});
         if (!skyOnly)
             files.push_back("ocean.frag");
@@ -555,6 +591,8 @@ GLuint OceanRenderer::FramePasses::shadeProgram(int kind) {
     const GLuint prog = program.id();
     setSurfaceUniforms(prog, ocean, gpu, frame);
     r.mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    if (effects && !skyOnly)
+        r.mEffects->bindField(prog);
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
                               glm::value_ptr(invViewProj));
     return prog;
@@ -597,16 +635,22 @@ gl::Program& OceanRenderer::FramePasses::seaProgram() {
     if (!program) {
         ++r.mStats.programsBuilt;
         const std::vector<std::string> model = gpu.model->glslFiles();
+        std::vector<std::string> vertex = model;
         std::vector<std::string> frag = deferred ? std::vector<std::string>{} : model;
-        if (holes)
-            frag.emplace_back("effects.glsl");
+        // The G-buffer's fragment stage needs the field's file only for the holes.
+        const std::string fragDefines = deferred && !holes ? std::string() : fxDefines;
+        if (effects)
+            vertex.emplace_back("effects_sample.glsl");
+        if (!fragDefines.empty())
+            frag.emplace_back("effects_sample.glsl");
+        vertex.emplace_back(vert);
         program = gl::buildProgram(
-            {{gl::ShaderStage::Vertex, sources(concat(model, {vert}))},
+            {{gl::ShaderStage::Vertex, sources(vertex, fxDefines)},
              {gl::ShaderStage::Fragment, sources(deferred ? concat(frag, {"ocean_gbuffer.frag"})
                                                           : concat(frag, {"sky.glsl", "ocean.frag"}),
-                                                 holes ? fxDefines + "#define EFFECT_HOLES\n" : "")}},
+                                                 fragDefines)}},
             std::string(deferred ? "ocean sea geometry (" : "ocean sea (") + gpu.programKey +
-                (holes ? ", effect holes" : "") + ")");
+                (effects ? ", effects field" : "") + (holes ? ", effect holes" : "") + ")");
     }
     return program;
 }
@@ -620,8 +664,10 @@ bool OceanRenderer::FramePasses::sea() {
         return false;
     if (!deferred)
         r.mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-    if (holes)
-        r.mEffects->bind(sea);
+    if (effects) {
+        r.mEffects->bindField(sea);
+        setCullUniform(sea, ocean, frame, effectHeightBound(ocean)); // the field raises the sea too
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
@@ -654,9 +700,7 @@ void OceanRenderer::FramePasses::drawSeaGrid() {
 }
 
 /// The secondary grids, one instanced draw per kind in view (after the base grid: the same depth test).
-void OceanRenderer::FramePasses::effects() {
-    if (deferred)
-        r.mCompute->drawEffects(true);
+void OceanRenderer::FramePasses::grids() {
     const GLuint fx = r.effectProgram(gpu, false, deferred);
     glUseProgram(fx);
     setSurfaceUniforms(fx, ocean, gpu, frame);
@@ -664,7 +708,7 @@ void OceanRenderer::FramePasses::effects() {
     // off: every vertex evaluated.
     setCullUniform(fx, ocean, frame, effectHeightBound(ocean));
     r.mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-    r.mEffects->bind(fx);
+    r.mEffects->bindField(fx);
     for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {
         EffectKindStats& ks = kind == EffectKind::Explosion ? r.mStats.explosions : r.mStats.wakes;
         const long long vertices = r.mEffects->draw(fx, kind);
@@ -711,7 +755,7 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
             *this, registry, frame, ocean, prepare(e, ocean), glm::inverse(frame.camera.viewProj), marks};
         passes.compute();
         if (passes.sea() && passes.holes)
-            passes.effects();
+            passes.grids();
         passes.last(); // no sea in view: the sky (or the shading pass) alone
     });
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
@@ -771,7 +815,8 @@ std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Regi
         throw std::invalid_argument("OceanRenderer::effectVertices(): entity " + ecs::toString(entity) +
                                     " has no OceanComponent");
     Gpu& gpu = prepare(entity, *ocean);
-    mEffects->prepare(registry, frame, effectHeightBound(*ocean), ocean->desc.effectGrids);
+    mEffects->prepare(registry, frame, effectHeightBound(*ocean), ocean->desc.effectGrids,
+                      ocean->desc.effectField);
     if (mEffects->drawn(kind) == 0)
         return {};
     if (!mPrograms->feedbackFbo) {
@@ -781,14 +826,19 @@ std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Regi
     }
     gl::StateGuard guard;
     gpu.model->update(frame.time, frame.camera.origin);
+    mEffects->computeField(effectFieldProgram());
     const GLuint prog = effectProgram(gpu, true, false);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
     glUseProgram(prog);
     setSurfaceUniforms(prog, *ocean, gpu, frame);
-    mEffects->bind(prog);
+    mEffects->bindField(prog);
     const size_t count = static_cast<size_t>(mEffects->gridVertices(kind) * mEffects->drawn(kind));
-    static_assert(sizeof(EffectVertex) == 5 * sizeof(float), "interleaved vRel, vLocal");
-    gl::Buffer captured = gl::Buffer::create(count * sizeof(EffectVertex), nullptr);
+    struct Captured {
+        glm::vec3 position;
+        glm::vec2 local;
+    };
+    static_assert(sizeof(Captured) == 5 * sizeof(float), "interleaved vRel, vLocal");
+    gl::Buffer captured = gl::Buffer::create(count * sizeof(Captured), nullptr);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
     glEnable(GL_RASTERIZER_DISCARD);
     glBeginTransformFeedback(GL_POINTS);
@@ -796,9 +846,14 @@ std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Regi
     glEndTransformFeedback();
     glDisable(GL_RASTERIZER_DISCARD);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    std::vector<Captured> raw(count);
+    glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(Captured)), raw.data());
+    const size_t perInstance = static_cast<size_t>(mEffects->gridVertices(kind));
+    const size_t firstGrid =
+        kind == EffectKind::Explosion ? 0 : static_cast<size_t>(mEffects->drawn(EffectKind::Explosion));
     std::vector<EffectVertex> out(count);
-    glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(EffectVertex)),
-                            out.data());
+    for (size_t i = 0; i < count; ++i)
+        out[i] = {raw[i].position, raw[i].local, mEffects->gridCentres()[firstGrid + i / perInstance]};
     return out;
 }
 

@@ -575,7 +575,8 @@ def case_effects(c, exe, source_dir, tmp):
     """The demo flight's events reach the picture and the per-frame counters (summary.json frames[i].counters):
     the 3.0 s explosion is flat at t = 3.0 and active and drawn after; both ships' wakes are active; with
     --no-events every effect counter is 0 and the frame costs exactly the plain ocean's passes, draws and
-    uploads (with events: that plus one pass and draw per kind drawn)."""
+    uploads (with events: that plus the effects field's compute pass and uploads, and one pass and draw per
+    kind of secondary grid drawn)."""
     flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
     args = ["--start", "3", "--end", "5", "--fps", "2", "--size", "160x90", "--no-images"]
 
@@ -613,11 +614,16 @@ def case_effects(c, exe, source_dir, tmp):
     for fp, fe in zip(f_plain, f_fx):
         kp, ke = fp["counters"], fe["counters"]
         zero = all(kp[kind][field] == 0 for kind in ("explosions", "wakes")
-                   for field in ("active", "drawn", "passes", "draws", "uploads", "vertices"))
+                   for field in ("active", "drawn", "passes", "draws", "uploads", "vertices")) and \
+            all(v == 0 for v in kp["effect_field"].values())
         c.check(zero, f"t={fp['time_s']}: no effect counter is non-zero without events", str(kp))
-        extra_passes = ke["explosions"]["passes"] + ke["wakes"]["passes"]
+        field = ke["effect_field"]
+        c.check(field["passes"] == 1 and field["tiles"] > 0 and field["texels"] == 64 * field["tiles"],
+                f"t={fe['time_s']}: the effects field is evaluated once, over the tiles the effects touch",
+                str(field))
+        extra_passes = ke["explosions"]["passes"] + ke["wakes"]["passes"] + field["passes"]
         extra_draws = ke["explosions"]["draws"] + ke["wakes"]["draws"]
-        extra_uploads = ke["explosions"]["uploads"] + ke["wakes"]["uploads"]
+        extra_uploads = ke["explosions"]["uploads"] + ke["wakes"]["uploads"] + field["uploads"]
         c.check(ke["passes"] == kp["passes"] + extra_passes and ke["draws"] == kp["draws"] + extra_draws and
                 ke["uploads"] == kp["uploads"] + extra_uploads,
                 f"t={fp['time_s']}: effects add exactly their own passes, draws and uploads",

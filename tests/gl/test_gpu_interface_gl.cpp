@@ -1,5 +1,6 @@
 // The CPU/GPU interface (ocean/src/gpu/GpuInterface.h) against the driver: the real effects.glsl and the
-// FFT passes compiled with the ocean's generated #defines; every member of ExplosionGpu and WakeGpu sits at
+// FFT passes compiled with the ocean's generated #defines; every member of ExplosionGpu, WakeGpu and
+// EffectTileGpu (the effects field pass, effects_field.comp) sits at
 // the offset the C++ struct gives it, the arrays' strides equal sizeof, and each storage block is bound at
 // its slot of the StorageBinding enum. A member added, removed or reordered on one side fails here.
 #include "engine/gl/GlContext.h"
@@ -27,9 +28,22 @@ std::unique_ptr<gl::GlContext>& context() {
     return ctx;
 }
 
+/// A compute program of the ocean's generated #defines (both effect kinds on), then `file` (an embedded
+/// shader), then `main` (test code, or nothing when the file has its own).
+gl::Program effectsCompute(const char* file, const std::string& main, const std::string& name) {
+    std::vector<gl::ShaderSource> sources{
+        {"<ocean constants>", shaderConstantDefines()},
+        {"<effect constants>",
+         effectConstantDefines() + "#define EFFECTS_EXPLOSIONS\n#define EFFECTS_WAKES\n"},
+        {file, std::string(shaderText(file))}};
+    if (!main.empty())
+        sources.push_back({"<test>", main});
+    return gl::buildProgram({{gl::ShaderStage::Compute, sources}}, "GPU interface test: " + name);
+}
+
 /// A compute program over effects.glsl that reads every member of both structs (so none is optimised out).
 gl::Program effectsProgram() {
-    const std::string main = R"(
+    return effectsCompute("effects.glsl", R"(
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) writeonly buffer Sink { float sink[]; };
 void main() {
@@ -39,17 +53,28 @@ void main() {
               e.front + e.frontWidth + e.crownFoam + e.crownRadius + e.peakAmplitude;
     sink[1] = w.ship.x + w.ship.y + w.gridRadius + w.points + w.shipLength + w.beam + w.waveLife + w.foamLife +
               w.boxMin.x + w.boxMin.y + w.boxMax.x + w.boxMax.y;
-    sink[2] = uWakePoints[0].x + float(uNeighbours[0]) + float(uExplosionCount + uWakeCount);
+    sink[2] = uWakePoints[0].x;
 }
-)";
-    return gl::buildProgram(
-        {{gl::ShaderStage::Compute,
-          {{"<ocean constants>", shaderConstantDefines()},
-           {"<effect constants>",
-            effectConstantDefines() + "#define EFFECTS_EXPLOSIONS\n#define EFFECTS_WAKES\n"},
-           {"effects.glsl", std::string(shaderText("effects.glsl"))},
-           {"<test>", main}}}},
-        "GPU interface test");
+)",
+                          "effects");
+}
+
+/// The real effects field pass: effects.glsl, then effects_field.comp (its own main).
+gl::Program fieldProgram() {
+    const std::string field(shaderText("effects_field.comp"));
+    return effectsCompute("effects.glsl", field, "effects field");
+}
+
+/// effects_sample.glsl with a main that reads the field and the grid list.
+gl::Program sampleProgram() {
+    return effectsCompute("effects_sample.glsl", R"(
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) writeonly buffer Sink { float sink[]; };
+void main() {
+    sink[0] = effectFieldAt(vec2(1.0)).x + (insideEffectGrid(vec2(0.0)) ? 1.0 : 0.0);
+}
+)",
+                          "effects sample");
 }
 
 GLint resource(GLuint program, GLenum interface, const std::string& name, GLenum property) {
@@ -100,17 +125,38 @@ TEST(GpuInterface, EffectStructsMatchTheDriversLayout) {
                    {"boxMin", offsetof(WakeGpu, boxMin)},
                    {"boxMax", offsetof(WakeGpu, boxMax)}});
     EXPECT_EQ(resource(p, GL_BUFFER_VARIABLE, "uWakePoints[0]", GL_ARRAY_STRIDE), 16); // two vec4 per point
+    const gl::Program field = fieldProgram();
+    expectOffsets(field.id(), "uTiles", sizeof(EffectTileGpu),
+                  {{"level", offsetof(EffectTileGpu, level)},
+                   {"tileX", offsetof(EffectTileGpu, tileX)},
+                   {"tileY", offsetof(EffectTileGpu, tileY)},
+                   {"first", offsetof(EffectTileGpu, first)},
+                   {"explosions", offsetof(EffectTileGpu, explosions)},
+                   {"wakes", offsetof(EffectTileGpu, wakes)}});
 }
 
 TEST(GpuInterface, StorageBlocksSitAtTheEnumsSlots) {
     ASSERT_TRUE(context());
     const gl::Program program = effectsProgram();
-    const std::vector<std::pair<const char*, int>> blocks = {{"EffectExplosions", EFFECT_EXPLOSIONS_BINDING},
-                                                             {"EffectWakes", EFFECT_WAKES_BINDING},
-                                                             {"EffectWakePoints", EFFECT_WAKE_POINTS_BINDING},
-                                                             {"EffectNeighbours", EFFECT_NEIGHBOURS_BINDING}};
-    for (const auto& [block, slot] : blocks)
-        EXPECT_EQ(resource(program.id(), GL_SHADER_STORAGE_BLOCK, block, GL_BUFFER_BINDING), slot) << block;
+    const std::vector<std::pair<const char*, int>> blocks = {
+        {"EffectExplosions", EFFECT_EXPLOSIONS_BINDING},  {"EffectWakes", EFFECT_WAKES_BINDING},
+        {"EffectWakePoints", EFFECT_WAKE_POINTS_BINDING}, {"EffectFieldTiles", EFFECT_FIELD_TILES_BINDING},
+        {"EffectFieldLists", EFFECT_FIELD_LISTS_BINDING}, {"EffectGrids", EFFECT_GRIDS_BINDING}};
+    const gl::Program field = fieldProgram();
+    const gl::Program sample = sampleProgram();
+    for (const auto& [block, slot] : blocks) {
+        const std::string b = block;
+        const GLuint p = b == "EffectGrids"               ? sample.id()
+                         : b.rfind("EffectField", 0) == 0 ? field.id()
+                                                          : program.id();
+        EXPECT_EQ(resource(p, GL_SHADER_STORAGE_BLOCK, block, GL_BUFFER_BINDING), slot) << block;
+    }
+    // The field's image at its unit.
+    const GLint image = glGetUniformLocation(field.id(), "uFieldImage");
+    ASSERT_GE(image, 0);
+    GLint unit = -1;
+    glGetUniformiv(field.id(), image, &unit);
+    EXPECT_EQ(unit, EFFECT_FIELD_IMAGE_UNIT);
     // The slots the effects use are theirs alone.
     for (int other : {FFT_PLANES_BINDING, FFT_H0_PAIRS_BINDING, FFT_OMEGA_MULTIPLES_BINDING,
                       FFT_TWIDDLES_BINDING, SHADE_TILE_BINDING})
@@ -142,7 +188,9 @@ TEST(GpuInterface, BindingDefinesAreGeneratedFromTheEnum) {
                                                   {"FFT_TWIDDLES_BINDING", FFT_TWIDDLES_BINDING},
                                                   {"SHADE_TILE_BINDING", SHADE_TILE_BINDING},
                                                   {"EFFECT_EXPLOSIONS_BINDING", EFFECT_EXPLOSIONS_BINDING},
-                                                  {"EFFECT_NEIGHBOURS_BINDING", EFFECT_NEIGHBOURS_BINDING}})
+                                                  {"EFFECT_FIELD_TILES_BINDING", EFFECT_FIELD_TILES_BINDING},
+                                                  {"EFFECT_GRIDS_BINDING", EFFECT_GRIDS_BINDING},
+                                                  {"EFFECT_FIELD_IMAGE_UNIT", EFFECT_FIELD_IMAGE_UNIT}})
         EXPECT_NE(d.find("#define " + name + " " + std::to_string(slot) + "\n"), std::string::npos) << name;
 }
 

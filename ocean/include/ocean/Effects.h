@@ -1,6 +1,8 @@
 // Effects: local perturbations of the sea (GPU Gems 2 §18.3) — explosions and ship trails — as ECS
-// components created by events, each drawn on its own secondary radial grid centred at the effect and
-// composited with the base surface, and included in the CPU height queries.
+// components created by events. The GPU evaluates all of them once a frame into the effects field, a
+// camera-centred clipmap (EffectFieldLayout) that every grid reads; the effects large on screen also get a
+// secondary radial grid centred at the effect (§18.3) for their geometry. The CPU height queries include
+// them: the analytic field (effectsAt, oceanHeightAt) or exactly what the GPU draws (sampleEffectField).
 //
 // STEP BY STEP (a host game)
 //   1. pacifica::ocean::EffectsSystem effects(registry, events);   // subscribes to the spawn events
@@ -13,9 +15,10 @@
 //   5. Subscribe to EffectEnded to learn when an effect faded out.
 //
 // The field of all active effects together is one function E(x, t) of the world point x (summed, then
-// softly saturated at EFFECT_HEIGHT_LIMIT); every secondary grid draws base + E, so overlapping effects
-// meet without seams, and the base grid leaves out the discs the effect grids cover. The GLSL twin is
-// ocean/shaders/effects.glsl; tests compare them (tests/gl/test_effects_gl.cpp).
+// softly saturated at EFFECT_HEIGHT_LIMIT); every grid draws base + E read from the field, so overlapping
+// effects meet without seams, and the base grid leaves out the discs the secondary grids cover. The GLSL
+// twins are ocean/shaders/effects.glsl (the field), effects_field.comp (its texels) and effects_sample.glsl
+// (the read); tests compare them (tests/gl/test_effects_gl.cpp).
 #pragma once
 
 #include "engine/Ecs.h"
@@ -40,6 +43,11 @@ inline constexpr double KELVIN_TAN2 = 1.0 / 8.0;
 /// Shortest wave a secondary grid resolves, metres: components of the wake (the divergent waves near the
 /// track have unbounded wave number) fade out between twice this and this wavelength.
 inline constexpr double EFFECT_MIN_WAVELENGTH = 3.0;
+/// The wave number of EFFECT_MIN_WAVELENGTH: an effect's components fade out between half this and this
+/// (the analytic field's band limit; a level of the effects field lowers it to its own, EffectFieldLevel).
+inline constexpr double EFFECT_K_MAX = 2.0 * 3.14159265358979323846 / EFFECT_MIN_WAVELENGTH;
+/// The band-limit factor of a component of wave number k: 1 - smoothstep(kMax / 2, kMax, k).
+double effectBandFade(double k, double kMax);
 /// A wake component of wavelength lambda decays as e^(-x / (KELVIN_DECAY_WAVELENGTHS lambda)) with the
 /// distance x behind the ship: the short divergent waves break and fade within tens of their wavelengths
 /// while the long transverse ones run on (heuristic; viscous damping, 2 nu k^2 (Lamb 1932 §348), alone is far
@@ -94,8 +102,10 @@ ExplosionState explosionState(const Explosion& e, double t);
 /// (no wave ahead of the group front), T = 1 - smoothstep(0.8 R, R, r) (zero at the grid's rim).
 /// The seed's printed formula is missing from our copy; this form keeps its symbols (I0, b, k, w) and its
 /// 1/r spreading, regularised so nothing is singular at r = 0 or tau = 0. Returns (h, dh/dx, dh/dy).
-/// All radial factors are functions of s = sqrt(r^2 + r0^2) (so the field is smooth at r = 0).
-glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q);
+/// All radial factors are functions of s = sqrt(r^2 + r0^2) (so the field is smooth at r = 0). The ring is
+/// scaled by effectBandFade(k, kMax) (a ring shorter than the band limit is not drawn).
+glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q,
+                         double kMax = EFFECT_K_MAX);
 /// Crown foam coverage in [0, 1] at offset q: foam * exp(-(r / crownRadius)^2), plus the §18.3 height
 /// threshold on the ring's crests (alpha = (h - H0) / (Hmax - H0), H0 = 0.35 I0, Hmax = 0.8 I0).
 double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q, double h);
@@ -167,13 +177,15 @@ WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q);
 /// and y beside the track, tan a = |y| / x <= 1/sqrt(8), the wave directions T = tan(theta) solve
 /// 2 tan(a) T^2 - T + tan(a) = 0 (transverse and divergent), wave number k0 (1 + T^2), phase
 /// k0 sqrt(1 + T^2) (x + |y| T). Amplitude A e^(-age/waveLife) / sqrt(1 + x / L); the divergent
-/// system at 0.6 of the transverse. c gives the path's amplitude, k0 and age there. Returns h.
-double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral);
+/// system at 0.6 of the transverse. c gives the path's amplitude, k0 and age there. Each system is scaled
+/// by effectBandFade(k, kMax). Returns h.
+double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral,
+                    double kMax = EFFECT_K_MAX);
 /// (h, dh/dx, dh/dy) of the wake at q (relative to the ship).
-glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q);
+glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q, double kMax = EFFECT_K_MAX);
 /// The same from the point's path coordinates (wakeCoords), for a caller that also needs them (foam); no box
 /// test.
-glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c);
+glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax = EFFECT_K_MAX);
 /// Wake foam in [0, 1]: the turbulent strip behind the stern, exp(-(y / w)^2), w = beam (1 + x / 400 m),
 /// times its growth/decay over the path's age.
 double wakeFoam(const WakeState& s, const WakeCoords& c);
@@ -203,8 +215,8 @@ struct EffectEnded {
 // ---- The system -----------------------------------------------------------------------------------------
 
 struct EffectsDesc {
-    int maxExplosions = 64;     ///< cap; policy: drop the least visible (see EffectsSystem)
-    int maxWakes = 8;           ///< cap on trails drawn per frame; the least visible are skipped
+    int maxExplosions = 1024;   ///< cap; policy: drop the least visible (see EffectsSystem)
+    int maxWakes = 256;         ///< cap on trails drawn per frame; the least visible are skipped
     double endAmplitude = 0.01; ///< metres: an effect whose peak height falls below ends
 };
 
@@ -288,11 +300,71 @@ private:
     size_t mNextExplosion = 0;
 };
 
-/// Sum of every active effect at world point xy, time t: (height, dh/dx, dh/dy), saturated as the GPU
-/// does. Zero with no effects.
-glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t);
-/// Foam coverage of the effects at xy (max over effects), as the GPU computes it per vertex.
+/// Sum of every active effect at world point xy, time t: (height, dh/dx, dh/dy), saturated (E = L tanh(sum
+/// / L)), band-limited at kMax. Zero with no effects. The analytic field: the effects field's texels hold it
+/// (EffectFieldLayout), the GPU draws it interpolated.
+glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax = EFFECT_K_MAX);
+/// Foam coverage of the effects at xy (max over effects).
 double effectsFoamAt(ecs::Registry& registry, const glm::dvec2& xy, double t);
+/// (E, dE/dx, dE/dy, foam) at xy in one pass over the effects.
+glm::dvec4 effectsFieldAt(ecs::Registry& registry, const glm::dvec2& xy, double t,
+                          double kMax = EFFECT_K_MAX);
+
+// ---- The effects field: what the GPU draws ----------------------------------------------------------------
+
+/// The GPU evaluates the effects once per frame into a camera-centred clipmap (one texture array, a level per
+/// layer, each level twice the texel of the one before; ocean/shaders/effects_field.comp) and every grid
+/// samples it, so an effect costs the texels it touches, whatever the grids' vertex counts and however many
+/// effects overlap. Level L holds the field band-limited to its texel (components shorter than 4 texels fade
+/// out between 8 and 4 texels a wavelength: EffectFieldLevel::kMax) so that coarse levels do not alias.
+inline constexpr int EFFECT_FIELD_MAX_LEVELS = 16;
+struct EffectFieldDesc {
+    int size = 512;           ///< texels per side of each level (a multiple of 8, 16..2048)
+    int levels = 9;           ///< 1..16; level L's texel is finestTexel 2^L (9 levels of 0.5 m: +-32 km)
+    double finestTexel = 0.5; ///< metres
+};
+/// Throws std::invalid_argument naming the field (EffectFieldDesc.size ...) if out of range.
+void validate(const EffectFieldDesc& desc);
+
+struct EffectFieldLevel {
+    glm::dvec2 centre{0.0}; ///< world; texel (i, j) is centred at centre + (i + 0.5 - size/2, j + ...) texel
+    double texel = 0.0;     ///< metres
+    double kMax = 0.0;      ///< band limit: min(EFFECT_K_MAX, 2 pi / (4 texel)), 4 texels per wavelength
+    double inner = 0.0; ///< half-width (Chebyshev, from centre) where this level is read: (size/2 - 2) texel
+    double band = 0.0;  ///< outermost width of `inner` that blends into the next level: size/8 texels
+};
+
+/// The levels of the field around a camera, as the GPU lays them out: each centre snapped to its level's
+/// texel grid (so the texels stay put in the world while the camera moves within a texel). The finest level
+/// is the coarsest finestTexel 2^n no larger than `finestUseful` (a pixel's footprint on the nearest sea,
+/// effectFieldLayout() in Ocean.h): from altitude no texel finer than a pixel is evaluated, and the levels
+/// reach further.
+class EffectFieldLayout {
+public:
+    EffectFieldLayout(const EffectFieldDesc& desc, const glm::dvec2& cameraWorld, double finestUseful = 0.0);
+    const EffectFieldDesc& desc() const { return mDesc; }
+    const EffectFieldLevel& level(int l) const { return mLevels[static_cast<size_t>(l)]; }
+    int levels() const { return static_cast<int>(mLevels.size()); }
+    /// World centre of texel (i, j) of level l.
+    glm::dvec2 texelCentre(int l, int i, int j) const;
+    /// Which level a world point reads, and its blend toward the next level (0: this level only; toward 1
+    /// at the level's edge: the next, or 0 beyond the last level). level = -1 outside the field.
+    struct Pick {
+        int level = -1;
+        double blend = 0.0;
+    };
+    Pick pick(const glm::dvec2& world) const;
+
+private:
+    EffectFieldDesc mDesc;
+    std::vector<EffectFieldLevel> mLevels;
+};
+
+/// The CPU twin of what the GPU samples at world point xy: each level's texels hold effectsFieldAt() at their
+/// centres with the level's kMax; the point reads its level bilinearly, blended into the next level toward
+/// the edge (EffectFieldLayout::pick). (E, dE/dx, dE/dy, foam).
+glm::dvec4 sampleEffectField(ecs::Registry& registry, const EffectFieldLayout& layout, const glm::dvec2& xy,
+                             double t);
 /// Height of the sea at world point xy: the ocean's surface (SurfaceModel::heightAt) plus the effects.
 /// Throws std::invalid_argument if the entity has no OceanComponent.
 double oceanHeightAt(ecs::Registry& registry, ecs::Entity ocean, const glm::dvec2& xy, double t);

@@ -41,12 +41,17 @@ namespace pacifica::ocean {
 enum class GridKind { Radial, Projected };
 
 /// The secondary radial grids of the effects (Effects.h): unit discs with rings at (i / rings)^exponent,
-/// scaled to each effect's radius every frame.
+/// scaled to each effect's radius every frame. They add geometry where an effect is large on screen; every
+/// effect, with a grid or not, is in the effects field that all grids read (EffectFieldDesc).
 struct EffectGridDesc {
     int explosionRings = 48, explosionSegments = 96;
     double explosionExponent = 1.5;
     int wakeRings = 96, wakeSegments = 192;
     double wakeExponent = 2.0;
+    /// Grids drawn per kind at most: the effects in view largest on screen (radius / distance) first.
+    int maxExplosionGrids = 16, maxWakeGrids = 16;
+    /// A grid is drawn only for an effect whose radius / distance from the camera is at least this.
+    double minAngularSize = 0.05;
 };
 
 struct OceanDesc {
@@ -76,6 +81,7 @@ struct OceanDesc {
     /// (test_compute_shading_gl); saves their vertices and triangles (docs/PERFORMANCE.md).
     bool skipHiddenRings = true;
     EffectGridDesc effectGrids;
+    EffectFieldDesc effectField; ///< the effects' clipmap (Effects.h)
     /// Light the sea and sky in one compute pass instead of in the grids' fragment stage: the grids write
     /// only depth and a thin G-buffer (the quad's derivatives of the grid point), and the same lighting code
     /// runs once per pixel on every compute unit, the surface point rebuilt from the depth. On the H100/H200
@@ -131,6 +137,15 @@ struct EffectKindStats {
     long long vertices = 0; ///< secondary-grid vertices processed
 };
 
+/// The effects field's share of a frame (EffectFieldDesc): its compute pass, the 8 x 8 tiles it evaluated
+/// (those cleared included) and their texels, and its uploads (tile lists; the texture when first made).
+struct EffectFieldStats {
+    int passes = 0;
+    int tiles = 0;
+    long long texels = 0;
+    int uploads = 0;
+};
+
 /// What the last render() did: render and compute passes, draw calls, buffer/texture uploads, vertices
 /// (totals, effects included), and the effects' share per kind.
 /// Where a frame's GPU time went, per pass (OceanRenderer::setPassTiming; docs/PERFORMANCE.md). Hardware:
@@ -154,8 +169,13 @@ struct OceanStats {
     bool computeShaded = false; ///< the frame was lit by the compute pass (OceanDesc::computeShading)
     bool shadeTiled = false;    ///< ... sorted into tiles (OceanDesc::shadeTiles)
     EffectKindStats explosions, wakes;
+    EffectFieldStats effectField;
     OceanPassTimes passTimes; ///< only with OceanRenderer::setPassTiming()
 };
+
+/// The effects field's layout for a frame (Effects.h): around the camera, its finest level no finer than a
+/// pixel's footprint on the sea straight below (the pixel's angle times the camera's height).
+EffectFieldLayout effectFieldLayout(const EffectFieldDesc& desc, const OceanFrame& frame);
 
 class LightingGpu;    // implementation detail (ocean/src/gpu/LightingGpu.h)
 class EffectsGpu;     // implementation detail (ocean/src/gpu/EffectsGpu.h)
@@ -199,7 +219,8 @@ public:
     /// the registry at frame.time as render() does. For tests comparing the GPU with oceanHeightAt().
     struct EffectVertex {
         glm::vec3 position; ///< camera-relative displaced position (vRel)
-        glm::vec2 local;    ///< the displaced point relative to its effect's centre (vLocal)
+        glm::vec2 local;    ///< the displaced point relative to its grid's centre (vLocal)
+        glm::dvec2 centre;  ///< the world centre of its grid
     };
     std::vector<EffectVertex> effectVertices(ecs::Registry& registry, ecs::Entity ocean,
                                              const OceanFrame& frame, EffectKind kind);
@@ -214,6 +235,7 @@ private:
     /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once):
     /// lit, transform feedback (tests), or into the G-buffer (compute shading).
     unsigned effectProgram(Gpu& gpu, bool feedback, bool geometry);
+    unsigned effectFieldProgram();
     std::unique_ptr<Programs> mPrograms;
     std::unique_ptr<LightingGpu> mLighting;
     std::unique_ptr<EffectsGpu> mEffects;

@@ -38,7 +38,7 @@ ComputeShading::~ComputeShading() {
         glDeleteSamplers(1, &mDepthSampler);
 }
 
-bool ComputeShading::attach(unsigned hostFbo, int width, int height, bool displaced, bool effects) {
+bool ComputeShading::attach(unsigned hostFbo, int width, int height, bool displaced) {
     if (hostFbo == 0 || width <= 0 || height <= 0)
         return false;
     GLint drawBuffer = GL_NONE;
@@ -71,19 +71,14 @@ bool ComputeShading::attach(unsigned hostFbo, int width, int height, bool displa
     key.width = width;
     key.height = height;
     key.displaced = displaced;
-    key.effects = effects || (mEffect && mKey.width == width && mKey.height == height);
     mFormatName = format;
-    if (!mFbo || key.width != mKey.width || key.height != mKey.height || key.effects != mKey.effects ||
-        key.displaced != mKey.displaced) {
+    if (!mFbo || key.width != mKey.width || key.height != mKey.height || key.displaced != mKey.displaced) {
         mGeometry = gl::Texture::create2D(GL_RGBA16F, width, height);
         mOffset = displaced ? gl::Texture::create2D(GL_RG16F, width, height) : gl::Texture();
-        mEffect = key.effects ? gl::Texture::create2D(GL_RGBA16F, width, height) : gl::Texture();
         mFbo = gl::Framebuffer::create();
         mFbo.attachColor(0, mGeometry);
         if (mOffset)
             mFbo.attachColor(1, mOffset);
-        if (mEffect)
-            mFbo.attachColor(2, mEffect);
     }
     if (!mDepthSampler) { // the host's depth read as values, whatever comparison its texture has set
         glCreateSamplers(1, &mDepthSampler);
@@ -100,20 +95,11 @@ bool ComputeShading::attach(unsigned hostFbo, int width, int height, bool displa
     return glCheckNamedFramebufferStatus(mFbo.id(), GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
-void ComputeShading::drawEffects(bool on) {
-    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, mOffset ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE),
-                               on && mEffect ? GLenum(GL_COLOR_ATTACHMENT2) : GLenum(GL_NONE)};
-    glNamedFramebufferDrawBuffers(mFbo.id(), 3, buffers);
-}
-
 void ComputeShading::beginGeometry() {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mFbo.id());
-    if (mEffect) {
-        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        drawEffects(true);
-        glClearBufferfv(GL_COLOR, 2, zero);
-    }
-    drawEffects(false);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0,
+                               mOffset ? GLenum(GL_COLOR_ATTACHMENT1) : GLenum(GL_NONE)};
+    glNamedFramebufferDrawBuffers(mFbo.id(), 2, buffers);
 }
 
 std::string ComputeShading::tileDefines() {
@@ -130,7 +116,6 @@ void ComputeShading::bindTextures() {
     glBindSampler(DEPTH_UNIT, mDepthSampler);
     glBindTextureUnit(GEOMETRY_UNIT, mGeometry.id());
     glBindTextureUnit(OFFSET_UNIT, mOffset ? mOffset.id() : 0);
-    glBindTextureUnit(EFFECT_UNIT, mEffect ? mEffect.id() : 0);
 }
 
 void ComputeShading::setInputUniforms(unsigned program, bool drawSky) {
@@ -138,7 +123,6 @@ void ComputeShading::setInputUniforms(unsigned program, bool drawSky) {
     glProgramUniform1i(program, glGetUniformLocation(program, "uDepthLevel"), mKey.depthLevel);
     glProgramUniform1i(program, glGetUniformLocation(program, "uGeometry"), GEOMETRY_UNIT);
     glProgramUniform1i(program, glGetUniformLocation(program, "uOffset"), OFFSET_UNIT);
-    glProgramUniform1i(program, glGetUniformLocation(program, "uEffectGeometry"), EFFECT_UNIT);
     glProgramUniform2i(program, glGetUniformLocation(program, "uShadeSize"), mKey.width, mKey.height);
     glProgramUniform1i(program, glGetUniformLocation(program, "uShadeSky"), drawSky ? 1 : 0);
 }

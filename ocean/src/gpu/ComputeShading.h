@@ -1,12 +1,12 @@
 // ComputeShading (internal): the resources of OceanDesc::computeShading. The sea's grids are drawn with the
 // host's own depth attachment and a thin G-buffer (ocean_gbuffer.frag): the quad's derivatives of the grid
-// point (RGBA16F), for models that move the surface sideways the grid point's offset (RG16F) and, when
-// effects are drawn, their slope and foam (RGBA16F, cleared). One compute pass (ocean_shade.comp) then
-// rebuilds each pixel's surface point from the depth, lights it and writes the host's colour texture
-// through an image binding. The graphics pipe -- on the H100 only 4 of 132 SMs run it -- writes 8 bytes a
-// pixel besides the depth, and all the lighting runs on the compute units. Units: the host's depth on
-// texture unit 15 (with a sampler object: no depth comparison), the derivatives on 16, the offset on 17,
-// the effect layer on 18, the host's colour on image unit 1.
+// point (RGBA16F) and, for models that move the surface sideways, the grid point's offset (RG16F). Effects
+// need no layer: the shading reads the effects field at the surface point. One compute pass
+// (ocean_shade.comp) then rebuilds each pixel's surface point from the depth, lights it and writes the host's
+// colour texture through an image binding. The graphics pipe -- on the H100 only 4 of 132 SMs run it --
+// writes 8 bytes a pixel besides the depth, and all the lighting runs on the compute units. Units: the host's
+// depth on texture unit 15 (with a sampler object: no depth comparison), the derivatives on 16, the offset on
+// 17, the host's colour on image unit 1.
 //
 // It needs a host framebuffer whose draw buffer 0 is a single-sample 2D texture of a format images can
 // store (RGBA16F, RGBA32F, RGBA8, RGB10_A2, R11F_G11F_B10F) and whose depth attachment is a 2D texture of
@@ -31,8 +31,8 @@ namespace pacifica::ocean {
 
 class ComputeShading {
 public:
-    static constexpr int DEPTH_UNIT = 15, GEOMETRY_UNIT = 16, OFFSET_UNIT = 17, EFFECT_UNIT = 18,
-                         OUTPUT_IMAGE_UNIT = 1, TILE_BINDING = SHADE_TILE_BINDING, TILE_SIZE = 8;
+    static constexpr int DEPTH_UNIT = 15, GEOMETRY_UNIT = 16, OFFSET_UNIT = 17, OUTPUT_IMAGE_UNIT = 1,
+                         TILE_BINDING = SHADE_TILE_BINDING, TILE_SIZE = 8;
     /// Kinds of tile (shade_pixels.glsl): an edge between sea and sky (the whole program), sea only, open sky
     /// only, sky with the sea beyond the grid.
     enum TileKind { TILE_MIXED, TILE_SEA, TILE_SKY, TILE_BEYOND, TILE_KINDS };
@@ -47,15 +47,13 @@ public:
     ComputeShading& operator=(const ComputeShading&) = delete;
 
     /// Checks the host framebuffer `hostFbo` (bound for drawing) and (re)builds the G-buffer for a
-    /// width x height viewport: with the horizontal displacement when `displaced` (Gerstner, FFT), the
-    /// effect layer when `effects`. False: shade forward this frame.
-    bool attach(unsigned hostFbo, int width, int height, bool displaced, bool effects);
+    /// width x height viewport: with the horizontal displacement when `displaced` (Gerstner, FFT). False:
+    /// shade forward this frame.
+    bool attach(unsigned hostFbo, int width, int height, bool displaced);
     /// GLSL image format of the host's colour texture ("rgba16f"), after a successful attach().
     const char* outputFormat() const { return mFormatName; }
-    /// Binds the G-buffer for drawing (the effect layer cleared; the geometry is read only where the depth
-    /// says a grid was drawn). Effect grids then write both layers (drawEffects(true)), the base grid one.
+    /// Binds the G-buffer for drawing (the geometry is read only where the depth says a grid was drawn).
     void beginGeometry();
-    void drawEffects(bool on);
     /// Lights every pixel with `program` (ocean_shade.comp, uniforms other than the G-buffer's set by the
     /// caller) into the host's colour texture; a barrier makes the result visible to what the host does next.
     void shade(unsigned program, bool drawSky);
@@ -73,11 +71,11 @@ private:
     struct Key {
         unsigned color = 0, depth = 0;
         int colorLevel = 0, depthLevel = 0, format = 0, width = 0, height = 0;
-        bool displaced = false, effects = false;
+        bool displaced = false;
     };
     Key mKey;
     const char* mFormatName = "";
-    gl::Texture mGeometry, mOffset, mEffect;
+    gl::Texture mGeometry, mOffset;
     gl::Buffer mTiles;     // per kind (tiles, 1, 1) for glDispatchComputeIndirect, then the kinds' tile lists
     gl::Buffer mTileReset; // the header a frame starts from
     int mTileCapacity = 0;

@@ -1,4 +1,5 @@
-// EffectsGpu: packs the effects into the effects.glsl buffers and draws their secondary radial grids.
+// EffectsGpu: packs the effects into the effects.glsl buffers, bins them into the effects field's tiles,
+// evaluates the field, and draws the secondary radial grids it chose.
 #include "gpu/EffectsGpu.h"
 
 #include "GridOrder.h"
@@ -7,6 +8,7 @@
 #include "ocean/OceanConstants.h"
 
 #include <epoxy/gl.h>
+#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -29,47 +31,6 @@ bool sphereInView(const glm::mat4& m, const glm::vec3& c, float r) {
             return false;
     }
     return true;
-}
-
-/// Where an effect can be non-zero, camera-relative: its disc, and (wakes) the box of its path.
-struct Footprint {
-    glm::dvec2 centre;
-    double radius;
-    glm::dvec2 boxMin, boxMax;
-};
-
-bool discMeetsBox(const glm::dvec2& c, double r, const glm::dvec2& lo, const glm::dvec2& hi) {
-    const glm::dvec2 nearest = glm::clamp(c, lo, hi);
-    return glm::dot(c - nearest, c - nearest) < r * r;
-}
-
-/// For each effect g (explosions 0..E-1, then wakes), the effects whose field can reach g's grid: ranges
-/// (offset, count of explosions, offset, count of wakes) at [4 g, 4 g + 4), then the index lists. A grid's
-/// vertices lie within its disc plus the base surface's horizontal displacement (< pad), and an effect's
-/// field is 0 outside its footprint, so leaving the others out changes no value (effects.glsl
-/// effectField) while the work per vertex stops growing with the number of effects far away.
-std::vector<int32_t> neighbourLists(const std::vector<Footprint>& f, int explosions, double pad) {
-    const size_t n = f.size();
-    std::vector<int32_t> out(4 * n);
-    for (size_t g = 0; g < n; ++g) {
-        const double reach = f[g].radius + pad;
-        for (int kind = 0; kind < 2; ++kind) {
-            const size_t first = kind == 0 ? 0 : static_cast<size_t>(explosions);
-            const size_t last = kind == 0 ? static_cast<size_t>(explosions) : n;
-            out[4 * g + 2 * kind] = static_cast<int32_t>(out.size());
-            int32_t count = 0;
-            for (size_t j = first; j < last; ++j) {
-                const glm::dvec2 d = f[j].centre - f[g].centre;
-                const double r = reach + f[j].radius;
-                if (glm::dot(d, d) < r * r && discMeetsBox(f[g].centre, reach, f[j].boxMin, f[j].boxMax)) {
-                    out.push_back(static_cast<int32_t>(j - first));
-                    ++count;
-                }
-            }
-            out[4 * g + 2 * kind + 1] = count;
-        }
-    }
-    return out;
 }
 
 } // namespace
@@ -139,13 +100,33 @@ struct ViewTest {
     }
 };
 
-/// Every explosion under way at t, packed (GpuInterface.h), the ones in view first (instance i of the
-/// draw is explosion i); `drawn` gets how many are in view.
-std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const glm::dvec3& cam, double t,
-                                         const ViewTest& inView, int& drawn) {
-    std::vector<ExplosionGpu> visible, hidden;
+/// An effect as packed for the GPU, with what the grid choice and the tile binning need.
+struct Candidate {
+    glm::dvec2 lo, hi;   ///< camera-relative box where its field can be non-zero
+    glm::dvec2 centre;   ///< camera-relative grid centre
+    double radius = 0.0; ///< grid radius
+    double size = 0.0;   ///< radius / distance from the camera; < 0: not in view
+};
+
+Candidate candidate(const glm::dvec2& rel, double radius, const glm::dvec2& boxMin, const glm::dvec2& boxMax,
+                    const OceanFrame& frame, const ViewTest& inView) {
+    Candidate c;
+    c.centre = rel;
+    c.radius = radius;
+    c.lo = rel + glm::max(boxMin, glm::dvec2(-radius));
+    c.hi = rel + glm::min(boxMax, glm::dvec2(radius));
+    const double distance = glm::length(glm::dvec3(rel, frame.camera.origin.z));
+    c.size = inView(rel, radius) ? radius / std::max(distance, 1.0) : -1.0;
+    return c;
+}
+
+/// Every explosion under way at t, packed (GpuInterface.h).
+std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const OceanFrame& frame,
+                                         const ViewTest& inView, std::vector<Candidate>& out) {
+    std::vector<ExplosionGpu> packed;
+    const glm::dvec3 cam = frame.camera.origin;
     registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
-        const ExplosionState s = explosionState(e, t);
+        const ExplosionState s = explosionState(e, frame.time);
         if (s.radius <= 0.0)
             return;
         const glm::dvec2 rel = e.center - glm::dvec2(cam);
@@ -161,104 +142,215 @@ std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const glm::dve
         g.crownFoam = static_cast<float>(s.foam);
         g.crownRadius = static_cast<float>(s.crownRadius);
         g.peakAmplitude = static_cast<float>(e.params.amplitude);
-        (inView(rel, s.radius) ? visible : hidden).push_back(g);
+        packed.push_back(g);
+        out.push_back(candidate(rel, s.radius, glm::dvec2(-s.radius), glm::dvec2(s.radius), frame, inView));
     });
-    drawn = static_cast<int>(visible.size());
-    visible.insert(visible.end(), hidden.begin(), hidden.end());
-    return visible;
+    return packed;
 }
 
 /// One wake: its header and its 2 * MAX_WAKE_POINTS point vec4s.
-struct PackedWake {
-    WakeGpu header;
-    std::vector<glm::vec4> points;
-};
-
-PackedWake packWake(const WakeState& s, const glm::dvec2& rel) {
-    PackedWake p;
-    p.header.ship = glm::vec2(static_cast<float>(rel.x), static_cast<float>(rel.y));
-    p.header.gridRadius = static_cast<float>(s.radius);
-    p.header.points = static_cast<float>(s.offsets.size());
-    p.header.shipLength = static_cast<float>(s.length);
-    p.header.beam = static_cast<float>(s.beam);
-    p.header.waveLife = static_cast<float>(s.waveLife);
-    p.header.foamLife = static_cast<float>(s.foamLife);
-    p.header.boxMin = glm::vec2(s.boxMin);
-    p.header.boxMax = glm::vec2(s.boxMax);
-    p.points.assign(2 * MAX_WAKE_POINTS, glm::vec4(0.0f));
+void packWake(const WakeState& s, const glm::dvec2& rel, std::vector<WakeGpu>& headers,
+              std::vector<glm::vec4>& points) {
+    WakeGpu h;
+    h.ship = glm::vec2(static_cast<float>(rel.x), static_cast<float>(rel.y));
+    h.gridRadius = static_cast<float>(s.radius);
+    h.points = static_cast<float>(s.offsets.size());
+    h.shipLength = static_cast<float>(s.length);
+    h.beam = static_cast<float>(s.beam);
+    h.waveLife = static_cast<float>(s.waveLife);
+    h.foamLife = static_cast<float>(s.foamLife);
+    h.boxMin = glm::vec2(s.boxMin);
+    h.boxMax = glm::vec2(s.boxMax);
+    headers.push_back(h);
+    const size_t first = points.size();
+    points.resize(first + 2 * MAX_WAKE_POINTS, glm::vec4(0.0f));
     for (size_t i = 0; i < s.offsets.size(); ++i) {
-        p.points[2 * i] = glm::vec4(static_cast<float>(s.offsets[i].x), static_cast<float>(s.offsets[i].y),
-                                    static_cast<float>(s.sigma[i]), static_cast<float>(s.age[i]));
-        p.points[2 * i + 1] =
+        points[first + 2 * i] =
+            glm::vec4(static_cast<float>(s.offsets[i].x), static_cast<float>(s.offsets[i].y),
+                      static_cast<float>(s.sigma[i]), static_cast<float>(s.age[i]));
+        points[first + 2 * i + 1] =
             glm::vec4(static_cast<float>(s.amplitude[i]), static_cast<float>(s.k0[i]), 0.0f, 0.0f);
     }
-    return p;
 }
 
-/// Every active trail at t, packed, the ones in view first; `drawn` gets how many are in view.
-std::vector<PackedWake> packWakes(ecs::Registry& registry, const glm::dvec3& cam, double t,
-                                  const ViewTest& inView, int& drawn) {
-    std::vector<PackedWake> visible, hidden;
-    registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
-        if (!trail.active)
-            return;
-        const WakeState s = wakeState(ship, trail, t);
-        if (s.radius <= 0.0)
-            return;
-        const glm::dvec2 rel = s.ship - glm::dvec2(cam);
-        (inView(rel, s.radius) ? visible : hidden).push_back(packWake(s, rel));
-    });
-    drawn = static_cast<int>(visible.size());
-    for (PackedWake& p : hidden)
-        visible.push_back(std::move(p));
-    return visible;
+/// The indices of the effects that get a grid: in view, at least `minSize` on screen, the largest first, at
+/// most `max`.
+std::vector<int> chooseGrids(const std::vector<Candidate>& c, size_t first, size_t last, double minSize,
+                             int max) {
+    std::vector<int> chosen;
+    for (size_t i = first; i < last; ++i)
+        if (c[i].size >= minSize && c[i].size >= 0.0)
+            chosen.push_back(static_cast<int>(i));
+    std::stable_sort(chosen.begin(), chosen.end(), [&](int a, int b) { return c[a].size > c[b].size; });
+    if (chosen.size() > static_cast<size_t>(max))
+        chosen.resize(static_cast<size_t>(max));
+    return chosen;
 }
 
 } // namespace
 
+struct EffectsGpu::Footprint {
+    glm::dvec2 lo, hi; // camera-relative
+};
+
+void EffectsGpu::ensureField(const EffectFieldDesc& field) {
+    if (mField && mFieldDesc.size == field.size && mFieldDesc.levels == field.levels)
+        return;
+    mField = gl::Texture::createArray2D(GL_RGBA32F, field.size, field.size, field.levels, 1);
+    glTextureParameteri(mField.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(mField.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(mField.id(), 0, GL_RGBA, GL_FLOAT, zero);
+    mFieldDesc = field;
+    const int tiles = field.size / 8;
+    mWritten.assign(static_cast<size_t>(field.levels) * tiles * tiles, 0);
+    ++mFieldStats.uploads;
+}
+
+/// The tiles of each level that the effects touch (their box, widened by a texel for the bilinear read),
+/// skipping the tiles no read reaches: those inside the part of the next finer level that is read alone.
+/// Tiles written last frame and touched by none now are listed with no effects (effects_field.comp clears
+/// them).
+void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosions) {
+    const int size = mFieldDesc.size, perSide = size / 8, levels = mLayout.levels();
+    const size_t perLevel = static_cast<size_t>(perSide) * perSide;
+    std::vector<uint8_t> needed(perLevel * levels, 1);
+    for (int l = 1; l < levels; ++l) {
+        const EffectFieldLevel& level = mLayout.level(l);
+        const EffectFieldLevel& finer = mLayout.level(l - 1);
+        const double pure = finer.inner - finer.band; // read alone within this of the finer level's centre
+        for (int ty = 0; ty < perSide; ++ty)
+            for (int tx = 0; tx < perSide; ++tx) {
+                const glm::dvec2 lo =
+                    level.centre + (glm::dvec2(tx, ty) * 8.0 - 0.5 * size - 1.0) * level.texel;
+                const glm::dvec2 hi = lo + (8.0 + 2.0) * level.texel;
+                const glm::dvec2 a = glm::abs(lo - finer.centre), b = glm::abs(hi - finer.centre);
+                if (std::max({a.x, a.y, b.x, b.y}) <= pure)
+                    needed[l * perLevel + ty * perSide + tx] = 0;
+            }
+    }
+    std::vector<int> counts(2 * perLevel * levels, 0); // [tile][kind]
+    auto forTiles = [&](const Footprint& f, auto&& visit) {
+        for (int l = 0; l < levels; ++l) {
+            const EffectFieldLevel& level = mLayout.level(l);
+            const glm::dvec2 origin = level.centre - mCamera; // footprints are camera-relative
+            const glm::dvec2 lo = (f.lo - origin) / level.texel + 0.5 * size - 1.5;
+            const glm::dvec2 hi = (f.hi - origin) / level.texel + 0.5 * size + 0.5;
+            const int x0 = std::max(0, static_cast<int>(std::floor(lo.x / 8.0)));
+            const int y0 = std::max(0, static_cast<int>(std::floor(lo.y / 8.0)));
+            const int x1 = std::min(perSide - 1, static_cast<int>(std::floor(hi.x / 8.0)));
+            const int y1 = std::min(perSide - 1, static_cast<int>(std::floor(hi.y / 8.0)));
+            for (int ty = y0; ty <= y1; ++ty)
+                for (int tx = x0; tx <= x1; ++tx) {
+                    const size_t t = l * perLevel + ty * perSide + tx;
+                    if (needed[t])
+                        visit(t);
+                }
+        }
+    };
+    for (size_t g = 0; g < footprints.size(); ++g) {
+        const int kind = static_cast<int>(g) < explosions ? 0 : 1;
+        forTiles(footprints[g], [&](size_t t) { ++counts[2 * t + kind]; });
+    }
+    std::vector<EffectTileGpu> tiles;
+    std::vector<int> cursor(2 * perLevel * levels, -1);
+    int listSize = 0;
+    for (size_t t = 0; t < perLevel * levels; ++t) {
+        const int e = counts[2 * t], w = counts[2 * t + 1];
+        if (e + w == 0 && !mWritten[t])
+            continue;
+        const int l = static_cast<int>(t / perLevel), within = static_cast<int>(t % perLevel);
+        tiles.push_back({l, within % perSide, within / perSide, listSize, e, w, 0, 0});
+        cursor[2 * t] = listSize;
+        cursor[2 * t + 1] = listSize + e;
+        listSize += e + w;
+        mWritten[t] = e + w > 0;
+    }
+    std::vector<int32_t> lists(static_cast<size_t>(std::max(listSize, 1)), 0);
+    for (size_t g = 0; g < footprints.size(); ++g) {
+        const int kind = static_cast<int>(g) < explosions ? 0 : 1;
+        const int index = kind == 0 ? static_cast<int>(g) : static_cast<int>(g) - explosions;
+        forTiles(footprints[g],
+                 [&](size_t t) { lists[static_cast<size_t>(cursor[2 * t + kind]++)] = index; });
+    }
+    mTileCount = static_cast<int>(tiles.size());
+    mFieldStats.tiles = mTileCount;
+    mFieldStats.texels = 64LL * mTileCount;
+    if (mTileCount > 0) {
+        upload(mTileBuffer, mTileCapacity, tiles.data(), tiles.size() * sizeof(EffectTileGpu),
+               mFieldStats.uploads);
+        upload(mListBuffer, mListCapacity, lists.data(), lists.size() * sizeof(int32_t), mFieldStats.uploads);
+    }
+}
+
 void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, double heightBound,
-                         const EffectGridDesc& grids) {
+                         const EffectGridDesc& grids, const EffectFieldDesc& field) {
     mExplosionUploads = mWakeUploads = 0;
     mExplosionCount = mWakeCount = mExplosionsDrawn = mWakesDrawn = 0;
+    mFieldStats = {};
+    mTileCount = 0;
+    mGridCentres.clear();
+    const glm::dvec3 cam = frame.camera.origin;
+    mCamera = glm::dvec2(cam);
+    mLayout = effectFieldLayout(field, frame);
     const ViewTest inView{frame, heightBound};
-    const std::vector<ExplosionGpu> explosions =
-        packExplosions(registry, frame.camera.origin, frame.time, inView, mExplosionsDrawn);
-    const std::vector<PackedWake> wakes =
-        packWakes(registry, frame.camera.origin, frame.time, inView, mWakesDrawn);
+    std::vector<Candidate> candidates;
+    const std::vector<ExplosionGpu> explosions = packExplosions(registry, frame, inView, candidates);
+    std::vector<WakeGpu> wakes;
+    std::vector<glm::vec4> points;
+    registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
+        if (!trail.active)
+            return;
+        const WakeState s = wakeState(ship, trail, frame.time);
+        if (s.radius <= 0.0)
+            return;
+        const glm::dvec2 rel = s.ship - mCamera;
+        packWake(s, rel, wakes, points);
+        candidates.push_back(candidate(rel, s.radius, s.boxMin, s.boxMax, frame, inView));
+    });
     mExplosionCount = static_cast<int>(explosions.size());
     mWakeCount = static_cast<int>(wakes.size());
-    std::vector<Footprint> footprints;
-    for (const ExplosionGpu& g : explosions)
-        footprints.push_back(
-            {glm::dvec2(g.centre), double(g.gridRadius), glm::dvec2(-1e30), glm::dvec2(1e30)});
-    for (const PackedWake& p : wakes) {
-        const glm::dvec2 ship(p.header.ship);
-        footprints.push_back({ship, double(p.header.gridRadius), ship + glm::dvec2(p.header.boxMin),
-                              ship + glm::dvec2(p.header.boxMax)});
-    }
-    if (mExplosionCount > 0) {
-        ensureMesh(mExplosionMesh, grids.explosionRings, grids.explosionSegments, grids.explosionExponent,
-                   mExplosionUploads);
+    if (!any())
+        return;
+    ensureField(field);
+    if (mExplosionCount > 0)
         upload(mExplosionBuffer, mExplosionCapacity, explosions.data(),
                explosions.size() * sizeof(ExplosionGpu), mExplosionUploads);
-    }
     if (mWakeCount > 0) {
-        ensureMesh(mWakeMesh, grids.wakeRings, grids.wakeSegments, grids.wakeExponent, mWakeUploads);
-        std::vector<WakeGpu> headers;
-        std::vector<glm::vec4> points;
-        for (const PackedWake& p : wakes) {
-            headers.push_back(p.header);
-            points.insert(points.end(), p.points.begin(), p.points.end());
-        }
-        upload(mWakeBuffer, mWakeCapacity, headers.data(), headers.size() * sizeof(WakeGpu), mWakeUploads);
+        upload(mWakeBuffer, mWakeCapacity, wakes.data(), wakes.size() * sizeof(WakeGpu), mWakeUploads);
         upload(mWakePointBuffer, mWakePointCapacity, points.data(), points.size() * sizeof(glm::vec4),
                mWakeUploads);
     }
-    if (mExplosionCount + mWakeCount > 0) {
-        const std::vector<int32_t> neighbours = neighbourLists(footprints, mExplosionCount, heightBound);
-        upload(mNeighbourBuffer, mNeighbourCapacity, neighbours.data(), neighbours.size() * sizeof(int32_t),
-               mExplosionCount > 0 ? mExplosionUploads : mWakeUploads);
-    }
+    std::vector<Footprint> footprints;
+    for (const Candidate& c : candidates)
+        footprints.push_back({c.lo, c.hi});
+    binTiles(footprints, mExplosionCount);
+    // The grids: explosions' then wakes', each (centre - camera, radius, 0).
+    const size_t e = static_cast<size_t>(mExplosionCount);
+    const std::vector<int> explosionGrids =
+        chooseGrids(candidates, 0, e, grids.minAngularSize, grids.maxExplosionGrids);
+    const std::vector<int> wakeGrids =
+        chooseGrids(candidates, e, candidates.size(), grids.minAngularSize, grids.maxWakeGrids);
+    mExplosionsDrawn = static_cast<int>(explosionGrids.size());
+    mWakesDrawn = static_cast<int>(wakeGrids.size());
+    std::vector<glm::vec4> gridList;
+    mGridCentres.clear();
+    for (const std::vector<int>* chosen : {&explosionGrids, &wakeGrids})
+        for (int i : *chosen) {
+            mGridCentres.push_back(mCamera + candidates[i].centre);
+            gridList.emplace_back(static_cast<float>(candidates[i].centre.x),
+                                  static_cast<float>(candidates[i].centre.y),
+                                  static_cast<float>(candidates[i].radius), 0.0f);
+        }
+    if (gridList.empty())
+        gridList.emplace_back(0.0f); // a bound buffer, never read (uEffectGridCount = 0)
+    upload(mGridBuffer, mGridCapacity, gridList.data(), gridList.size() * sizeof(glm::vec4),
+           mFieldStats.uploads);
+    if (mExplosionsDrawn > 0)
+        ensureMesh(mExplosionMesh, grids.explosionRings, grids.explosionSegments, grids.explosionExponent,
+                   mExplosionUploads);
+    if (mWakesDrawn > 0)
+        ensureMesh(mWakeMesh, grids.wakeRings, grids.wakeSegments, grids.wakeExponent, mWakeUploads);
 }
 
 std::string EffectsGpu::defines() const {
@@ -270,17 +362,55 @@ std::string EffectsGpu::defines() const {
     return d;
 }
 
-void EffectsGpu::bind(unsigned program) const {
-    if (mExplosionCount > 0)
+namespace {
+
+/// (level centre - camera, texel) of each level, as effects_field.comp and effects_sample.glsl take them.
+void setLevelUniforms(unsigned program, const EffectFieldLayout& layout, const glm::dvec2& camera) {
+    std::vector<glm::vec3> levels;
+    for (int l = 0; l < layout.levels(); ++l) {
+        const glm::dvec2 c = layout.level(l).centre - camera;
+        levels.emplace_back(static_cast<float>(c.x), static_cast<float>(c.y),
+                            static_cast<float>(layout.level(l).texel));
+    }
+    glProgramUniform3fv(program, glGetUniformLocation(program, "uEffectFieldLevels"),
+                        static_cast<GLsizei>(levels.size()), glm::value_ptr(levels[0]));
+    glProgramUniform1i(program, glGetUniformLocation(program, "uEffectFieldLevelCount"), layout.levels());
+    glProgramUniform1f(program, glGetUniformLocation(program, "uEffectFieldSize"),
+                       static_cast<float>(layout.desc().size));
+}
+
+} // namespace
+
+void EffectsGpu::computeField(unsigned program) {
+    if (mTileCount == 0)
+        return;
+    glUseProgram(program);
+    if (mExplosionBuffer)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_EXPLOSIONS_BINDING, mExplosionBuffer.id());
-    if (mWakeCount > 0) {
+    if (mWakeBuffer) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_WAKES_BINDING, mWakeBuffer.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_WAKE_POINTS_BINDING, mWakePointBuffer.id());
     }
-    if (mExplosionCount + mWakeCount > 0)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_NEIGHBOURS_BINDING, mNeighbourBuffer.id());
-    glProgramUniform1i(program, glGetUniformLocation(program, "uExplosionCount"), mExplosionCount);
-    glProgramUniform1i(program, glGetUniformLocation(program, "uWakeCount"), mWakeCount);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_FIELD_TILES_BINDING, mTileBuffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_FIELD_LISTS_BINDING, mListBuffer.id());
+    glBindImageTexture(EFFECT_FIELD_IMAGE_UNIT, mField.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    setLevelUniforms(program, mLayout, mCamera);
+    const int groupsX = std::min(mTileCount, 65535);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uTileCount"), mTileCount);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uTileGroupsX"), groupsX);
+    glDispatchCompute(static_cast<GLuint>(groupsX), static_cast<GLuint>((mTileCount + groupsX - 1) / groupsX),
+                      1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    mFieldStats.passes = 1;
+}
+
+void EffectsGpu::bindField(unsigned program) const {
+    glBindTextureUnit(FIELD_TEXTURE_UNIT, mField.id());
+    glProgramUniform1i(program, glGetUniformLocation(program, "uEffectField"), FIELD_TEXTURE_UNIT);
+    setLevelUniforms(program, mLayout, mCamera);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_GRIDS_BINDING, mGridBuffer.id());
+    glProgramUniform1i(program, glGetUniformLocation(program, "uEffectGridCount"),
+                       mExplosionsDrawn + mWakesDrawn);
 }
 
 long long EffectsGpu::gridVertices(EffectKind kind) const {
@@ -293,8 +423,8 @@ long long EffectsGpu::draw(unsigned program, EffectKind kind, unsigned mode) {
     if (instances == 0)
         return 0;
     const Mesh& mesh = kind == EffectKind::Explosion ? mExplosionMesh : mWakeMesh;
-    glProgramUniform1i(program, glGetUniformLocation(program, "uKind"),
-                       kind == EffectKind::Explosion ? 0 : 1);
+    glProgramUniform1i(program, glGetUniformLocation(program, "uFirstGrid"),
+                       kind == EffectKind::Explosion ? 0 : mExplosionsDrawn);
     glBindVertexArray(mesh.vao.id());
     if (mode == GL_POINTS)
         glDrawArraysInstanced(GL_POINTS, 0, mesh.vertexCount - mesh.skirtCount, instances); // surface only

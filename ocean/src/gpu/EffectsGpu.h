@@ -1,7 +1,9 @@
-// EffectsGpu (internal): the GPU side of the effects (ocean/include/ocean/Effects.h) for one frame — packs
-// every active explosion and trail into shader-storage buffers (effects.glsl layout), decides which effect
-// grids are in view, and draws them as instanced secondary radial grids. Nothing is created, uploaded or
-// drawn for a kind the scene does not have.
+// EffectsGpu (internal): the GPU side of the effects (ocean/include/ocean/Effects.h) for one frame. It packs
+// every active explosion and trail into shader-storage buffers (effects.glsl layout), bins them into the
+// 8 x 8 tiles of the effects field they touch, evaluates those tiles in one compute pass
+// (effects_field.comp), and picks the effects that also get a secondary radial grid (in view and large on
+// screen). Every grid then reads the field (effects_sample.glsl). Nothing is created, uploaded or dispatched
+// for a scene without effects, and a kind the scene does not have compiles out.
 #pragma once
 
 #include "engine/Ecs.h"
@@ -18,30 +20,39 @@ namespace pacifica::ocean {
 
 class EffectsGpu {
 public:
-    /// Collects the effects of `registry` at frame.time, uploads them, and culls their grids against the
-    /// camera (bounding sphere of each disc, raised by `heightBound`). Returns what this frame has.
+    /// Collects the effects of `registry` at frame.time, uploads them and their tile lists, and chooses the
+    /// grids to draw (bounding sphere of each disc, raised by `heightBound`, against the camera; the
+    /// largest on screen first, EffectGridDesc's limits). Returns what this frame has.
     void prepare(ecs::Registry& registry, const OceanFrame& frame, double heightBound,
-                 const EffectGridDesc& grids);
+                 const EffectGridDesc& grids, const EffectFieldDesc& field);
     bool any() const { return mExplosionCount + mWakeCount > 0; }
     bool has(EffectKind kind) const { return count(kind) > 0; }
     int count(EffectKind kind) const { return kind == EffectKind::Explosion ? mExplosionCount : mWakeCount; }
     int drawn(EffectKind kind) const {
         return kind == EffectKind::Explosion ? mExplosionsDrawn : mWakesDrawn;
     }
-    /// "#define EFFECTS_EXPLOSIONS" / "#define EFFECTS_WAKES" for the kinds present (the shader variant).
+    /// "#define EFFECTS_EXPLOSIONS" / "#define EFFECTS_WAKES" for the kinds present (the field pass's
+    /// variant).
     std::string defines() const;
-    /// Buffer uploads of one kind made by the last prepare() (its data; its grid mesh when first built; the
-    /// neighbour lists count with the explosions, or with the wakes when there are no explosions).
+    /// Buffer uploads of one kind made by the last prepare() (its data; its grid mesh when first built).
     int uploads(EffectKind kind) const {
         return kind == EffectKind::Explosion ? mExplosionUploads : mWakeUploads;
     }
+    const EffectFieldStats& fieldStats() const { return mFieldStats; }
 
-    /// Binds the buffers and sets uExplosionCount / uWakeCount on `program`.
-    void bind(unsigned program) const;
-    /// Draws the visible grids of one kind with `program` (bound, uniforms set). Returns vertices processed.
+    /// The field pass with `program` (effects_field.comp with defines()): evaluates this frame's tiles and
+    /// makes the field visible to the grids. Does nothing when no tile is to be written.
+    void computeField(unsigned program);
+    /// Binds the field and the drawn grids' list for a program that includes effects_sample.glsl.
+    void bindField(unsigned program) const;
+    /// Draws the chosen grids of one kind with `program` (bound, uniforms set). Returns vertices processed.
     long long draw(unsigned program, EffectKind kind, unsigned mode = 0x0004 /* GL_TRIANGLES */);
     /// Surface vertices per instance of a kind (the skirt left out).
     long long gridVertices(EffectKind kind) const;
+    /// The layout of the last prepare()'s field (tests compare the GPU with sampleEffectField()).
+    const EffectFieldLayout& layout() const { return mLayout; }
+    /// World centres of the grids drawn, explosions' then wakes' (instance order).
+    const std::vector<glm::dvec2>& gridCentres() const { return mGridCentres; }
 
 private:
     struct Mesh : GridMesh {
@@ -50,12 +61,27 @@ private:
     };
     void ensureMesh(Mesh& mesh, int rings, int segments, double exponent, int& uploads);
     void upload(gl::Buffer& buffer, size_t& capacity, const void* data, size_t bytes, int& uploads);
+    void ensureField(const EffectFieldDesc& field);
+    struct Footprint; // where an effect can be non-zero, camera-relative (EffectsGpu.cpp)
+    void binTiles(const std::vector<Footprint>& footprints, int explosions);
 
     Mesh mExplosionMesh, mWakeMesh;
-    gl::Buffer mExplosionBuffer, mWakeBuffer, mWakePointBuffer, mNeighbourBuffer;
-    size_t mExplosionCapacity = 0, mWakeCapacity = 0, mWakePointCapacity = 0, mNeighbourCapacity = 0;
+    gl::Buffer mExplosionBuffer, mWakeBuffer, mWakePointBuffer, mTileBuffer, mListBuffer, mGridBuffer;
+    size_t mExplosionCapacity = 0, mWakeCapacity = 0, mWakePointCapacity = 0, mTileCapacity = 0,
+           mListCapacity = 0, mGridCapacity = 0;
     int mExplosionCount = 0, mWakeCount = 0, mExplosionsDrawn = 0, mWakesDrawn = 0;
     int mExplosionUploads = 0, mWakeUploads = 0;
+
+    // The field: a texture array (a level per layer), the layout of this frame, the tiles written.
+    EffectFieldLayout mLayout{EffectFieldDesc{}, glm::dvec2(0.0)};
+    gl::Texture mField;
+    EffectFieldDesc mFieldDesc;
+    std::vector<uint8_t> mWritten; ///< per level and tile: written by the last field pass (to be cleared)
+    int mTileCount = 0;            ///< tiles to write this frame (the records uploaded)
+    EffectFieldStats mFieldStats;
+    glm::dvec2 mCamera{0.0}; ///< the camera of the last prepare() (world)
+    std::vector<glm::dvec2> mGridCentres;
+    static constexpr int FIELD_TEXTURE_UNIT = 18; ///< the field for the grids and the shading (after theirs)
 };
 
 } // namespace pacifica::ocean

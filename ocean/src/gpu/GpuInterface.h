@@ -22,8 +22,30 @@ enum StorageBinding : int {
     EFFECT_EXPLOSIONS_BINDING = 4,   ///< effects.glsl: ExplosionGpu[]
     EFFECT_WAKES_BINDING = 5,        ///< effects.glsl: WakeGpu[]
     EFFECT_WAKE_POINTS_BINDING = 6,  ///< effects.glsl: vec4[2 * MAX_WAKE_POINTS] per wake
-    EFFECT_NEIGHBOURS_BINDING = 7,   ///< effects.glsl: the neighbour lists (EffectsGpu.cpp)
+    EFFECT_FIELD_TILES_BINDING = 7,  ///< effects_field.comp: EffectTileGpu[] (the tiles evaluated)
+    EFFECT_FIELD_LISTS_BINDING = 8,  ///< effects_field.comp: per tile, its explosions, then its wakes
+    EFFECT_GRIDS_BINDING = 9, ///< effects_sample.glsl: vec4 (centre - camera, radius, 0) per drawn grid
 };
+
+/// Image units. The effects field is written by its own compute pass (effects_field.comp).
+enum ImageUnit : int {
+    EFFECT_FIELD_IMAGE_UNIT = 2, ///< effects_field.comp: the field's texture array, written
+};
+
+/// One tile of 8 x 8 texels of one level of the effects field, as effects_field.comp reads it (std430, 32
+/// bytes): the tile and the range of its effect list (EffectsGpu.cpp bins the effects into tiles).
+struct EffectTileGpu {
+    int level; ///< the field level (texture layer)
+    int tileX; ///< texels [8 tileX, 8 tileX + 8)
+    int tileY;
+    int first;      ///< its explosions at lists[first ...], then its wakes
+    int explosions; ///< 0 and 0: a tile written last frame, now cleared
+    int wakes;
+    int pad0, pad1;
+};
+static_assert(sizeof(EffectTileGpu) == 32 && offsetof(EffectTileGpu, first) == 12 &&
+                  offsetof(EffectTileGpu, wakes) == 20,
+              "EffectTileGpu must match effects_field.comp's std430 layout");
 
 /// One explosion as effects.glsl reads it (std430, 48 bytes). Camera-relative metres.
 struct ExplosionGpu {
