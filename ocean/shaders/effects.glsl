@@ -94,12 +94,15 @@ struct WakeCoords {
     vec2 direction;
 };
 
-WakeCoords wakeCoords(int i, vec2 q) {
+// Only segments first..last (clamped to the path) are walked: effects_field.comp's tile lists give each tile
+// the segments that can be nearest to one of its texels (EffectsGpu.cpp wakeEntry), so the walk finds what
+// the whole walk finds.
+WakeCoords wakeCoords(int i, vec2 q, int first, int last) {
     WakeCoords best = WakeCoords(0.0, 0.0, 0.0, 0.0, 0.0, vec2(1.0, 0.0));
     float bestDist2 = 3.4e38;
     int n = int(uWakes[i].points);
     int base = i * MAX_WAKE_POINTS * 2;
-    for (int j = 0; j + 1 < n; ++j) {
+    for (int j = first; j <= last && j + 1 < n; ++j) {
         vec4 pa = uWakePoints[base + 2 * j], pb = uWakePoints[base + 2 * j + 2];
         vec2 ab = pb.xy - pa.xy;
         float len2 = dot(ab, ab);
@@ -154,14 +157,14 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral, float kMax)
     return a * start * cusp * end * sum;
 }
 
-// (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship).
-vec4 wakeWave(int i, vec2 q, float kMax) {
+// (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship), its path walked over segments first..last.
+vec4 wakeWave(int i, vec2 q, float kMax, int first, int last) {
     float R = uWakes[i].gridRadius;
     vec2 boxMin = uWakes[i].boxMin, boxMax = uWakes[i].boxMax;
     // insideWakeBox() in Effects.cpp
     if (R <= 0.0 || dot(q, q) >= R * R || q.x <= boxMin.x || q.y <= boxMin.y || q.x >= boxMax.x || q.y >= boxMax.y)
         return vec4(0.0);
-    WakeCoords c = wakeCoords(i, q);
+    WakeCoords c = wakeCoords(i, q, first, last);
     float h = kelvinHeight(i, c, c.behind, c.lateral, kMax);
     const float e = 0.1;
     bool outside = c.behind + e <= 0.0 || abs(c.lateral) - e >= sqrt(KELVIN_TAN2) * (c.behind + e);
@@ -180,7 +183,7 @@ vec4 wakeWave(int i, vec2 q, float kMax) {
     float foam = 0.0;
     if (n >= 2 && c.amplitude > 0.0) {
         float width = wake.beam * (1.0 + max(c.behind, 0.0) / 400.0);
-        float strip = exp(-(c.lateral * c.lateral) / (width * width));
+        float strip = abs(c.lateral) < 3.0 * width ? exp(-(c.lateral * c.lateral) / (width * width)) : 0.0;
         float start = smoothstep(-wake.beam, 0.0, c.behind);
         float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
         float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);

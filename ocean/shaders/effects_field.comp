@@ -52,8 +52,10 @@ void main() {
 #endif
 #ifdef EFFECTS_WAKES
     for (int k = 0; k < tile.wakes; ++k) {
-        int i = uTileEffects[tile.first + tile.explosions + k];
-        vec4 w = wakeWave(i, rel - uWakes[i].ship, kMax);
+        // (wake, first segment, last segment) packed: EffectsGpu.cpp wakeEntry().
+        int entry = uTileEffects[tile.first + tile.explosions + k];
+        int i = entry & 0xFFFF;
+        vec4 w = wakeWave(i, rel - uWakes[i].ship, kMax, (entry >> 16) & 0x7F, (entry >> 23) & 0x7F);
         sum += w.xyz;
         foam = max(foam, w.w);
     }

@@ -293,7 +293,9 @@ double wakeFoam(const WakeState& s, const WakeCoords& c) {
     if (s.sigma.empty() || c.amplitude <= 0.0)
         return 0.0;
     const double width = s.beam * (1.0 + std::max(c.behind, 0.0) / 400.0);
-    const double strip = std::exp(-(c.lateral * c.lateral) / (width * width));
+    // Cut at 3 widths (e^-9): the GPU's tiles beyond hold no foam (EffectsGpu.cpp).
+    const double strip =
+        std::abs(c.lateral) < 3.0 * width ? std::exp(-(c.lateral * c.lateral) / (width * width)) : 0.0;
     const double start = smoothstep(-s.beam, 0.0, c.behind);
     const double sigmaMax = s.sigma.back();
     const double end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);

@@ -19,7 +19,7 @@ file(STRINGS "${OUT_DIR}/effects.csv" lines)
 list(GET lines 0 header)
 set(expectedHeader "setting,kind,count,active,drawn,ms_median,ms_p90,us_per_effect_vs_plain,update_us_median,\
 render_cpu_ms_median,vertices,fx_vertices,fx_passes,fx_draws,fx_uploads,passes,draws,uploads,programs_built,\
-clock,renderer")
+field_tiles,clock,renderer")
 if(NOT header STREQUAL expectedHeader)
     message(FATAL_ERROR "unexpected header: ${header}")
 endif()
@@ -28,7 +28,7 @@ set(num "[-+]?[0-9]*\\.?[0-9]+([eE][-+]?[0-9]+)?")
 set(seen "")
 foreach(line IN LISTS lines)
     # setting,kind,count,active,drawn,ms,p90,us_per_effect,update_us,render_cpu,vertices,fx_vertices,fx_passes,
-    # fx_draws,fx_uploads,passes,draws,uploads,programs_built,"clock","renderer"
+    # fx_draws,fx_uploads,passes,draws,uploads,programs_built,field_tiles,"clock","renderer"
     if(NOT line MATCHES "^([a-z_]+),([a-z]+),([0-9]+),([^\"]*),\"([^\"]*)\",\"([^\"]*)\"$")
         message(FATAL_ERROR "malformed row: ${line}")
     endif()
@@ -39,8 +39,8 @@ foreach(line IN LISTS lines)
     set(renderer "${CMAKE_MATCH_6}")
     string(REPLACE "," ";" f "${CMAKE_MATCH_4}")
     list(LENGTH f nf)
-    if(NOT nf EQUAL 16)
-        message(FATAL_ERROR "expected 21 columns: ${line}")
+    if(NOT nf EQUAL 17)
+        message(FATAL_ERROR "expected 22 columns: ${line}")
     endif()
     list(GET f 0 active)
     list(GET f 1 drawn)
@@ -51,6 +51,7 @@ foreach(line IN LISTS lines)
     list(GET f 11 fxUploads)
     list(GET f 8 fxVertices)
     list(GET f 15 programsBuilt)
+    list(GET f 16 fieldTiles)
     if(NOT ms MATCHES "^${num}$" OR NOT p90 MATCHES "^${num}$" OR NOT ms GREATER 0 OR p90 LESS ms)
         message(FATAL_ERROR "ms median '${ms}' / p90 '${p90}' not positive numbers with p90 >= median: ${line}")
     endif()
@@ -63,19 +64,21 @@ foreach(line IN LISTS lines)
     endif()
     if(kind STREQUAL "none")
         # No effects (with or without an EffectsSystem): no effect pass, draw, upload or vertex, ever.
-        if(NOT fxPasses EQUAL 0 OR NOT fxDraws EQUAL 0 OR NOT fxUploads EQUAL 0 OR NOT fxVertices EQUAL 0)
+        if(NOT fxPasses EQUAL 0 OR NOT fxDraws EQUAL 0 OR NOT fxUploads EQUAL 0 OR NOT fxVertices EQUAL 0
+           OR NOT fieldTiles EQUAL 0)
             message(FATAL_ERROR "${setting} did effect work (passes ${fxPasses}, draws ${fxDraws}, uploads "
                                 "${fxUploads}, vertices ${fxVertices}): ${line}")
         endif()
     else()
-        # Every effect of the setting is in view (the bench places them so): one pass, one instanced draw,
-        # and the effect data uploaded each frame (>= 1 upload).
+        # Every effect of the setting is in view and near (the bench places them so): the effects field's
+        # compute pass over the tiles they touch and one grid pass with one instanced draw, the effect data
+        # uploaded each frame (>= 1 upload).
         if(NOT active EQUAL count OR NOT drawn EQUAL count)
             message(FATAL_ERROR "${count} ${kind}s but active ${active}, drawn ${drawn}: ${line}")
         endif()
-        if(NOT fxPasses EQUAL 1 OR NOT fxDraws EQUAL 1 OR fxUploads LESS 1)
+        if(NOT fxPasses EQUAL 2 OR NOT fxDraws EQUAL 1 OR fxUploads LESS 1 OR NOT fieldTiles GREATER 0)
             message(FATAL_ERROR "${kind} x${count}: passes ${fxPasses}, draws ${fxDraws}, uploads ${fxUploads}, "
-                                "expected 1, 1, >= 1: ${line}")
+                                "field tiles ${fieldTiles}, expected 2, 1, >= 1, > 0: ${line}")
         endif()
         if(NOT fxVertices GREATER 0)
             message(FATAL_ERROR "${kind} x${count}: no secondary-grid vertices: ${line}")

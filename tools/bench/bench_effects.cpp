@@ -90,7 +90,8 @@ struct Row {
     double renderCpuMsMedian = 0.0; // steady_clock around the render() call alone (CPU side, no glFinish)
     long long vertices = 0;         // all vertices of the frame (max over the timed frames)
     long long fxVertices = 0;       // secondary-grid vertices, both kinds
-    int fxPasses = 0, fxDraws = 0, fxUploads = 0; // both kinds, max over the timed frames
+    int fxPasses = 0, fxDraws = 0, fxUploads = 0; // both kinds and the field, max over the timed frames
+    int fieldTiles = 0;                           // tiles of the effects field evaluated (max)
     int passes = 0, draws = 0, uploads = 0;       // frame totals, max over the timed frames
     int programsBuilt = 0;                        // summed over the timed frames (must be 0: warm)
     std::vector<double> samples;                  // ms of each timed frame, one per round (round order)
@@ -206,9 +207,11 @@ struct Scene {
         row.drawn = std::min(row.drawn, row.kind == Kind::None ? 0 : k.drawn);
         row.vertices = std::max(row.vertices, s.vertices);
         row.fxVertices = std::max(row.fxVertices, s.explosions.vertices + s.wakes.vertices);
-        row.fxPasses = std::max(row.fxPasses, s.explosions.passes + s.wakes.passes);
+        row.fxPasses = std::max(row.fxPasses, s.explosions.passes + s.wakes.passes + s.effectField.passes);
         row.fxDraws = std::max(row.fxDraws, s.explosions.draws + s.wakes.draws);
-        row.fxUploads = std::max(row.fxUploads, s.explosions.uploads + s.wakes.uploads);
+        row.fxUploads =
+            std::max(row.fxUploads, s.explosions.uploads + s.wakes.uploads + s.effectField.uploads);
+        row.fieldTiles = std::max(row.fieldTiles, s.effectField.tiles);
         row.passes = std::max(row.passes, s.passes);
         row.draws = std::max(row.draws, s.draws);
         row.uploads = std::max(row.uploads, s.uploads);
@@ -224,10 +227,10 @@ struct Scene {
             row.updateUsMedian = quantile(updateUs, 0.5);
         std::fprintf(stderr,
                      "[%s] %s x%d: %.3f ms (p90 %.3f), update %.1f us, active %d drawn %d, fx vertices %lld, "
-                     "fx passes %d draws %d uploads %d\n",
+                     "fx passes %d draws %d uploads %d, field tiles %d\n",
                      row.setting.c_str(), kindName(row.kind), row.count, row.msMedian, row.msP90,
                      row.updateUsMedian, row.active, row.drawn, row.fxVertices, row.fxPasses, row.fxDraws,
-                     row.fxUploads);
+                     row.fxUploads, row.fieldTiles);
         return row;
     }
 };
@@ -374,14 +377,14 @@ std::string effectsCsv(const std::vector<Row>& rows, const RunSummary& s) {
     std::ostringstream csv;
     csv << "setting,kind,count,active,drawn,ms_median,ms_p90,us_per_effect_vs_plain,update_us_median,"
            "render_cpu_ms_median,vertices,fx_vertices,fx_passes,fx_draws,fx_uploads,passes,draws,uploads,"
-           "programs_built,clock,renderer\n";
+           "programs_built,field_tiles,clock,renderer\n";
     for (const Row& r : rows)
         csv << r.setting << ',' << kindName(r.kind) << ',' << r.count << ',' << r.active << ',' << r.drawn
             << ',' << num(r.msMedian) << ',' << num(r.msP90) << ',' << num(perEffectUs(r, s.plainMs)) << ','
             << num(r.updateUsMedian) << ',' << num(r.renderCpuMsMedian) << ',' << r.vertices << ','
             << r.fxVertices << ',' << r.fxPasses << ',' << r.fxDraws << ',' << r.fxUploads << ',' << r.passes
-            << ',' << r.draws << ',' << r.uploads << ',' << r.programsBuilt << ',' << csvQuote(s.clock) << ','
-            << csvQuote(s.renderer) << '\n';
+            << ',' << r.draws << ',' << r.uploads << ',' << r.programsBuilt << ',' << r.fieldTiles << ','
+            << csvQuote(s.clock) << ',' << csvQuote(s.renderer) << '\n';
     return csv.str();
 }
 
@@ -395,14 +398,14 @@ void settingsTable(std::ostringstream& md, const std::vector<Row>& rows, const R
        << " deg, pitch " << PITCH_DEG << " deg, " << FOV_Y_DEG << " deg vertical fov; default OceanDesc\n"
        << "- load average at the end: " << s.load << "\n\n"
        << "| setting | kind | count | active | drawn | ms median | ms p90 | µs/effect vs plain | update µs | "
-          "render CPU ms | vertices | fx vertices | fx passes | fx draws | fx uploads |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "render CPU ms | vertices | fx vertices | fx passes | fx draws | fx uploads | field tiles |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const Row& r : rows)
         md << "| " << r.setting << " | " << kindName(r.kind) << " | " << r.count << " | " << r.active << " | "
            << r.drawn << " | " << fixed(r.msMedian, 3) << " | " << fixed(r.msP90, 3) << " | "
            << fixed(perEffectUs(r, s.plainMs), 1) << " | " << fixed(r.updateUsMedian, 1) << " | "
            << fixed(r.renderCpuMsMedian, 3) << " | " << r.vertices << " | " << r.fxVertices << " | "
-           << r.fxPasses << " | " << r.fxDraws << " | " << r.fxUploads << " |\n";
+           << r.fxPasses << " | " << r.fxDraws << " | " << r.fxUploads << " | " << r.fieldTiles << " |\n";
 }
 
 void perEffectTable(std::ostringstream& md, const RunSummary& s) {
@@ -713,8 +716,8 @@ int main(int argc, char** argv) {
     const std::string& commandLine = args.commandLine;
     const auto [width, height] = args.size.value_or(quick ? std::pair{160, 90} : std::pair{640, 360});
     const int frames = args.frames.value_or(quick ? 3 : 15);
-    const std::vector<int> explosionCounts = quick ? std::vector{1, 4} : std::vector{1, 4, 16, 64};
-    const std::vector<int> wakeCounts = quick ? std::vector{1, 2} : std::vector{1, 2, 4, 8};
+    const std::vector<int> explosionCounts = quick ? std::vector{1, 4} : std::vector{1, 4, 16, 64, 256, 1024};
+    const std::vector<int> wakeCounts = quick ? std::vector{1, 2} : std::vector{1, 2, 8, 64, 256};
     try {
         std::filesystem::create_directories(outDir);
         auto context = gl::createHeadlessContext({.debug = false});

@@ -186,8 +186,8 @@ glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q, double kMax = EFFEC
 /// The same from the point's path coordinates (wakeCoords), for a caller that also needs them (foam); no box
 /// test.
 glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax = EFFECT_K_MAX);
-/// Wake foam in [0, 1]: the turbulent strip behind the stern, exp(-(y / w)^2), w = beam (1 + x / 400 m),
-/// times its growth/decay over the path's age.
+/// Wake foam in [0, 1]: the turbulent strip behind the stern, exp(-(y / w)^2) for |y| < 3 w (0 beyond),
+/// w = beam (1 + x / 400 m), times its growth/decay over the path's age.
 double wakeFoam(const WakeState& s, const WakeCoords& c);
 
 // ---- Events ---------------------------------------------------------------------------------------------

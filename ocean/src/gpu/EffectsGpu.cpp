@@ -12,7 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <utility>
 
 namespace pacifica::ocean {
 
@@ -190,8 +192,66 @@ std::vector<int> chooseGrids(const std::vector<Candidate>& c, size_t first, size
 } // namespace
 
 struct EffectsGpu::Footprint {
-    glm::dvec2 lo, hi; // camera-relative
+    glm::dvec2 lo, hi;              // camera-relative box
+    std::vector<glm::dvec2> points; // wakes: the path, camera-relative, newest first
+    std::vector<double> reach;      // wakes: per segment, how far from it the field can be non-zero
 };
+
+namespace {
+
+/// A wake's path for the tile test: its points and, per segment j (points j, j + 1), the distance from it
+/// within which the wake can be non-zero at a point whose nearest segment it is: the Kelvin wedge
+/// |y| < sqrt(1/8) x (plus the slope stencil's 0.1 m) up to the segment's older end, or the foam strip's
+/// 3 widths (wakeFoam) plus a beam ahead of the ship, whichever is wider.
+void wakePath(const WakeState& s, const glm::dvec2& rel, std::vector<glm::dvec2>& points,
+              std::vector<double>& reach) {
+    for (const glm::dvec2& o : s.offsets)
+        points.push_back(rel + o);
+    for (size_t j = 0; j + 1 < s.offsets.size(); ++j) {
+        const double sigma = s.sigma[j + 1];
+        const double wave = std::sqrt(KELVIN_TAN2) * (sigma + 0.1) + 0.1;
+        const double foam = 3.0 * s.beam * (1.0 + sigma / 400.0) + s.beam;
+        reach.push_back(std::max(wave, foam) + 0.01);
+    }
+}
+
+/// The tile-list entry of a wake for a tile whose texel centres lie within `half` (half-diagonal) of
+/// `centre` (camera-relative): (index, first, last segment) packed as index | first << 16 | last << 23, the
+/// segments that can be nearest to one of its texels; -1 when no texel is within a segment's reach (the
+/// wake is 0 on the whole tile). Distances from the centre bound those from any texel within +-half. A
+/// segment left out is farther from every texel than the nearest one by more than effects.glsl's tie
+/// margin (1e-4 on squared distances) and float rounding, so the shortened walk finds what the whole one
+/// finds. Segment 0 is the half-line through the ship, as wakeCoords() takes it.
+int wakeEntry(const std::vector<glm::dvec2>& p, const std::vector<double>& reach, int index,
+              const glm::dvec2& centre, double half) {
+    const size_t segments = reach.size();
+    if (segments == 0)
+        return -1;
+    double dist[MAX_WAKE_POINTS];
+    double best = std::numeric_limits<double>::infinity();
+    bool reached = false;
+    for (size_t j = 0; j < segments; ++j) {
+        const glm::dvec2 ab = p[j + 1] - p[j];
+        const double len2 = glm::dot(ab, ab);
+        const double u = len2 > 0.0 ? glm::dot(centre - p[j], ab) / len2 : 0.0;
+        const double uc = j == 0 ? std::min(u, 1.0) : std::clamp(u, 0.0, 1.0);
+        dist[j] = glm::length(centre - (p[j] + uc * ab));
+        best = std::min(best, dist[j] + half);
+        reached = reached || dist[j] - half <= reach[j];
+    }
+    if (!reached)
+        return -1;
+    const double limit = best * 1.0002 + 0.01 + 1e-6 * glm::length(centre);
+    int first = -1, last = -1;
+    for (size_t j = 0; j < segments; ++j)
+        if (dist[j] - half <= limit) {
+            first = first < 0 ? static_cast<int>(j) : first;
+            last = static_cast<int>(j);
+        }
+    return index | first << 16 | last << 23;
+}
+
+} // namespace
 
 void EffectsGpu::ensureField(const EffectFieldDesc& field) {
     if (mField && mFieldDesc.size == field.size && mFieldDesc.levels == field.levels)
@@ -229,7 +289,8 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
                     needed[l * perLevel + ty * perSide + tx] = 0;
             }
     }
-    std::vector<int> counts(2 * perLevel * levels, 0); // [tile][kind]
+    // Each effect's entries: (tile, list entry).
+    std::vector<std::pair<uint32_t, int32_t>> entries[2];
     auto forTiles = [&](const Footprint& f, auto&& visit) {
         for (int l = 0; l < levels; ++l) {
             const EffectFieldLevel& level = mLayout.level(l);
@@ -243,15 +304,29 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
             for (int ty = y0; ty <= y1; ++ty)
                 for (int tx = x0; tx <= x1; ++tx) {
                     const size_t t = l * perLevel + ty * perSide + tx;
-                    if (needed[t])
-                        visit(t);
+                    if (needed[t]) // the tile's texel centres: centre +- 3.5 texels
+                        visit(t, origin + (glm::dvec2(tx, ty) * 8.0 + 4.0 - 0.5 * size) * level.texel,
+                              3.5 * std::sqrt(2.0) * level.texel);
                 }
         }
     };
     for (size_t g = 0; g < footprints.size(); ++g) {
-        const int kind = static_cast<int>(g) < explosions ? 0 : 1;
-        forTiles(footprints[g], [&](size_t t) { ++counts[2 * t + kind]; });
+        const Footprint& f = footprints[g];
+        if (static_cast<int>(g) < explosions)
+            forTiles(f, [&](size_t t, const glm::dvec2&, double) {
+                entries[0].emplace_back(static_cast<uint32_t>(t), static_cast<int32_t>(g));
+            });
+        else
+            forTiles(f, [&](size_t t, const glm::dvec2& centre, double half) {
+                const int e = wakeEntry(f.points, f.reach, static_cast<int>(g) - explosions, centre, half);
+                if (e >= 0)
+                    entries[1].emplace_back(static_cast<uint32_t>(t), e);
+            });
     }
+    std::vector<int> counts(2 * perLevel * levels, 0); // [tile][kind]
+    for (int kind = 0; kind < 2; ++kind)
+        for (const auto& [t, e] : entries[kind])
+            ++counts[2 * t + kind];
     std::vector<EffectTileGpu> tiles;
     std::vector<int> cursor(2 * perLevel * levels, -1);
     int listSize = 0;
@@ -267,12 +342,9 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
         mWritten[t] = e + w > 0;
     }
     std::vector<int32_t> lists(static_cast<size_t>(std::max(listSize, 1)), 0);
-    for (size_t g = 0; g < footprints.size(); ++g) {
-        const int kind = static_cast<int>(g) < explosions ? 0 : 1;
-        const int index = kind == 0 ? static_cast<int>(g) : static_cast<int>(g) - explosions;
-        forTiles(footprints[g],
-                 [&](size_t t) { lists[static_cast<size_t>(cursor[2 * t + kind]++)] = index; });
-    }
+    for (int kind = 0; kind < 2; ++kind)
+        for (const auto& [t, e] : entries[kind])
+            lists[static_cast<size_t>(cursor[2 * t + kind]++)] = e;
     mTileCount = static_cast<int>(tiles.size());
     mFieldStats.tiles = mTileCount;
     mFieldStats.texels = 64LL * mTileCount;
@@ -298,6 +370,7 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
     const std::vector<ExplosionGpu> explosions = packExplosions(registry, frame, inView, candidates);
     std::vector<WakeGpu> wakes;
     std::vector<glm::vec4> points;
+    std::vector<Footprint> wakePaths;
     registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
         if (!trail.active)
             return;
@@ -307,6 +380,8 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
         const glm::dvec2 rel = s.ship - mCamera;
         packWake(s, rel, wakes, points);
         candidates.push_back(candidate(rel, s.radius, s.boxMin, s.boxMax, frame, inView));
+        wakePaths.emplace_back();
+        wakePath(s, rel, wakePaths.back().points, wakePaths.back().reach);
     });
     mExplosionCount = static_cast<int>(explosions.size());
     mWakeCount = static_cast<int>(wakes.size());
@@ -322,8 +397,12 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
                mWakeUploads);
     }
     std::vector<Footprint> footprints;
-    for (const Candidate& c : candidates)
-        footprints.push_back({c.lo, c.hi});
+    for (size_t i = 0; i < candidates.size(); ++i) {
+        Footprint f = i < explosions.size() ? Footprint{} : std::move(wakePaths[i - explosions.size()]);
+        f.lo = candidates[i].lo;
+        f.hi = candidates[i].hi;
+        footprints.push_back(std::move(f));
+    }
     binTiles(footprints, mExplosionCount);
     // The grids: explosions' then wakes', each (centre - camera, radius, 0).
     const size_t e = static_cast<size_t>(mExplosionCount);
