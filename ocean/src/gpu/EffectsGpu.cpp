@@ -215,40 +215,35 @@ void wakePath(const WakeState& s, const glm::dvec2& rel, std::vector<glm::dvec2>
     }
 }
 
-/// The tile-list entry of a wake for a tile whose texel centres lie within `half` (half-diagonal) of
-/// `centre` (camera-relative): (index, first, last segment) packed as index | first << 16 | last << 23, the
-/// segments that can be nearest to one of its texels; -1 when no texel is within a segment's reach (the
-/// wake is 0 on the whole tile). Distances from the centre bound those from any texel within +-half. A
-/// segment left out is farther from every texel than the nearest one by more than effects.glsl's tie
-/// margin (1e-4 on squared distances) and float rounding, so the shortened walk finds what the whole one
-/// finds. Segment 0 is the half-line through the ship, as wakeCoords() takes it.
-int wakeEntry(const std::vector<glm::dvec2>& p, const std::vector<double>& reach, int index,
-              const glm::dvec2& centre, double half) {
-    const size_t segments = reach.size();
-    if (segments == 0)
-        return -1;
+/// The path segments of a wake that can be nearest to a point within `half` of `centre` (camera-relative),
+/// searched among segments first..last: {first, last} of those, or {-1, -1} when no such point is within a
+/// segment's reach (the wake is 0 there). Distances from the centre bound those from any point within
+/// +-half. A segment left out is farther from every such point than the nearest one by more than
+/// effects.glsl's tie margin (1e-4 on squared distances) and float rounding, so a walk over the range finds
+/// what the whole walk finds; and the nearest segment is always in the range, so checking the reach over the
+/// range suffices. Segment 0 is the half-line through the ship, as wakeCoords() takes it.
+std::pair<int, int> wakeSegments(const std::vector<glm::dvec2>& p, const std::vector<double>& reach,
+                                 int first, int last, const glm::dvec2& centre, double half) {
     double dist[MAX_WAKE_POINTS];
     double best = std::numeric_limits<double>::infinity();
-    bool reached = false;
-    for (size_t j = 0; j < segments; ++j) {
+    for (int j = first; j <= last; ++j) {
         const glm::dvec2 ab = p[j + 1] - p[j];
         const double len2 = glm::dot(ab, ab);
         const double u = len2 > 0.0 ? glm::dot(centre - p[j], ab) / len2 : 0.0;
         const double uc = j == 0 ? std::min(u, 1.0) : std::clamp(u, 0.0, 1.0);
         dist[j] = glm::length(centre - (p[j] + uc * ab));
         best = std::min(best, dist[j] + half);
-        reached = reached || dist[j] - half <= reach[j];
     }
-    if (!reached)
-        return -1;
     const double limit = best * 1.0002 + 0.01 + 1e-6 * glm::length(centre);
-    int first = -1, last = -1;
-    for (size_t j = 0; j < segments; ++j)
+    int from = -1, to = -1;
+    bool reached = false;
+    for (int j = first; j <= last; ++j)
         if (dist[j] - half <= limit) {
-            first = first < 0 ? static_cast<int>(j) : first;
-            last = static_cast<int>(j);
+            from = from < 0 ? j : from;
+            to = j;
+            reached = reached || dist[j] - half <= reach[static_cast<size_t>(j)];
         }
-    return index | first << 16 | last << 23;
+    return reached ? std::pair{from, to} : std::pair{-1, -1};
 }
 
 } // namespace
@@ -291,37 +286,64 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
     }
     // Each effect's entries: (tile, list entry).
     std::vector<std::pair<uint32_t, int32_t>> entries[2];
-    auto forTiles = [&](const Footprint& f, auto&& visit) {
+    // The tiles of level l a footprint's box touches, widened by a texel (the bilinear read), [x0, x1] x
+    // [y0, y1]; and a tile's texel centres: centre +- 3.5 texels.
+    struct Range {
+        int x0, y0, x1, y1;
+    };
+    auto tileRange = [&](const Footprint& f, int l) {
+        const EffectFieldLevel& level = mLayout.level(l);
+        const glm::dvec2 origin = level.centre - mCamera; // footprints are camera-relative
+        const glm::dvec2 lo = (f.lo - origin) / level.texel + 0.5 * size - 1.5;
+        const glm::dvec2 hi = (f.hi - origin) / level.texel + 0.5 * size + 0.5;
+        return Range{std::max(0, static_cast<int>(std::floor(lo.x / 8.0))),
+                     std::max(0, static_cast<int>(std::floor(lo.y / 8.0))),
+                     std::min(perSide - 1, static_cast<int>(std::floor(hi.x / 8.0))),
+                     std::min(perSide - 1, static_cast<int>(std::floor(hi.y / 8.0)))};
+    };
+    auto tileCentre = [&](int l, double tx, double ty) {
+        const EffectFieldLevel& level = mLayout.level(l);
+        return level.centre - mCamera + (glm::dvec2(tx, ty) * 8.0 + 4.0 - 0.5 * size) * level.texel;
+    };
+    for (int g = 0; g < static_cast<int>(footprints.size()); ++g) {
+        const Footprint& f = footprints[static_cast<size_t>(g)];
         for (int l = 0; l < levels; ++l) {
-            const EffectFieldLevel& level = mLayout.level(l);
-            const glm::dvec2 origin = level.centre - mCamera; // footprints are camera-relative
-            const glm::dvec2 lo = (f.lo - origin) / level.texel + 0.5 * size - 1.5;
-            const glm::dvec2 hi = (f.hi - origin) / level.texel + 0.5 * size + 0.5;
-            const int x0 = std::max(0, static_cast<int>(std::floor(lo.x / 8.0)));
-            const int y0 = std::max(0, static_cast<int>(std::floor(lo.y / 8.0)));
-            const int x1 = std::min(perSide - 1, static_cast<int>(std::floor(hi.x / 8.0)));
-            const int y1 = std::min(perSide - 1, static_cast<int>(std::floor(hi.y / 8.0)));
-            for (int ty = y0; ty <= y1; ++ty)
-                for (int tx = x0; tx <= x1; ++tx) {
-                    const size_t t = l * perLevel + ty * perSide + tx;
-                    if (needed[t]) // the tile's texel centres: centre +- 3.5 texels
-                        visit(t, origin + (glm::dvec2(tx, ty) * 8.0 + 4.0 - 0.5 * size) * level.texel,
-                              3.5 * std::sqrt(2.0) * level.texel);
+            const Range r = tileRange(f, l);
+            if (g < explosions) {
+                for (int ty = r.y0; ty <= r.y1; ++ty)
+                    for (int tx = r.x0; tx <= r.x1; ++tx) {
+                        const size_t t = l * perLevel + ty * perSide + tx;
+                        if (needed[t])
+                            entries[0].emplace_back(static_cast<uint32_t>(t), g);
+                    }
+                continue;
+            }
+            // Wakes: blocks of 4 x 4 tiles first (their segment range bounds their tiles'), then each tile.
+            const int segments = static_cast<int>(f.reach.size());
+            const double texel = mLayout.level(l).texel;
+            for (int by = r.y0 / 4; by <= r.y1 / 4; ++by)
+                for (int bx = r.x0 / 4; bx <= r.x1 / 4; ++bx) {
+                    if (segments == 0)
+                        break;
+                    const auto [bFirst, bLast] = wakeSegments(f.points, f.reach, 0, segments - 1,
+                                                              tileCentre(l, 4.0 * bx + 1.5, 4.0 * by + 1.5),
+                                                              (16.0 - 0.5) * std::sqrt(2.0) * texel);
+                    if (bFirst < 0)
+                        continue;
+                    for (int ty = std::max(r.y0, 4 * by); ty <= std::min(r.y1, 4 * by + 3); ++ty)
+                        for (int tx = std::max(r.x0, 4 * bx); tx <= std::min(r.x1, 4 * bx + 3); ++tx) {
+                            const size_t t = l * perLevel + ty * perSide + tx;
+                            if (!needed[t])
+                                continue;
+                            const auto [first, last] =
+                                wakeSegments(f.points, f.reach, bFirst, bLast, tileCentre(l, tx, ty),
+                                             3.5 * std::sqrt(2.0) * texel);
+                            if (first >= 0)
+                                entries[1].emplace_back(static_cast<uint32_t>(t),
+                                                        (g - explosions) | first << 16 | last << 23);
+                        }
                 }
         }
-    };
-    for (size_t g = 0; g < footprints.size(); ++g) {
-        const Footprint& f = footprints[g];
-        if (static_cast<int>(g) < explosions)
-            forTiles(f, [&](size_t t, const glm::dvec2&, double) {
-                entries[0].emplace_back(static_cast<uint32_t>(t), static_cast<int32_t>(g));
-            });
-        else
-            forTiles(f, [&](size_t t, const glm::dvec2& centre, double half) {
-                const int e = wakeEntry(f.points, f.reach, static_cast<int>(g) - explosions, centre, half);
-                if (e >= 0)
-                    entries[1].emplace_back(static_cast<uint32_t>(t), e);
-            });
     }
     std::vector<int> counts(2 * perLevel * levels, 0); // [tile][kind]
     for (int kind = 0; kind < 2; ++kind)
