@@ -20,6 +20,8 @@ struct ExplosionGpu { // explosionState() of each explosion, camera-relative
     float crownFoam;
     float crownRadius;
     float peakAmplitude;
+    float slick;
+    float slickRadius;
 };
 // Its points at [wake * MAX_WAKE_POINTS * 2 ...]: (offset from ship x, y; sigma; age), (amplitude, k0, 0, 0).
 struct WakeGpu {
@@ -78,14 +80,18 @@ vec3 explosionWave(int i, vec2 q, float kMax) {
     return vec3(h, dh * q / s);
 }
 
-float explosionFoam(int i, vec2 q, float h) {
+// filter2: the field level's foam prefilter (Effects.cpp explosionFoam()).
+float explosionFoam(int i, vec2 q, float h, float filter2) {
     ExplosionGpu e = uExplosions[i];
     if (e.gridRadius <= 0.0 || dot(q, q) >= e.gridRadius * e.gridRadius)
         return 0.0;
-    float crown = e.crownFoam * exp(-dot(q, q) / (e.crownRadius * e.crownRadius));
+    float r2 = e.crownRadius * e.crownRadius + filter2;
+    float crown = e.crownFoam * (e.crownRadius * e.crownRadius / r2) * exp(-dot(q, q) / r2);
+    float sr2 = e.slickRadius * e.slickRadius + filter2;
+    float slick = e.slick * (e.slickRadius * e.slickRadius / sr2) * exp(-dot(q, q) / sr2);
     float h0 = 0.35 * e.peakAmplitude, hMax = 0.8 * e.peakAmplitude; // GPU Gems 2 §18.3: (H - H0) / (Hmax - H0)
     float crest = clamp((h - h0) / (hMax - h0), 0.0, 1.0);
-    return clamp(max(crown, crest), 0.0, 1.0);
+    return clamp(max(max(crown, slick), crest), 0.0, 1.0);
 }
 
 // Path coordinates of q (relative to the ship) for wake i: wakeCoords() in Effects.cpp.
@@ -158,7 +164,7 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral, float kMax)
 }
 
 // (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship), its path walked over segments first..last.
-vec4 wakeWave(int i, vec2 q, float kMax, int first, int last) {
+vec4 wakeWave(int i, vec2 q, float kMax, int first, int last, float filter2) {
     float R = uWakes[i].gridRadius;
     vec2 boxMin = uWakes[i].boxMin, boxMax = uWakes[i].boxMax;
     // insideWakeBox() in Effects.cpp
@@ -182,8 +188,10 @@ vec4 wakeWave(int i, vec2 q, float kMax, int first, int last) {
     int n = int(wake.points);
     float foam = 0.0;
     if (n >= 2 && c.amplitude > 0.0) {
-        float width = wake.beam * (1.0 + max(c.behind, 0.0) / 400.0);
-        float strip = abs(c.lateral) < 3.0 * width ? exp(-(c.lateral * c.lateral) / (width * width)) : 0.0;
+        float w = wake.beam * (1.0 + max(c.behind, 0.0) / 400.0);
+        float width2 = w * w + filter2;
+        float strip = c.lateral * c.lateral < 9.0 * width2 ? sqrt(w * w / width2) * exp(-(c.lateral * c.lateral) / width2)
+                                                          : 0.0;
         float start = smoothstep(-wake.beam, 0.0, c.behind);
         float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
         float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);

@@ -36,6 +36,7 @@ void main() {
     // EffectFieldLayout::texelCentre(): a texel centre, camera-relative.
     vec2 rel = level.xy + (vec2(texel) + 0.5 - 0.5 * uEffectFieldSize) * level.z;
     float kMax = min(EFFECT_K_MAX, EFFECT_TWO_PI / (4.0 * level.z));
+    float filter2 = level.z * level.z / 6.0; // EffectFieldLevel::foamFilter2
     vec3 sum = vec3(0.0);
     float foam = 0.0;
 #ifdef EFFECTS_EXPLOSIONS
@@ -47,7 +48,7 @@ void main() {
             continue;
         vec3 w = explosionWave(i, q, kMax);
         sum += w;
-        foam = max(foam, explosionFoam(i, q, w.x));
+        foam = max(foam, explosionFoam(i, q, w.x, filter2));
     }
 #endif
 #ifdef EFFECTS_WAKES
@@ -55,7 +56,7 @@ void main() {
         // (wake, first segment, last segment) packed: EffectsGpu.cpp wakeEntry().
         int entry = uTileEffects[tile.first + tile.explosions + k];
         int i = entry & 0xFFFF;
-        vec4 w = wakeWave(i, rel - uWakes[i].ship, kMax, (entry >> 16) & 0x7F, (entry >> 23) & 0x7F);
+        vec4 w = wakeWave(i, rel - uWakes[i].ship, kMax, (entry >> 16) & 0x7F, (entry >> 23) & 0x7F, filter2);
         sum += w.xyz;
         foam = max(foam, w.w);
     }

@@ -87,11 +87,15 @@ ExplosionState explosionState(const Explosion& e, double t) {
     s.frontWidth = std::numbers::pi / p.wavenumber;
     s.foam = -std::expm1(-s.tau / p.foamRise) * std::exp(-s.tau / p.foamLife);
     s.crownRadius = 1.5 * p.coreRadius + 0.3 * groupSpeed * std::min(s.tau, p.foamLife);
+    s.slick = p.slickFoam * -std::expm1(-s.tau / 5.0) * std::exp(-s.tau / p.slickLife);
+    s.slickRadius = 2.0 * p.coreRadius * std::sqrt(1.0 + s.tau / 30.0);
     // Where the spreading r0 / s brings the amplitude under the end threshold: s = r0 A / end.
     const double spread = p.coreRadius * s.amplitude / std::max(e.endAmplitude, 1e-6);
     double radius = std::min(s.front + s.frontWidth, spread);
     if (s.foam > 0.01)
         radius = std::max(radius, 2.5 * s.crownRadius);
+    if (s.slick > 0.01)
+        radius = std::max(radius, 2.5 * s.slickRadius);
     s.radius = std::max(radius, 2.0 * p.coreRadius);
     return s;
 }
@@ -127,15 +131,18 @@ glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, cons
     return {h, dh * q.x / sr, dh * q.y / sr};
 }
 
-double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q, double h) {
+double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q, double h,
+                     double filter2) {
     if (s.radius <= 0.0 || glm::dot(q, q) >= s.radius * s.radius)
         return 0.0;
-    const double rr = glm::dot(q, q) / (s.crownRadius * s.crownRadius);
-    const double crown = s.foam * std::exp(-rr);
+    const double r2 = s.crownRadius * s.crownRadius + filter2;
+    const double crown = s.foam * (s.crownRadius * s.crownRadius / r2) * std::exp(-glm::dot(q, q) / r2);
+    const double sr2 = s.slickRadius * s.slickRadius + filter2;
+    const double slick = s.slick * (s.slickRadius * s.slickRadius / sr2) * std::exp(-glm::dot(q, q) / sr2);
     // GPU Gems 2 §18.3: alpha = (H - H0) / (Hmax - H0).
     const double h0 = 0.35 * p.amplitude, hMax = 0.8 * p.amplitude;
     const double crest = std::clamp((h - h0) / (hMax - h0), 0.0, 1.0);
-    return std::clamp(std::max(crown, crest), 0.0, 1.0);
+    return std::clamp(std::max({crown, slick, crest}), 0.0, 1.0);
 }
 
 // ---- Wakes ----------------------------------------------------------------------------------------------
@@ -289,13 +296,15 @@ glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax) {
     return {h, g.x, g.y};
 }
 
-double wakeFoam(const WakeState& s, const WakeCoords& c) {
+double wakeFoam(const WakeState& s, const WakeCoords& c, double filter2) {
     if (s.sigma.empty() || c.amplitude <= 0.0)
         return 0.0;
-    const double width = s.beam * (1.0 + std::max(c.behind, 0.0) / 400.0);
+    const double w = s.beam * (1.0 + std::max(c.behind, 0.0) / 400.0);
+    const double width2 = w * w + filter2;
     // Cut at 3 widths (e^-9): the GPU's tiles beyond hold no foam (EffectsGpu.cpp).
-    const double strip =
-        std::abs(c.lateral) < 3.0 * width ? std::exp(-(c.lateral * c.lateral) / (width * width)) : 0.0;
+    const double strip = c.lateral * c.lateral < 9.0 * width2
+                             ? std::sqrt(w * w / width2) * std::exp(-(c.lateral * c.lateral) / width2)
+                             : 0.0;
     const double start = smoothstep(-s.beam, 0.0, c.behind);
     const double sigmaMax = s.sigma.back();
     const double end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);
@@ -312,14 +321,15 @@ struct FieldSample {
     double foam = 0.0;
 };
 
-FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax) {
+FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax,
+                          double filter2 = 0.0) {
     FieldSample f;
     registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
         const ExplosionState s = explosionState(e, t);
         const glm::dvec2 q = xy - e.center;
         const glm::dvec3 w = explosionWave(e.params, s, q, kMax);
         f.wave += w;
-        f.foam = std::max(f.foam, explosionFoam(e.params, s, q, w.x));
+        f.foam = std::max(f.foam, explosionFoam(e.params, s, q, w.x, filter2));
     });
     registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
         if (!trail.active)
@@ -330,7 +340,7 @@ FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double 
             return;
         const WakeCoords c = wakeCoords(s, q); // one path walk for both
         f.wave += wakeWaveAt(s, c, kMax);
-        f.foam = std::max(f.foam, wakeFoam(s, c));
+        f.foam = std::max(f.foam, wakeFoam(s, c, filter2));
     });
     return f;
 }
@@ -352,8 +362,9 @@ double effectsFoamAt(ecs::Registry& registry, const glm::dvec2& xy, double t) {
     return sampleEffects(registry, xy, t, EFFECT_K_MAX).foam;
 }
 
-glm::dvec4 effectsFieldAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax) {
-    const FieldSample f = sampleEffects(registry, xy, t, kMax);
+glm::dvec4 effectsFieldAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax,
+                          double foamFilter2) {
+    const FieldSample f = sampleEffects(registry, xy, t, kMax, foamFilter2);
     return glm::dvec4(saturate(f.wave), f.foam);
 }
 
@@ -385,6 +396,7 @@ EffectFieldLayout::EffectFieldLayout(const EffectFieldDesc& desc, const glm::dve
         level.kMax = std::min(EFFECT_K_MAX, TWO_PI / (4.0 * texel));
         level.inner = (0.5 * desc.size - 2.0) * texel;
         level.band = desc.size / 8.0 * texel;
+        level.foamFilter2 = texel * texel / 6.0;
         mLevels.push_back(level);
     }
 }
@@ -420,7 +432,8 @@ glm::dvec4 bilinear(ecs::Registry& registry, const EffectFieldLayout& layout, in
     const int i = std::clamp(static_cast<int>(f.x), 0, size - 2);
     const int j = std::clamp(static_cast<int>(f.y), 0, size - 2);
     auto at = [&](int di, int dj) {
-        return effectsFieldAt(registry, layout.texelCentre(l, i + di, j + dj), t, level.kMax);
+        return effectsFieldAt(registry, layout.texelCentre(l, i + di, j + dj), t, level.kMax,
+                              level.foamFilter2);
     };
     return glm::mix(glm::mix(at(0, 0), at(1, 0), w.x), glm::mix(at(0, 1), at(1, 1), w.x), w.y);
 }
@@ -614,7 +627,7 @@ void EffectsSystem::endFadedExplosions(double time) {
     mRegistry.view<Explosion>().each([&](ecs::Entity ent, Explosion& e) {
         const ExplosionState s = explosionState(e, time);
         const bool grown = s.tau > 3.0 * e.params.rise + explosionPeakTime(e.params);
-        if (grown && s.amplitude < mDesc.endAmplitude && s.foam < 0.01)
+        if (grown && s.amplitude < mDesc.endAmplitude && s.foam < 0.01 && s.slick < 0.01)
             ended.push_back(ent);
         else if (s.tau > 0.0)
             ++mCounters.activeExplosions;

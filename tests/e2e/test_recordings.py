@@ -16,6 +16,10 @@ Cases (chosen with --case, one ctest test each):
   formats      the same slice from a zip of the recording (same pixel hashes as the text: the zip is streamed
                through the same parser), the text twice (deterministic), and a generated IGC flight with a
                chase rig (derived attitude: the camera follows the glider's turn).
+  fleet        a generated recording of a fleet and a battle (64 ships on crossing courses, 500 weapons ending on
+               the sea, two aircraft), replayed from a chase rig and from 8 km up: every ship's wake and every
+               impact simulated and in the effects field (none dropped, per frame and in total), the effects
+               brighten the view from 8 km against --no-events, and a second run gives the same pixel hashes.
   bad-input    malformed ACMI (file:line and field named), unknown and ambiguous objects (candidates
                listed), a bad rig kind, too many frames (the count named), a bad --video name, ffmpeg
                missing: each exits non-zero with one 'pacifica: error:' line and leaves no output behind.
@@ -320,8 +324,122 @@ def case_bundled_sample(c, exe, source_dir, tmp):
             str(active))
     c.check(all(f["counters"]["wakes"]["active"] >= 1 for f in s["frames"]), "the ships have wakes", "")
 
+FLEET_REF = (37.0, 44.5)  # lon, lat: the Black Sea off Batumi's latitude, open water
 
-CASES = {"acmi-rigs": case_acmi_rigs, "bundled-sample": case_bundled_sample, "acmi-ships": case_acmi_ships, "acmi-views": case_acmi_views,
+
+def write_fleet(path, ships=64, impacts=500):
+    """A Tacview ACMI 2.2 text recording of a fleet and a battle, deterministic: `ships` ships in four groups on
+    crossing courses (north, east, north-east, south-east) at 8-14 m/s from t = 0 to 140 s, `impacts` weapons
+    (bombs, missiles, rockets) falling onto the sea around the fleet between t = 70 and 128 s, and two aircraft
+    (one at 300 m, one at 8 km). Returns the impact times."""
+    lon0, lat0 = FLEET_REF
+    m_lat = 111320.0
+    m_lon = 111320.0 * math.cos(math.radians(lat0))
+
+    def t_field(east, north, alt, yaw=None):
+        ang = "" if yaw is None else f"|0|0|{yaw:.1f}"
+        return f"T={east / m_lon:.7f}|{north / m_lat:.7f}|{alt:.1f}{ang}"
+
+    headings = [0.0, 90.0, 45.0, 135.0]
+    fleet = []
+    for k in range(ships):
+        g, i = k % 4, k // 4
+        h = math.radians(headings[g])
+        d = (math.sin(h), math.cos(h))  # east, north
+        side = (d[1], -d[0])
+        speed = 8.0 + (k * 7 % 13) * 0.5
+        # Each group's lane starts 1.2 km back along its course, lanes 180 m apart across it.
+        start = (-1200.0 * d[0] + (i - 7.5) * 180.0 * side[0], -1200.0 * d[1] + (i - 7.5) * 180.0 * side[1])
+        fleet.append((start, d, speed, headings[g]))
+    rng = 12345
+
+    def rand():
+        nonlocal rng
+        rng = (1103515245 * rng + 12345) % 2147483648
+        return rng / 2147483648.0
+
+    kinds = [("Weapon+Bomb", "Mk-82")] * 1 + [("Weapon+Missile", "Harpoon")] * 3 + [("Weapon+Rocket", "Zuni")] * 6
+    weapons = []
+    for n in range(impacts):
+        t = round(70.0 + 58.0 * n / impacts, 1)
+        weapons.append((t, (rand() - 0.5) * 5000.0, (rand() - 0.5) * 5000.0, kinds[n % len(kinds)]))
+    lines = ["FileType=text/acmi/tacview", "FileVersion=2.2", "0,ReferenceTime=2024-06-01T10:00:00Z",
+             f"0,ReferenceLongitude={lon0}", f"0,ReferenceLatitude={lat0}", "0,Title=Pacifica fleet test"]
+    events = {}
+
+    def at(t, text):
+        events.setdefault(round(t, 1), []).append(text)
+
+    for step in range(0, 71):
+        t = 2.0 * step
+        for k, (s0, d, v, yaw) in enumerate(fleet):
+            oid = f"{0x200 + k:x}"
+            pos = t_field(s0[0] + d[0] * v * t, s0[1] + d[1] * v * t, 0.0, yaw)
+            if step == 0:
+                at(t, f"{oid},Type=Sea+Watercraft+Warship,Name=Ship {k:02d},Length={100 + (k % 5) * 40},Coalition=Allies")
+            at(t, f"{oid},{pos}")
+        at(t, f"100,{t_field(-3000.0 + 150.0 * t, -500.0, 300.0, 90.0)}")
+        at(t, f"101,{t_field(-3000.0 + 150.0 * t, 500.0, 8000.0, 90.0)}")
+        if step == 0:
+            at(t, "100,Type=Air+FixedWing,Name=Jet 1,Pilot=One")
+            at(t, "101,Type=Air+FixedWing,Name=Jet 2,Pilot=Two")
+    for n, (t, e, north, (kind, name)) in enumerate(weapons):
+        oid = f"{0x3000 + n:x}"
+        at(t - 4.0, f"{oid},Type={kind},Name={name}")
+        at(t - 4.0, f"{oid},{t_field(e - 400.0, north, 600.0)}")
+        at(t - 2.0, f"{oid},{t_field(e - 200.0, north, 300.0)}")
+        at(t, f"{oid},{t_field(e, north, 0.0)}")
+        at(t, f"-{oid}")
+    for t in sorted(events):
+        lines.append(f"#{t:g}")
+        lines.extend(events[t])
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(lines) + "\n")
+    return [w[0] for w in weapons]
+
+
+def case_fleet(c, exe, source_dir, tmp):
+    acmi = os.path.join(tmp, "fleet.txt.acmi")
+    impact_times = write_fleet(acmi)
+    args = [acmi, "--rig", "chase:Jet 1,size=160x90,name=chase", "--rig",
+            "orbit:Ship 00,distance=8500,elevation=70,rate=0,size=160x90,name=high", "--start", "120", "--end",
+            "128", "--fps", "0.5", "--no-progress"]
+    s = replay(c, exe, args, os.path.join(tmp, "fleet"))
+    ev = s["events"]
+    c.check(ev.get("ships") == 64 and ev.get("explosions") == 500,
+            "the recording drives 64 ships and 500 impacts", str(ev))
+    c.check(ev.get("explosions_dropped_total") == 0, "no impact dropped in the whole run", str(ev))
+    views = s["views"]
+    c.require(len(views) == 2 and all(len(v["frames"]) == 5 for v in views), "two views of 5 frames", "")
+    for v in views:
+        for f in v["frames"]:
+            k = f["counters"]
+            t = f["time_s"]
+            due = sum(1 for x in impact_times if x < t)
+            c.check(k["wakes"]["active"] == 64 and k["wakes_dropped"] == 0,
+                    f"{v['name']} t={t}: all 64 wakes active, none dropped", str(k["wakes"]))
+            c.check(k["explosions_dropped"] == 0 and due - 5 <= k["explosions"]["active"] <= due,
+                    f"{v['name']} t={t}: every impact so far active ({due} due), none dropped",
+                    str(k["explosions"]))
+            c.check(k["effect_field"]["passes"] == 1 and k["effect_field"]["tiles"] > 0,
+                    f"{v['name']} t={t}: the effects field is evaluated", str(k["effect_field"]))
+    # From 8 km up the fleet's wakes and the impacts' foam brighten the sea.
+    plain = replay(c, exe, args + ["--no-events"], os.path.join(tmp, "plain"))
+    lum = lambda rgb: 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]  # noqa: E731
+    fx = [lum(p) for p in exr_pixels(os.path.join(tmp, "fleet"), "high_frame_00004.exr")]
+    base = [lum(p) for p in exr_pixels(os.path.join(tmp, "plain"), "high_frame_00004.exr")]
+    typical = sorted(base)[len(base) // 2]
+    brighter = sum(1 for a, b in zip(fx, base) if a > b + 0.05 * typical) / len(base)
+    c.check(brighter > 0.02, "from 8 km, > 2% of the pixels are brighter by > 5% of the median (foam)",
+            f"{100 * brighter:.1f}% brighter")
+    # Deterministic: the same run again gives the same pixels.
+    again = replay(c, exe, args, os.path.join(tmp, "again"))
+    same = all(a["exr_pixel_hash"] == b["exr_pixel_hash"] for va, vb in zip(views, again["views"])
+               for a, b in zip(va["frames"], vb["frames"]))
+    c.check(same, "a second run gives the same EXR pixel hashes", "")
+
+
+CASES = {"acmi-rigs": case_acmi_rigs, "fleet": case_fleet, "bundled-sample": case_bundled_sample, "acmi-ships": case_acmi_ships, "acmi-views": case_acmi_views,
          "acmi-video": case_acmi_video, "formats": case_formats, "bad-input": case_bad_input}
 
 

@@ -50,7 +50,7 @@ void main() {
     ExplosionGpu e = uExplosions[0];
     WakeGpu w = uWakes[0];
     sink[0] = e.centre.x + e.centre.y + e.gridRadius + e.amplitude + e.wavenumber + e.phase + e.coreRadius +
-              e.front + e.frontWidth + e.crownFoam + e.crownRadius + e.peakAmplitude;
+              e.front + e.frontWidth + e.crownFoam + e.crownRadius + e.peakAmplitude + e.slick + e.slickRadius;
     sink[1] = w.ship.x + w.ship.y + w.gridRadius + w.points + w.shipLength + w.beam + w.waveLife + w.foamLife +
               w.boxMin.x + w.boxMin.y + w.boxMax.x + w.boxMax.y;
     sink[2] = uWakePoints[0].x;
@@ -113,7 +113,9 @@ TEST(GpuInterface, EffectStructsMatchTheDriversLayout) {
                    {"frontWidth", offsetof(ExplosionGpu, frontWidth)},
                    {"crownFoam", offsetof(ExplosionGpu, crownFoam)},
                    {"crownRadius", offsetof(ExplosionGpu, crownRadius)},
-                   {"peakAmplitude", offsetof(ExplosionGpu, peakAmplitude)}});
+                   {"peakAmplitude", offsetof(ExplosionGpu, peakAmplitude)},
+                   {"slick", offsetof(ExplosionGpu, slick)},
+                   {"slickRadius", offsetof(ExplosionGpu, slickRadius)}});
     expectOffsets(p, "uWakes", sizeof(WakeGpu),
                   {{"ship", offsetof(WakeGpu, ship)},
                    {"gridRadius", offsetof(WakeGpu, gridRadius)},

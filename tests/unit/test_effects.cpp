@@ -311,7 +311,7 @@ TEST(EffectField, TwinReadsTexelsBilinearlyAndBlendsLevelsContinuously) {
     const EffectFieldLayout layout({}, cam);
     const glm::dvec2 texel = layout.texelCentre(0, 300, 280);
     const glm::dvec4 v = sampleEffectField(reg, layout, texel, t);
-    const glm::dvec4 exact = effectsFieldAt(reg, texel, t, layout.level(0).kMax);
+    const glm::dvec4 exact = effectsFieldAt(reg, texel, t, layout.level(0).kMax, layout.level(0).foamFilter2);
     EXPECT_NEAR(v.x, exact.x, 1e-12);
     EXPECT_NEAR(v.y, exact.y, 1e-12);
     EXPECT_NEAR(v.w, exact.w, 1e-12);
@@ -341,6 +341,28 @@ TEST(EffectField, TwinReadsTexelsBilinearlyAndBlendsLevelsContinuously) {
     EXPECT_GT(jump, 0.0);
     EXPECT_LT(jump, 1e-3) << "largest change over 1 cm";
     EXPECT_EQ(sampleEffectField(reg, layout, cam + glm::dvec2(4.0e4, 0.0), t), glm::dvec4(0.0));
+}
+
+// The foam's prefilter for a coarse level keeps a crown's and a strip's area (their coverage summed over the
+// sea), so a crown smaller than a texel does not fall between texel centres.
+TEST(EffectField, FoamPrefilterKeepsTheCoverage) {
+    const Explosion e = makeExplosion({0.0, 0.0}, 0.0);
+    const ExplosionState s = explosionState(e, 3.0);
+    auto area = [&](double filter2) {
+        double sum = 0.0;
+        for (double x = -60.0; x <= 60.0; x += 0.25)
+            for (double y = -60.0; y <= 60.0; y += 0.25)
+                sum += 0.0625 * explosionFoam(e.params,
+                                              ExplosionState{s.tau, 0.0, s.phase, s.front, s.frontWidth,
+                                                             s.radius, s.foam, s.crownRadius},
+                                              {x, y}, 0.0, filter2);
+        return sum;
+    };
+    const double sharp = area(0.0), coarse = area(16.0 * 16.0 / 6.0);
+    EXPECT_NEAR(sharp, s.foam * std::numbers::pi * s.crownRadius * s.crownRadius, 0.01 * sharp);
+    EXPECT_NEAR(coarse, sharp, 0.01 * sharp);
+    EXPECT_LT(explosionFoam(e.params, s, {0.0, 0.0}, 0.0, 256.0 / 6.0),
+              explosionFoam(e.params, s, {0.0, 0.0}, 0.0));
 }
 
 // Band limit: a level whose texels cannot carry a ring leaves it out (effectBandFade), the foam stays.
@@ -434,18 +456,24 @@ TEST(EffectsSystem, EventsCreateExplosionsThatEndWithAnEvent) {
     auto view = reg.view<Explosion>();
     ASSERT_NE(view.begin(), view.end());
     EXPECT_EQ(reg.get<Explosion>(*view.begin()).center, glm::dvec2(10.0, 20.0));
-    // The nominal explosion decays as e^(-0.06 tau) from 2 m: under 1 cm after ~88 s; its foam sooner.
+    // The nominal explosion's waves decay as e^(-0.06 tau) from 2 m: under 1 cm after ~88 s; its crown's foam
+    // sooner; its slick, 0.6 e^(-tau / 120 s), stays white for minutes (0.22 at 2 minutes) and falls under
+    // 0.01 after 120 ln 60 = 491 s: then it ends.
     double endTime = -1.0;
-    for (double t = 1.0; t < 200.0; t += 0.5) {
+    for (double t = 1.0; t < 700.0; t += 0.5) {
         events.dispatch();
         fx.update(t, {0, 0, 50});
         if (fx.counters().ended == 1)
             endTime = t;
+        if (t == 121.0) {
+            EXPECT_NEAR(effectsFoamAt(reg, {10.0, 20.0}, t), 0.6 * (1.0 - std::exp(-24.0)) * std::exp(-1.0),
+                        1e-9);
+        }
     }
     events.dispatch();
     EXPECT_EQ(endedEvents, 1);
-    EXPECT_GT(endTime - 1.0, 80.0);
-    EXPECT_LT(endTime - 1.0, 95.0);
+    EXPECT_GT(endTime - 1.0, 485.0);
+    EXPECT_LT(endTime - 1.0, 495.0);
     EXPECT_EQ(reg.view<Explosion>().begin(), reg.view<Explosion>().end());
 }
 

@@ -66,6 +66,12 @@ struct ExplosionParams {
     double coreRadius = 8.0; ///< r0, metres: regularises the cylindrical spreading r0 / sqrt(r0^2 + r^2)
     double foamLife = 12.0;  ///< s: crown foam decays as e^(-tau / foamLife)
     double foamRise = 0.4;   ///< s: crown foam grows as 1 - e^(-tau / foamRise)
+    /// The slick an impact leaves: churned, aerated water that stays white and spreads for minutes after the
+    /// crown has gone (seen from the air as a pale disc where a bomb or shell fell; observation, no model
+    /// in the seeds): strength slickFoam (1 - e^(-tau / 5 s)) e^(-tau / slickLife), radius
+    /// 2 r0 sqrt(1 + tau / 30 s).
+    double slickFoam = 0.6;
+    double slickLife = 120.0; ///< s
 };
 
 /// Parameters for a strength s (1 = a nominal 500 kg charge): lengths scale with the cube root of the
@@ -93,6 +99,8 @@ struct ExplosionState {
     double radius = 0.0;      ///< the secondary grid's radius: where the field has been tapered to 0
     double foam = 0.0;        ///< crown foam strength in [0, 1]: (1 - e^(-tau/foamRise)) e^(-tau/foamLife)
     double crownRadius = 0.0; ///< the crown foam's e-folding radius, metres
+    double slick = 0.0;       ///< the slick's foam strength in [0, 1]
+    double slickRadius = 0.0; ///< its e-folding radius, metres
 };
 ExplosionState explosionState(const Explosion& e, double t);
 
@@ -106,9 +114,14 @@ ExplosionState explosionState(const Explosion& e, double t);
 /// scaled by effectBandFade(k, kMax) (a ring shorter than the band limit is not drawn).
 glm::dvec3 explosionWave(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q,
                          double kMax = EFFECT_K_MAX);
-/// Crown foam coverage in [0, 1] at offset q: foam * exp(-(r / crownRadius)^2), plus the §18.3 height
-/// threshold on the ring's crests (alpha = (h - H0) / (Hmax - H0), H0 = 0.35 I0, Hmax = 0.8 I0).
-double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q, double h);
+/// Crown foam coverage in [0, 1] at offset q: foam * exp(-(r / crownRadius)^2), the slick's
+/// slick * exp(-(r / slickRadius)^2) and the §18.3 height threshold on the ring's crests (alpha = (h - H0) /
+/// (Hmax - H0), H0 = 0.35 I0, Hmax = 0.8 I0), the largest of the three.
+/// `filter2` (m^2) prefilters the crown for a texel of the effects field: the Gaussian convolved with one of
+/// e-folding radius^2 filter2, exp(-r^2 / (R^2 + F^2)) R^2 / (R^2 + F^2), so a crown smaller than a texel
+/// keeps its area (its coverage) instead of falling between texel centres.
+double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const glm::dvec2& q, double h,
+                     double filter2 = 0.0);
 
 // ---- Ship trail (Kelvin wake) ---------------------------------------------------------------------------
 
@@ -188,7 +201,9 @@ glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q, double kMax = EFFEC
 glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax = EFFECT_K_MAX);
 /// Wake foam in [0, 1]: the turbulent strip behind the stern, exp(-(y / w)^2) for |y| < 3 w (0 beyond),
 /// w = beam (1 + x / 400 m), times its growth/decay over the path's age.
-double wakeFoam(const WakeState& s, const WakeCoords& c);
+/// `filter2` prefilters the strip as explosionFoam() does the crown (across it: w^2 -> w^2 + F^2, strength
+/// times w / sqrt(w^2 + F^2)).
+double wakeFoam(const WakeState& s, const WakeCoords& c, double filter2 = 0.0);
 
 // ---- Events ---------------------------------------------------------------------------------------------
 
@@ -306,9 +321,10 @@ private:
 glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax = EFFECT_K_MAX);
 /// Foam coverage of the effects at xy (max over effects).
 double effectsFoamAt(ecs::Registry& registry, const glm::dvec2& xy, double t);
-/// (E, dE/dx, dE/dy, foam) at xy in one pass over the effects.
-glm::dvec4 effectsFieldAt(ecs::Registry& registry, const glm::dvec2& xy, double t,
-                          double kMax = EFFECT_K_MAX);
+/// (E, dE/dx, dE/dy, foam) at xy in one pass over the effects; foam prefiltered by `foamFilter2`
+/// (explosionFoam, wakeFoam).
+glm::dvec4 effectsFieldAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax = EFFECT_K_MAX,
+                          double foamFilter2 = 0.0);
 
 // ---- The effects field: what the GPU draws ----------------------------------------------------------------
 
@@ -332,6 +348,7 @@ struct EffectFieldLevel {
     double kMax = 0.0;      ///< band limit: min(EFFECT_K_MAX, 2 pi / (4 texel)), 4 texels per wavelength
     double inner = 0.0; ///< half-width (Chebyshev, from centre) where this level is read: (size/2 - 2) texel
     double band = 0.0;  ///< outermost width of `inner` that blends into the next level: size/8 texels
+    double foamFilter2 = 0.0; ///< the foam's prefilter, texel^2 / 6 (a box of one texel as a Gaussian)
 };
 
 /// The levels of the field around a camera, as the GPU lays them out: each centre snapped to its level's

@@ -144,6 +144,8 @@ std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const OceanFra
         g.crownFoam = static_cast<float>(s.foam);
         g.crownRadius = static_cast<float>(s.crownRadius);
         g.peakAmplitude = static_cast<float>(e.params.amplitude);
+        g.slick = static_cast<float>(s.slick);
+        g.slickRadius = static_cast<float>(s.slickRadius);
         packed.push_back(g);
         out.push_back(candidate(rel, s.radius, glm::dvec2(-s.radius), glm::dvec2(s.radius), frame, inView));
     });
@@ -217,13 +219,14 @@ void wakePath(const WakeState& s, const glm::dvec2& rel, std::vector<glm::dvec2>
 
 /// The path segments of a wake that can be nearest to a point within `half` of `centre` (camera-relative),
 /// searched among segments first..last: {first, last} of those, or {-1, -1} when no such point is within a
-/// segment's reach (the wake is 0 there). Distances from the centre bound those from any point within
+/// segment's reach widened by `widen` (3 F of the level's foam prefilter: wakeFoam) (the wake is 0 there).
+/// Distances from the centre bound those from any point within
 /// +-half. A segment left out is farther from every such point than the nearest one by more than
 /// effects.glsl's tie margin (1e-4 on squared distances) and float rounding, so a walk over the range finds
 /// what the whole walk finds; and the nearest segment is always in the range, so checking the reach over the
 /// range suffices. Segment 0 is the half-line through the ship, as wakeCoords() takes it.
 std::pair<int, int> wakeSegments(const std::vector<glm::dvec2>& p, const std::vector<double>& reach,
-                                 int first, int last, const glm::dvec2& centre, double half) {
+                                 int first, int last, const glm::dvec2& centre, double half, double widen) {
     double dist[MAX_WAKE_POINTS];
     double best = std::numeric_limits<double>::infinity();
     for (int j = first; j <= last; ++j) {
@@ -241,7 +244,7 @@ std::pair<int, int> wakeSegments(const std::vector<glm::dvec2>& p, const std::ve
         if (dist[j] - half <= limit) {
             from = from < 0 ? j : from;
             to = j;
-            reached = reached || dist[j] - half <= reach[static_cast<size_t>(j)];
+            reached = reached || dist[j] - half <= reach[static_cast<size_t>(j)] + widen;
         }
     return reached ? std::pair{from, to} : std::pair{-1, -1};
 }
@@ -321,13 +324,14 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
             // Wakes: blocks of 4 x 4 tiles first (their segment range bounds their tiles'), then each tile.
             const int segments = static_cast<int>(f.reach.size());
             const double texel = mLayout.level(l).texel;
+            const double widen = 3.0 * std::sqrt(mLayout.level(l).foamFilter2);
             for (int by = r.y0 / 4; by <= r.y1 / 4; ++by)
                 for (int bx = r.x0 / 4; bx <= r.x1 / 4; ++bx) {
                     if (segments == 0)
                         break;
                     const auto [bFirst, bLast] = wakeSegments(f.points, f.reach, 0, segments - 1,
                                                               tileCentre(l, 4.0 * bx + 1.5, 4.0 * by + 1.5),
-                                                              (16.0 - 0.5) * std::sqrt(2.0) * texel);
+                                                              (16.0 - 0.5) * std::sqrt(2.0) * texel, widen);
                     if (bFirst < 0)
                         continue;
                     for (int ty = std::max(r.y0, 4 * by); ty <= std::min(r.y1, 4 * by + 3); ++ty)
@@ -337,7 +341,7 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
                                 continue;
                             const auto [first, last] =
                                 wakeSegments(f.points, f.reach, bFirst, bLast, tileCentre(l, tx, ty),
-                                             3.5 * std::sqrt(2.0) * texel);
+                                             3.5 * std::sqrt(2.0) * texel, widen);
                             if (first >= 0)
                                 entries[1].emplace_back(static_cast<uint32_t>(t),
                                                         (g - explosions) | first << 16 | last << 23);

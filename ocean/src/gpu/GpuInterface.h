@@ -47,7 +47,7 @@ static_assert(sizeof(EffectTileGpu) == 32 && offsetof(EffectTileGpu, first) == 1
                   offsetof(EffectTileGpu, wakes) == 20,
               "EffectTileGpu must match effects_field.comp's std430 layout");
 
-/// One explosion as effects.glsl reads it (std430, 48 bytes). Camera-relative metres.
+/// One explosion as effects.glsl reads it (std430, 56 bytes). Camera-relative metres.
 struct ExplosionGpu {
     glm::vec2 centre;    ///< centre - camera
     float gridRadius;    ///< R: the secondary grid's radius; 0 = nothing yet
@@ -60,10 +60,12 @@ struct ExplosionGpu {
     float crownFoam;     ///< foam of the crown
     float crownRadius;   ///< the crown's radius
     float peakAmplitude; ///< I0
+    float slick;         ///< the slick's foam strength
+    float slickRadius;   ///< its e-folding radius
 };
-static_assert(sizeof(ExplosionGpu) == 48 && offsetof(ExplosionGpu, gridRadius) == 8 &&
+static_assert(sizeof(ExplosionGpu) == 56 && offsetof(ExplosionGpu, gridRadius) == 8 &&
                   offsetof(ExplosionGpu, wavenumber) == 16 && offsetof(ExplosionGpu, frontWidth) == 32 &&
-                  offsetof(ExplosionGpu, peakAmplitude) == 44,
+                  offsetof(ExplosionGpu, peakAmplitude) == 44 && offsetof(ExplosionGpu, slickRadius) == 52,
               "ExplosionGpu must match effects.glsl's std430 layout");
 
 /// One ship's wake as effects.glsl reads it (std430, 48 bytes); its points follow in the wake-point buffer
