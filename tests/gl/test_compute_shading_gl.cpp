@@ -234,8 +234,15 @@ TEST_F(ComputeShadingGl, GerstnerAndFftSeasMatchForwardShading) {
     }
 }
 
+/// A secondary grid for every effect in view (by default only those next to the eye get one).
+OceanDesc withEveryGrid(OceanDesc desc) {
+    desc.effectGrids.minAngularSize = 0.0;
+    desc.effectGrids.maxExplosionGrids = desc.effectGrids.maxWakeGrids = 1024;
+    return desc;
+}
+
 TEST_F(ComputeShadingGl, EffectGridsMatchForwardShading) {
-    setOcean(OceanDesc{});
+    setOcean(withEveryGrid(OceanDesc{}));
     ecs::EventQueue events;
     EffectsSystem fx(registry, events);
     const ecs::Entity ship = registry.create();
@@ -456,7 +463,7 @@ TEST_F(ComputeShadingGl, ShadingByTilesChangesNoPixel) {
             }
         }
         const OceanFrame f = bankedFrameAt(target, c.camera, c.heading, c.pitch, c.roll, 60.0);
-        OceanDesc desc = oceanPreset(Quality::High);
+        OceanDesc desc = withEveryGrid(oceanPreset(Quality::High));
         desc.model = c.model;
         desc.drawSky = c.sky;
         std::vector<float> color[2], depth[2];

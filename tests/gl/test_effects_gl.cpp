@@ -54,13 +54,15 @@ protected:
     OceanRenderer renderer;
     gl::FrameTargets targets{W, H};
 
-    EffectsGl() { registry.emplace<OceanComponent>(oceanEntity, makeOcean({})); }
+    // Most tests here are about the secondary grids: every effect in view gets one (by default only the few
+    // next to the eye do: DefaultGridsOnlyNextToTheEye).
+    EffectsGl() { registry.emplace<OceanComponent>(oceanEntity, makeOcean(gridsDesc())); }
 
-    /// Every effect in view gets a secondary grid (the readback compares grid vertices).
-    void gridForEveryEffect() {
-        EffectGridDesc& g = registry.get<OceanComponent>(oceanEntity).desc.effectGrids;
-        g.minAngularSize = 0.0;
-        g.maxExplosionGrids = g.maxWakeGrids = 1024;
+    static OceanDesc gridsDesc() {
+        OceanDesc d;
+        d.effectGrids.minAngularSize = 0.0;
+        d.effectGrids.maxExplosionGrids = d.effectGrids.maxWakeGrids = 1024;
+        return d;
     }
 
     /// The largest |GPU - analytic oceanHeightAt()| of the last compareWithCpu() call.
@@ -190,7 +192,7 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
     // 4. All effects gone: exactly the plain ocean's counters again.
     registry.clear();
     oceanEntity = registry.create();
-    registry.emplace<OceanComponent>(oceanEntity, makeOcean({}));
+    registry.emplace<OceanComponent>(oceanEntity, makeOcean(gridsDesc()));
     renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0)); // new entity: rebuilds its grid
     renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.1));
     s = renderer.lastStats();
@@ -243,7 +245,7 @@ TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
     EXPECT_GT(p.seaMs, 0.0);
 
     // Shaded forward: the sky is a pass of its own again, and the shading span is ~empty.
-    OceanDesc forward;
+    OceanDesc forward = gridsDesc();
     forward.computeShading = false;
     registry.emplaceOrReplace<OceanComponent>(oceanEntity, makeOcean(forward));
     renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.05));
@@ -298,7 +300,6 @@ class ExplosionReadback : public EffectsGl, public ::testing::WithParamInterface
 TEST_P(ExplosionReadback, GridHeightsEqualTheCpuQuery) {
     const ExplosionCase c = GetParam();
     EffectsSystem fx(registry, events);
-    gridForEveryEffect();
     for (int i = 0; i < c.count; ++i)
         events.enqueue(
             SpawnExplosion{c.at + glm::dvec2(3.0 * (i % 7), 2.0 * (i % 5)), c.spawnTime, 1.0 + (i % 3)});
@@ -355,7 +356,7 @@ INSTANTIATE_TEST_SUITE_P(
 // the sky pass off and the target cleared to a marker colour, every pixel of a view that sees only sea is
 // drawn over, for an explosion and a wake seen from above and at a grazing angle.
 TEST_F(EffectsGl, NoGapBetweenTheBaseGridAndTheEffectGrids) {
-    OceanDesc desc;
+    OceanDesc desc = gridsDesc();
     desc.drawSky = false;
     registry.get<OceanComponent>(oceanEntity) = makeOcean(desc);
     EffectsSystem fx(registry, events);
@@ -429,6 +430,7 @@ TEST_F(EffectsGl, TenThousandSpawnsInOneSecondRenderCappedAndFinite) {
         dropped += fx.counters().droppedExplosions;
     }
     EXPECT_EQ(dropped, 10000 - 1024);
+    registry.get<OceanComponent>(oceanEntity).desc.effectGrids = EffectGridDesc{}; // the default grids
     renderer.render(registry, frameAt(cam, 90.0, -20.0, 2.0));
     const OceanStats s = renderer.lastStats();
     // Bounded cost: every explosion in the field, evaluated once per texel it touches; at most
@@ -539,6 +541,40 @@ TEST_F(EffectsGl, WakeIsVisibleFromTenKilometres) {
                     onTrack, effectsFoamAt(registry, {0.0, 2880.0 - behind}, 240.0), beside);
         EXPECT_GT(onTrack, 1.5 * beside) << behind << " m behind the ship";
     }
+}
+
+// The defaults: the field draws every effect (the base grid reads it) and a secondary grid is drawn only for
+// an effect next to the eye (radius / distance >= 0.2): an explosion 300 m ahead of a camera 60 m up changes
+// the picture through the field alone, one below the camera gets its grid.
+TEST_F(EffectsGl, DefaultGridsOnlyNextToTheEye) {
+    registry.get<OceanComponent>(oceanEntity) = makeOcean({});
+    EffectsSystem fx(registry, events);
+    const glm::dvec3 cam(0.0, 0.0, 60.0);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0));
+    std::vector<float> plain, far, near;
+    targets.readScene(plain);
+    events.enqueue(SpawnExplosion{{300.0, 0.0}, 1.0, 1.0});
+    events.dispatch();
+    fx.update(4.0, cam);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0));
+    OceanStats s = renderer.lastStats();
+    EXPECT_EQ(s.explosions.active, 1);
+    EXPECT_EQ(s.explosions.drawn, 0);
+    EXPECT_EQ(s.explosions.draws + s.explosions.vertices, 0);
+    EXPECT_EQ(s.effectField.passes, 1);
+    targets.readScene(far);
+    size_t changed = 0;
+    for (size_t i = 0; i < plain.size(); ++i)
+        changed += plain[i] != far[i];
+    EXPECT_GT(changed, 400u) << "the field alone draws the explosion (> 100 pixels of 320 x 180 change)";
+    events.enqueue(SpawnExplosion{{40.0, 0.0}, 1.0, 1.0});
+    events.dispatch();
+    fx.update(4.0, cam);
+    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0));
+    s = renderer.lastStats();
+    EXPECT_EQ(s.explosions.active, 2);
+    EXPECT_EQ(s.explosions.drawn, 1) << "only the one next to the eye has a grid";
+    EXPECT_EQ(nonFinitePixels(), 0u);
 }
 
 } // namespace

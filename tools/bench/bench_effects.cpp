@@ -235,8 +235,20 @@ struct Scene {
     }
 };
 
-std::unique_ptr<Scene> explosionScene(int n) {
-    auto scene = std::make_unique<Scene>("explosions", Kind::Explosion, n, true);
+/// A secondary grid for every effect in view (EffectGridDesc minAngularSize 0, no limit), as before the
+/// effects field: the difference to the default row is what the grids' geometry costs.
+void everyGrid(Scene& scene) {
+    scene.registry.view<ocean::OceanComponent>().each([](ecs::Entity, ocean::OceanComponent& oc) {
+        oc.desc.effectGrids.minAngularSize = 0.0;
+        oc.desc.effectGrids.maxExplosionGrids = oc.desc.effectGrids.maxWakeGrids = 4096;
+    });
+}
+
+std::unique_ptr<Scene> explosionScene(int n, bool grids = false) {
+    auto scene =
+        std::make_unique<Scene>(grids ? "explosions_every_grid" : "explosions", Kind::Explosion, n, true);
+    if (grids)
+        everyGrid(*scene);
     for (int i = 0; i < n; ++i)
         scene->events.enqueue(explosionSpawn(i, scene->origin));
     return scene;
@@ -244,8 +256,10 @@ std::unique_ptr<Scene> explosionScene(int n) {
 
 // Ships with trails, their paths recorded for 120 s of sim time in 0.5 s steps before the first frame
 // (update() only: the renderer never sees that earlier time).
-std::unique_ptr<Scene> wakeScene(int n) {
-    auto scene = std::make_unique<Scene>("wakes", Kind::Wake, n, true);
+std::unique_ptr<Scene> wakeScene(int n, bool grids = false) {
+    auto scene = std::make_unique<Scene>(grids ? "wakes_every_grid" : "wakes", Kind::Wake, n, true);
+    if (grids)
+        everyGrid(*scene);
     const double origin = scene->origin;
     for (int i = 0; i < n; ++i)
         scene->timeline->addShip(shipPosition(i, -HISTORY_SECONDS), 60.0,
@@ -299,7 +313,7 @@ KindSummary summarise(const std::vector<Row>& rows, Kind kind, double plainMs) {
     std::vector<double> x, y, u;
     const Row* largest = nullptr;
     for (const Row& r : rows)
-        if (r.kind == kind) {
+        if (r.kind == kind && r.setting.find("every_grid") == std::string::npos) {
             k.counts.push_back(r.count);
             x.push_back(r.count);
             y.push_back(r.msMedian);
@@ -736,6 +750,9 @@ int main(int argc, char** argv) {
             scenes.push_back(explosionScene(n));
         for (int n : wakeCounts)
             scenes.push_back(wakeScene(n));
+        // e. the same with a secondary grid for every effect (as before the field): what the grids cost.
+        scenes.push_back(explosionScene(quick ? 4 : 64, true));
+        scenes.push_back(wakeScene(quick ? 2 : 8, true));
         for (auto& scene : scenes)
             for (int i = 0; i < WARMUP_FRAMES; ++i)
                 scene->frame(timer, targets, false);
