@@ -7,6 +7,9 @@
 uniform sampler2DArray uEffectField;                       // (E, dE/dx, dE/dy, foam) per level
 uniform vec3 uEffectFieldLevels[EFFECT_FIELD_MAX_LEVELS]; // (level centre - camera, texel)
 uniform int uEffectFieldLevelCount;
+// Per level, camera-relative (min, max) of the texel centres of its tiles with effects this frame: every texel
+// outside is 0, so a point more than a texel outside reads 0 without a fetch (the same value).
+uniform vec4 uEffectFieldBoxes[EFFECT_FIELD_MAX_LEVELS];
 uniform float uEffectFieldSize;
 // The secondary grids drawn this frame (explosions' first, then wakes'): (centre - camera, radius, 0).
 layout(std430, binding = EFFECT_GRIDS_BINDING) readonly buffer EffectGrids { vec4 uEffectGrids[]; };
@@ -15,6 +18,9 @@ uniform int uEffectGridCount;
 // Level l read bilinearly at rel (camera-relative): Effects.cpp bilinear().
 vec4 effectFieldLevel(int l, vec2 rel) {
     vec3 level = uEffectFieldLevels[l];
+    vec4 box = uEffectFieldBoxes[l];
+    if (any(lessThan(rel, box.xy - level.z)) || any(greaterThan(rel, box.zw + level.z)))
+        return vec4(0.0);
     vec2 u = (rel - level.xy) / level.z + 0.5 * uEffectFieldSize - 0.5;
     vec2 f = floor(u);
     vec2 w = u - f;

@@ -356,11 +356,22 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
     std::vector<EffectTileGpu> tiles;
     std::vector<int> cursor(2 * perLevel * levels, -1);
     int listSize = 0;
+    // Per level, the box of its tiles with effects: every texel outside is 0 this frame.
+    mLevelBoxes.assign(static_cast<size_t>(levels), glm::vec4(1e30f, 1e30f, -1e30f, -1e30f));
     for (size_t t = 0; t < perLevel * levels; ++t) {
         const int e = counts[2 * t], w = counts[2 * t + 1];
         if (e + w == 0 && !mWritten[t])
             continue;
         const int l = static_cast<int>(t / perLevel), within = static_cast<int>(t % perLevel);
+        if (e + w > 0) {
+            const glm::dvec2 c = tileCentre(l, within % perSide, within / perSide);
+            const double half = 3.5 * mLayout.level(l).texel;
+            glm::vec4& box = mLevelBoxes[static_cast<size_t>(l)];
+            box = glm::vec4(std::min(box.x, static_cast<float>(c.x - half)),
+                            std::min(box.y, static_cast<float>(c.y - half)),
+                            std::max(box.z, static_cast<float>(c.x + half)),
+                            std::max(box.w, static_cast<float>(c.y + half)));
+        }
         tiles.push_back({l, within % perSide, within / perSide, listSize, e, w, 0, 0});
         cursor[2 * t] = listSize;
         cursor[2 * t + 1] = listSize + e;
@@ -470,7 +481,11 @@ std::string EffectsGpu::defines() const {
 namespace {
 
 /// (level centre - camera, texel) of each level, as effects_field.comp and effects_sample.glsl take them.
-void setLevelUniforms(unsigned program, const EffectFieldLayout& layout, const glm::dvec2& camera) {
+void setLevelUniforms(unsigned program, const EffectFieldLayout& layout, const glm::dvec2& camera,
+                      const std::vector<glm::vec4>& boxes) {
+    if (!boxes.empty())
+        glProgramUniform4fv(program, glGetUniformLocation(program, "uEffectFieldBoxes"),
+                            static_cast<GLsizei>(boxes.size()), glm::value_ptr(boxes[0]));
     std::vector<glm::vec3> levels;
     for (int l = 0; l < layout.levels(); ++l) {
         const glm::dvec2 c = layout.level(l).centre - camera;
@@ -499,7 +514,7 @@ void EffectsGpu::computeField(unsigned program) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_FIELD_TILES_BINDING, mTileBuffer.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_FIELD_LISTS_BINDING, mListBuffer.id());
     glBindImageTexture(EFFECT_FIELD_IMAGE_UNIT, mField.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    setLevelUniforms(program, mLayout, mCamera);
+    setLevelUniforms(program, mLayout, mCamera, {});
     const int groupsX = std::min(mTileCount, 65535);
     glProgramUniform1i(program, glGetUniformLocation(program, "uTileCount"), mTileCount);
     glProgramUniform1i(program, glGetUniformLocation(program, "uTileGroupsX"), groupsX);
@@ -512,7 +527,7 @@ void EffectsGpu::computeField(unsigned program) {
 void EffectsGpu::bindField(unsigned program) const {
     glBindTextureUnit(FIELD_TEXTURE_UNIT, mField.id());
     glProgramUniform1i(program, glGetUniformLocation(program, "uEffectField"), FIELD_TEXTURE_UNIT);
-    setLevelUniforms(program, mLayout, mCamera);
+    setLevelUniforms(program, mLayout, mCamera, mLevelBoxes);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, EFFECT_GRIDS_BINDING, mGridBuffer.id());
     glProgramUniform1i(program, glGetUniformLocation(program, "uEffectGridCount"),
                        mExplosionsDrawn + mWakesDrawn);

@@ -81,6 +81,9 @@ private:
     EffectFieldStats mFieldStats;
     glm::dvec2 mCamera{0.0}; ///< the camera of the last prepare() (world)
     std::vector<glm::dvec2> mGridCentres;
+    /// Per level, camera-relative (min x, min y, max x, max y) of the texel centres of its tiles with effects
+    /// this frame (empty: min > max): effects_sample.glsl reads 0 outside without a fetch.
+    std::vector<glm::vec4> mLevelBoxes;
     static constexpr int FIELD_TEXTURE_UNIT = 18; ///< the field for the grids and the shading (after theirs)
 };
 
