@@ -10,6 +10,8 @@ uniform int uEffectFieldLevelCount;
 // Per level, camera-relative (min, max) of the texel centres of its tiles with effects this frame: every texel
 // outside is 0, so a point more than a texel outside reads 0 without a fetch (the same value).
 uniform vec4 uEffectFieldBoxes[EFFECT_FIELD_MAX_LEVELS];
+// Their union, each widened by its level's texel: a point outside reads 0 from every level.
+uniform vec4 uEffectFieldBounds;
 uniform float uEffectFieldSize;
 // The secondary grids drawn this frame (explosions' first, then wakes'): (centre - camera, radius, 0).
 layout(std430, binding = EFFECT_GRIDS_BINDING) readonly buffer EffectGrids { vec4 uEffectGrids[]; };
@@ -35,6 +37,8 @@ vec4 effectFieldLevel(int l, vec2 rel) {
 // (E, dE/dx, dE/dy, foam) at a camera-relative point: the finest level that holds it, blended into the next
 // over the level's outer eighth (EffectFieldLayout::pick), 0 outside the field.
 vec4 effectFieldAt(vec2 rel) {
+    if (any(lessThan(rel, uEffectFieldBounds.xy)) || any(greaterThan(rel, uEffectFieldBounds.zw)))
+        return vec4(0.0); // most of the sea in most frames: no level walk, no fetch
     for (int l = 0; l < uEffectFieldLevelCount; ++l) {
         vec3 level = uEffectFieldLevels[l];
         vec2 d = abs(rel - level.xy);

@@ -483,9 +483,20 @@ namespace {
 /// (level centre - camera, texel) of each level, as effects_field.comp and effects_sample.glsl take them.
 void setLevelUniforms(unsigned program, const EffectFieldLayout& layout, const glm::dvec2& camera,
                       const std::vector<glm::vec4>& boxes) {
-    if (!boxes.empty())
+    if (!boxes.empty()) {
         glProgramUniform4fv(program, glGetUniformLocation(program, "uEffectFieldBoxes"),
                             static_cast<GLsizei>(boxes.size()), glm::value_ptr(boxes[0]));
+        glm::vec4 bounds(1e30f, 1e30f, -1e30f, -1e30f);
+        for (size_t l = 0; l < boxes.size(); ++l) {
+            const float texel = static_cast<float>(layout.level(static_cast<int>(l)).texel);
+            if (boxes[l].x <= boxes[l].z)
+                bounds = glm::vec4(glm::min(glm::vec2(bounds), glm::vec2(boxes[l]) - 2.0f * texel),
+                                   glm::max(glm::vec2(bounds.z, bounds.w),
+                                            glm::vec2(boxes[l].z, boxes[l].w) + 2.0f * texel));
+        }
+        glProgramUniform4fv(program, glGetUniformLocation(program, "uEffectFieldBounds"), 1,
+                            glm::value_ptr(bounds));
+    }
     std::vector<glm::vec3> levels;
     for (int l = 0; l < layout.levels(); ++l) {
         const glm::dvec2 c = layout.level(l).centre - camera;
