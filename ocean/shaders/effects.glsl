@@ -150,7 +150,7 @@ float kelvinHeight(int i, WakeCoords c, float behind, float lateral, float kMax)
         float fade = effectBandFade(k, kMax) * exp(-x * k / (EFFECT_TWO_PI * KELVIN_DECAY_WAVELENGTHS));
         if (fade <= 0.0)
             continue;
-        float phase = c.k0 * sqrt(1.0 + tt * tt) * (x + y * tt);
+        float phase = c.k0 * sqrt(1.0 + tt * tt) * (x - y * tt); // kelvinPhase() in Effects.cpp
         sum += weights[j] * fade * cos(phase);
     }
     float lambda0 = EFFECT_TWO_PI / c.k0;

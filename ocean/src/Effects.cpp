@@ -230,6 +230,10 @@ WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q) {
     return best;
 }
 
+double kelvinPhase(double k0, double x, double y, double t) {
+    return k0 * std::sqrt(1.0 + t * t) * (x - std::abs(y) * t);
+}
+
 double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral, double kMax) {
     const double x = behind;
     if (!(x > 0.0) || c.amplitude <= 0.0 || s.sigma.empty())
@@ -254,7 +258,7 @@ double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, doub
             std::exp(-x * k / (TWO_PI * KELVIN_DECAY_WAVELENGTHS)); // short waves fade first (Effects.h)
         if (fade <= 0.0)
             continue;
-        const double phase = c.k0 * std::sqrt(1.0 + tt * tt) * (x + y * tt);
+        const double phase = kelvinPhase(c.k0, x, y, tt);
         sum += weights[j] * fade * std::cos(phase);
     }
     const double lambda0 = TWO_PI / c.k0;

@@ -147,6 +147,25 @@ TEST(Wake, KelvinWedgeOnAStraightCourse) {
     EXPECT_NEAR(spacing, std::numbers::pi * 100.0 / GRAVITY, 0.5);
 }
 
+// The Kelvin systems are the stationary points of the phase over the wave direction (the method of stationary
+// phase): d(phase)/dT = 0 at both roots of 2 tan(a) T^2 - T + tan(a) = 0, across the wedge.
+TEST(Wake, KelvinPhaseIsStationaryAtItsRoots) {
+    for (double a : {0.02, 0.1, 0.2, 0.3, 0.35}) {
+        const double x = 250.0, y = a * x, k0 = 0.1;
+        const double sd = std::sqrt(1.0 - 8.0 * a * a);
+        for (double t : {2.0 * a / (1.0 + sd), (1.0 + sd) / (4.0 * a)}) {
+            const double e = 1e-5;
+            const double d = (kelvinPhase(k0, x, y, t + e) - kelvinPhase(k0, x, y, t - e)) / (2.0 * e);
+            EXPECT_NEAR(d, 0.0, 1e-6 * k0 * x) << "tan a " << a << ", T " << t;
+            EXPECT_EQ(kelvinPhase(k0, x, -y, t), kelvinPhase(k0, x, y, t)); // the wake is symmetric
+        }
+        // Not stationary elsewhere: a direction between the roots.
+        const double mid = 0.5 * (2.0 * a / (1.0 + sd) + (1.0 + sd) / (4.0 * a));
+        EXPECT_GT(std::abs(kelvinPhase(k0, x, y, mid + 1e-5) - kelvinPhase(k0, x, y, mid - 1e-5)) / 2e-5,
+                  1e-3 * k0 * x);
+    }
+}
+
 TEST(Wake, TurningShipLeavesACurvedWake) {
     ecs::Registry reg;
     ecs::EventQueue events;

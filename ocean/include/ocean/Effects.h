@@ -186,12 +186,17 @@ struct WakeCoords {
 /// q is relative to the ship. Closest point on the history polyline (ahead of the ship: the first
 /// segment's line extended).
 WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q);
+/// The phase of the Kelvin system with direction T = tan(theta) at x behind and y beside the track:
+/// k0 sqrt(1 + T^2) (x - |y| T), i.e. k0 sec^2(theta) (x cos(theta) - |y| sin(theta)). It is stationary in T
+/// exactly at the roots of 2 tan(a) T^2 - T + tan(a) = 0 (the systems kelvinHeight() sums).
+double kelvinPhase(double k0, double x, double y, double t);
 /// Kelvin pattern (stationary phase, deep water; e.g. Lighthill, "Waves in Fluids" §3.10): at x behind
 /// and y beside the track, tan a = |y| / x <= 1/sqrt(8), the wave directions T = tan(theta) solve
 /// 2 tan(a) T^2 - T + tan(a) = 0 (transverse and divergent), wave number k0 (1 + T^2), phase
-/// k0 sqrt(1 + T^2) (x + |y| T). Amplitude A e^(-age/waveLife) / sqrt(1 + x / L); the divergent
-/// system at 0.6 of the transverse. c gives the path's amplitude, k0 and age there. Each system is scaled
-/// by effectBandFade(k, kMax). Returns h.
+/// kelvinPhase() = k0 sqrt(1 + T^2) (x - |y| T) (until 2026-11 written with + |y| T, which is not
+/// stationary at these roots and bent the crests the wrong way). Amplitude A e^(-age/waveLife) / sqrt(1 + x /
+/// L); the divergent system at 0.6 of the transverse. c gives the path's amplitude, k0 and age there. Each
+/// system is scaled by effectBandFade(k, kMax). Returns h.
 double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral,
                     double kMax = EFFECT_K_MAX);
 /// (h, dh/dx, dh/dy) of the wake at q (relative to the ship).
