@@ -269,110 +269,151 @@ void EffectsGpu::ensureField(const EffectFieldDesc& field) {
 /// skipping the tiles no read reaches: those inside the part of the next finer level that is read alone.
 /// Tiles written last frame and touched by none now are listed with no effects (effects_field.comp clears
 /// them).
-void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosions) {
-    const int size = mFieldDesc.size, perSide = size / 8, levels = mLayout.levels();
-    const size_t perLevel = static_cast<size_t>(perSide) * perSide;
-    std::vector<uint8_t> needed(perLevel * levels, 1);
-    for (int l = 1; l < levels; ++l) {
-        const EffectFieldLevel& level = mLayout.level(l);
-        const EffectFieldLevel& finer = mLayout.level(l - 1);
-        const double pure = finer.inner - finer.band; // read alone within this of the finer level's centre
-        for (int ty = 0; ty < perSide; ++ty)
-            for (int tx = 0; tx < perSide; ++tx) {
-                const glm::dvec2 lo =
-                    level.centre + (glm::dvec2(tx, ty) * 8.0 - 0.5 * size - 1.0) * level.texel;
-                const glm::dvec2 hi = lo + (8.0 + 2.0) * level.texel;
-                const glm::dvec2 a = glm::abs(lo - finer.centre), b = glm::abs(hi - finer.centre);
-                if (std::max({a.x, a.y, b.x, b.y}) <= pure)
-                    needed[l * perLevel + ty * perSide + tx] = 0;
-            }
-    }
-    // Each effect's entries: (tile, list entry).
-    std::vector<std::pair<uint32_t, int32_t>> entries[2];
-    // The tiles of level l a footprint's box touches, widened by a texel (the bilinear read), [x0, x1] x
-    // [y0, y1]; and a tile's texel centres: centre +- 3.5 texels.
+namespace {
+
+/// The field's tiles of 8 x 8 texels: level l's tile (tx, ty) is index(l, tx, ty). Positions are
+/// camera-relative.
+struct TileGrid {
     struct Range {
         int x0, y0, x1, y1;
     };
-    auto tileRange = [&](const Footprint& f, int l) {
-        const EffectFieldLevel& level = mLayout.level(l);
-        const glm::dvec2 origin = level.centre - mCamera; // footprints are camera-relative
-        const glm::dvec2 lo = (f.lo - origin) / level.texel + 0.5 * size - 1.5;
-        const glm::dvec2 hi = (f.hi - origin) / level.texel + 0.5 * size + 0.5;
-        return Range{std::max(0, static_cast<int>(std::floor(lo.x / 8.0))),
-                     std::max(0, static_cast<int>(std::floor(lo.y / 8.0))),
-                     std::min(perSide - 1, static_cast<int>(std::floor(hi.x / 8.0))),
-                     std::min(perSide - 1, static_cast<int>(std::floor(hi.y / 8.0)))};
-    };
-    auto tileCentre = [&](int l, double tx, double ty) {
-        const EffectFieldLevel& level = mLayout.level(l);
-        return level.centre - mCamera + (glm::dvec2(tx, ty) * 8.0 + 4.0 - 0.5 * size) * level.texel;
-    };
-    for (int g = 0; g < static_cast<int>(footprints.size()); ++g) {
-        const Footprint& f = footprints[static_cast<size_t>(g)];
-        for (int l = 0; l < levels; ++l) {
-            const Range r = tileRange(f, l);
-            if (g < explosions) {
-                for (int ty = r.y0; ty <= r.y1; ++ty)
-                    for (int tx = r.x0; tx <= r.x1; ++tx) {
-                        const size_t t = l * perLevel + ty * perSide + tx;
-                        if (needed[t])
-                            entries[0].emplace_back(static_cast<uint32_t>(t), g);
-                    }
-                continue;
-            }
-            // Wakes: blocks of 4 x 4 tiles first (their segment range bounds their tiles'), then each tile.
-            const int segments = static_cast<int>(f.reach.size());
-            const double texel = mLayout.level(l).texel;
-            const double widen = 3.0 * std::sqrt(mLayout.level(l).foamFilter2);
-            for (int by = r.y0 / 4; by <= r.y1 / 4; ++by)
-                for (int bx = r.x0 / 4; bx <= r.x1 / 4; ++bx) {
-                    if (segments == 0)
-                        break;
-                    const auto [bFirst, bLast] = wakeSegments(f.points, f.reach, 0, segments - 1,
-                                                              tileCentre(l, 4.0 * bx + 1.5, 4.0 * by + 1.5),
-                                                              (16.0 - 0.5) * std::sqrt(2.0) * texel, widen);
-                    if (bFirst < 0)
-                        continue;
-                    for (int ty = std::max(r.y0, 4 * by); ty <= std::min(r.y1, 4 * by + 3); ++ty)
-                        for (int tx = std::max(r.x0, 4 * bx); tx <= std::min(r.x1, 4 * bx + 3); ++tx) {
-                            const size_t t = l * perLevel + ty * perSide + tx;
-                            if (!needed[t])
-                                continue;
-                            const auto [first, last] =
-                                wakeSegments(f.points, f.reach, bFirst, bLast, tileCentre(l, tx, ty),
-                                             3.5 * std::sqrt(2.0) * texel, widen);
-                            if (first >= 0)
-                                entries[1].emplace_back(static_cast<uint32_t>(t),
-                                                        (g - explosions) | first << 16 | last << 23);
-                        }
+    const EffectFieldLayout& layout;
+    glm::dvec2 camera;
+    int size, perSide;
+    size_t perLevel;
+
+    TileGrid(const EffectFieldLayout& l, const glm::dvec2& cam)
+        : layout(l), camera(cam), size(l.desc().size), perSide(l.desc().size / 8),
+          perLevel(static_cast<size_t>(perSide) * perSide) {}
+    size_t count() const { return perLevel * static_cast<size_t>(layout.levels()); }
+    size_t index(int l, int tx, int ty) const {
+        return static_cast<size_t>(l) * perLevel + static_cast<size_t>(ty * perSide + tx);
+    }
+    /// The tiles of level l a box touches, widened by a texel (the bilinear read), [x0, x1] x [y0, y1].
+    Range range(const glm::dvec2& boxLo, const glm::dvec2& boxHi, int l) const {
+        const EffectFieldLevel& level = layout.level(l);
+        const glm::dvec2 origin = level.centre - camera;
+        const glm::dvec2 lo = (boxLo - origin) / level.texel + 0.5 * size - 1.5;
+        const glm::dvec2 hi = (boxHi - origin) / level.texel + 0.5 * size + 0.5;
+        return {std::max(0, static_cast<int>(std::floor(lo.x / 8.0))),
+                std::max(0, static_cast<int>(std::floor(lo.y / 8.0))),
+                std::min(perSide - 1, static_cast<int>(std::floor(hi.x / 8.0))),
+                std::min(perSide - 1, static_cast<int>(std::floor(hi.y / 8.0)))};
+    }
+    /// The centre of tile (tx, ty) of level l (fractional: of a block of tiles); its texel centres lie
+    /// within +-3.5 texels.
+    glm::dvec2 centre(int l, double tx, double ty) const {
+        const EffectFieldLevel& level = layout.level(l);
+        return level.centre - camera + (glm::dvec2(tx, ty) * 8.0 + 4.0 - 0.5 * size) * level.texel;
+    }
+    /// Per tile, whether any read reaches it: not those inside the part of the next finer level that is
+    /// read alone (widened by a texel for the bilinear read).
+    std::vector<uint8_t> neededMask() const {
+        std::vector<uint8_t> needed(count(), 1);
+        for (int l = 1; l < layout.levels(); ++l) {
+            const EffectFieldLevel& level = layout.level(l);
+            const EffectFieldLevel& finer = layout.level(l - 1);
+            const double pure = finer.inner - finer.band; // read alone within this of the finer centre
+            for (int ty = 0; ty < perSide; ++ty)
+                for (int tx = 0; tx < perSide; ++tx) {
+                    const glm::dvec2 lo =
+                        level.centre + (glm::dvec2(tx, ty) * 8.0 - 0.5 * size - 1.0) * level.texel;
+                    const glm::dvec2 hi = lo + (8.0 + 2.0) * level.texel;
+                    const glm::dvec2 a = glm::abs(lo - finer.centre), b = glm::abs(hi - finer.centre);
+                    if (std::max({a.x, a.y, b.x, b.y}) <= pure)
+                        needed[index(l, tx, ty)] = 0;
                 }
         }
+        return needed;
     }
-    std::vector<int> counts(2 * perLevel * levels, 0); // [tile][kind]
+};
+
+/// (tile, list entry) pairs of one kind.
+using TileEntries = std::vector<std::pair<uint32_t, int32_t>>;
+
+/// An explosion's entries: every needed tile its box touches, on every level.
+void binExplosion(const TileGrid& grid, const std::vector<uint8_t>& needed, const glm::dvec2& lo,
+                  const glm::dvec2& hi, int index, TileEntries& out) {
+    for (int l = 0; l < grid.layout.levels(); ++l) {
+        const TileGrid::Range r = grid.range(lo, hi, l);
+        for (int ty = r.y0; ty <= r.y1; ++ty)
+            for (int tx = r.x0; tx <= r.x1; ++tx)
+                if (needed[grid.index(l, tx, ty)])
+                    out.emplace_back(static_cast<uint32_t>(grid.index(l, tx, ty)), index);
+    }
+}
+
+/// A wake's entries, (index, first, last segment) packed (wakeSegments()): blocks of 4 x 4 tiles first
+/// (their segment range bounds their tiles', and a block out of reach is skipped whole), then each tile.
+void binWake(const TileGrid& grid, const std::vector<uint8_t>& needed, const glm::dvec2& lo,
+             const glm::dvec2& hi, const std::vector<glm::dvec2>& points, const std::vector<double>& reach,
+             int index, TileEntries& out) {
+    const int segments = static_cast<int>(reach.size());
+    if (segments == 0)
+        return;
+    for (int l = 0; l < grid.layout.levels(); ++l) {
+        const TileGrid::Range r = grid.range(lo, hi, l);
+        const double texel = grid.layout.level(l).texel;
+        const double widen = 3.0 * std::sqrt(grid.layout.level(l).foamFilter2);
+        for (int by = r.y0 / 4; by <= r.y1 / 4; ++by)
+            for (int bx = r.x0 / 4; bx <= r.x1 / 4; ++bx) {
+                const auto [bFirst, bLast] = wakeSegments(points, reach, 0, segments - 1,
+                                                          grid.centre(l, 4.0 * bx + 1.5, 4.0 * by + 1.5),
+                                                          (16.0 - 0.5) * std::sqrt(2.0) * texel, widen);
+                if (bFirst < 0)
+                    continue;
+                for (int ty = std::max(r.y0, 4 * by); ty <= std::min(r.y1, 4 * by + 3); ++ty)
+                    for (int tx = std::max(r.x0, 4 * bx); tx <= std::min(r.x1, 4 * bx + 3); ++tx) {
+                        if (!needed[grid.index(l, tx, ty)])
+                            continue;
+                        const auto [first, last] =
+                            wakeSegments(points, reach, bFirst, bLast, grid.centre(l, tx, ty),
+                                         3.5 * std::sqrt(2.0) * texel, widen);
+                        if (first >= 0)
+                            out.emplace_back(static_cast<uint32_t>(grid.index(l, tx, ty)),
+                                             index | first << 16 | last << 23);
+                    }
+            }
+    }
+}
+
+} // namespace
+
+void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosions) {
+    const TileGrid grid(mLayout, mCamera);
+    const std::vector<uint8_t> needed = grid.neededMask();
+    TileEntries entries[2]; // explosions', wakes'
+    for (int g = 0; g < static_cast<int>(footprints.size()); ++g) {
+        const Footprint& f = footprints[static_cast<size_t>(g)];
+        if (g < explosions)
+            binExplosion(grid, needed, f.lo, f.hi, g, entries[0]);
+        else
+            binWake(grid, needed, f.lo, f.hi, f.points, f.reach, g - explosions, entries[1]);
+    }
+    std::vector<int> counts(2 * grid.count(), 0); // [tile][kind]
     for (int kind = 0; kind < 2; ++kind)
         for (const auto& [t, e] : entries[kind])
             ++counts[2 * t + kind];
+    // The tiles to write (with effects, or written last frame: cleared) and each one's list.
     std::vector<EffectTileGpu> tiles;
-    std::vector<int> cursor(2 * perLevel * levels, -1);
+    std::vector<int> cursor(2 * grid.count(), -1);
     int listSize = 0;
     // Per level, the box of its tiles with effects: every texel outside is 0 this frame.
-    mLevelBoxes.assign(static_cast<size_t>(levels), glm::vec4(1e30f, 1e30f, -1e30f, -1e30f));
-    for (size_t t = 0; t < perLevel * levels; ++t) {
+    mLevelBoxes.assign(static_cast<size_t>(mLayout.levels()), glm::vec4(1e30f, 1e30f, -1e30f, -1e30f));
+    for (size_t t = 0; t < grid.count(); ++t) {
         const int e = counts[2 * t], w = counts[2 * t + 1];
         if (e + w == 0 && !mWritten[t])
             continue;
-        const int l = static_cast<int>(t / perLevel), within = static_cast<int>(t % perLevel);
+        const int l = static_cast<int>(t / grid.perLevel), within = static_cast<int>(t % grid.perLevel);
+        const int tx = within % grid.perSide, ty = within / grid.perSide;
         if (e + w > 0) {
-            const glm::dvec2 c = tileCentre(l, within % perSide, within / perSide);
+            const glm::dvec2 c = grid.centre(l, tx, ty);
             const double half = 3.5 * mLayout.level(l).texel;
             glm::vec4& box = mLevelBoxes[static_cast<size_t>(l)];
-            box = glm::vec4(std::min(box.x, static_cast<float>(c.x - half)),
-                            std::min(box.y, static_cast<float>(c.y - half)),
-                            std::max(box.z, static_cast<float>(c.x + half)),
-                            std::max(box.w, static_cast<float>(c.y + half)));
+            box = glm::vec4(glm::min(glm::vec2(box), glm::vec2(c - half)),
+                            glm::max(glm::vec2(box.z, box.w), glm::vec2(c + half)));
         }
-        tiles.push_back({l, within % perSide, within / perSide, listSize, e, w, 0, 0});
+        tiles.push_back({l, tx, ty, listSize, e, w, 0, 0});
         cursor[2 * t] = listSize;
         cursor[2 * t + 1] = listSize + e;
         listSize += e + w;
