@@ -35,9 +35,11 @@ uniform float uNormalTilt;
 uniform float uMicroSlopeVariance; // LightingDesc::microSlopeVariance
 uniform float uDisplaceRadius; // ocean.vert's: beyond it the grid is the undisplaced skirt
 
-uniform sampler2D uFoamMap;   // the foam pattern (makeFoamPattern), repeating, mipmapped
-uniform vec2 uFoamOffsetNear; // fract((camera.xy + drift t) / FOAM_TILE_NEAR), wrapped in double
+uniform sampler2D uFoamMap;   // the foam patterns and their squares (fine RG, coarse BA), mipmapped
+uniform vec2 uFoamWind;       // unit vector the wind blows toward (east, north): the pattern's x axis
+uniform vec2 uFoamOffsetNear; // fract((camera + drift t) / FOAM_TILE_NEAR) in the wind's frame, in double
 uniform vec2 uFoamOffsetFar;
+uniform vec3 uFoamMix[2 * FFT_MIX_TERMS]; // (k_x, k_y, psi) per layer (fine, coarse) and term
 uniform float uFoamHeightStart; // H0
 uniform float uFoamHeightFull;  // Hmax
 uniform float uFoamJacobianThreshold;
@@ -104,26 +106,76 @@ vec2 foamInputs() {
 #endif
 }
 
-// Foam share-preserving threshold. The pattern's texels are ranks (makeFoamPattern equalises them); the mix
-// x = 0.6 a + 0.4 b of two independent uniform ranks has the trapezoid CDF below, so foamRank is uniform on
-// [0, 1] again, and thresholding it at 1 - c (soft edge FOAM_EDGE) covers a share foamOpacity(c) of the sea.
-float foamRank(float a, float b) {
-    float x = 0.6 * a + 0.4 * b;
-    if (x < 0.4)
-        return x * x / 0.48;
-    if (x < 0.6)
-        return (x - 0.2) / 0.6;
-    return 1.0 - (1.0 - x) * (1.0 - x) / 0.48;
-}
-float foamThreshold(float rank, float c) {
-    return clamp((rank - 1.0 + c * (1.0 + FOAM_EDGE)) / FOAM_EDGE, 0.0, 1.0);
-}
-// The mean of foamThreshold over a uniform rank (the C++ twin: meanFoamOpacity in Lighting.h).
+// The share of the sea under foam where the coverage is c (the C++ twin: meanFoamOpacity in Lighting.h).
 float foamOpacity(float c) {
     float t0 = 1.0 - c * (1.0 + FOAM_EDGE);
     float lo = clamp(t0, 0.0, 1.0);
     float hi = clamp(t0 + FOAM_EDGE, 0.0, 1.0);
     return (1.0 - hi) + ((hi - t0) * (hi - t0) - (lo - t0) * (lo - t0)) / (2.0 * FOAM_EDGE);
+}
+
+// The standard normal CDF and quantile (C++ twins normalCdf, normalQuantile in Lighting.h, same constants):
+// Abramowitz & Stegun 7.1.26 for erf, M. Giles' "Approximating the erfinv function" for its inverse.
+float normalCdf(float x) {
+    float z = abs(x) * 0.70710678;
+    float t = 1.0 / (1.0 + ERF_AS_P * z);
+    const float a[5] = ERF_AS_A;
+    float poly = t * (a[0] + t * (a[1] + t * (a[2] + t * (a[3] + t * a[4]))));
+    float e = 1.0 - poly * exp(-z * z);
+    return 0.5 * (1.0 + (x < 0.0 ? -e : e));
+}
+float normalQuantile(float p) {
+    float x = 2.0 * clamp(p, FOAM_SHARE_MIN, 1.0 - FOAM_SHARE_MIN) - 1.0;
+    float w = -log((1.0 - x) * (1.0 + x));
+    float q;
+    if (w < 5.0) {
+        const float c[9] = ERFINV_CENTRAL;
+        w -= 2.5;
+        q = c[0];
+        for (int i = 1; i < 9; ++i)
+            q = c[i] + q * w;
+    } else {
+        const float c[9] = ERFINV_TAIL;
+        w = sqrt(w) - 3.0;
+        q = c[0];
+        for (int i = 1; i < 9; ++i)
+            q = c[i] + q * w;
+    }
+    return 1.41421356 * q * x;
+}
+// A foam layer's mix weights (cos theta, sin theta), theta = FFT_MIX_AMPLITUDE sum_j sin(psi_j + k_j . rel)
+// (aperiodicMixWeights in SurfaceModel.h, phase set FOAM_MIX_SET + layer).
+vec2 foamMixWeights(int layer, vec2 rel) {
+    float theta = 0.0;
+    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+        vec3 m = uFoamMix[layer * FFT_MIX_TERMS + j];
+        theta += sin(m.z + dot(m.xy, rel));
+    }
+    theta *= FFT_MIX_AMPLITUDE;
+    return vec2(cos(theta), sin(theta));
+}
+// The mean and variance of a layer's field cos theta A + sin theta B over a footprint, from the two reads'
+// moments (m, m^2 filtered); A and B (the pattern and its copy shifted by OCTAVE_MIX_SHIFT tiles) are
+// independent, so the field stays standard normal and the variances add.
+vec2 foamLayerMoments(vec2 a, vec2 b, vec2 w) {
+    return vec2(w.x * a.x + w.y * b.x, w.x * w.x * (a.y - a.x * a.x) + w.y * w.y * (b.y - b.x * b.x));
+}
+
+// The foam opacity of a pixel (the C++ twin: foamCover in Lighting.h). The texture holds two standard normal
+// fields and their squares (makeFoamPattern, makeFoamStreaks) and n mixes them, so their filtered reads give
+// the mean and the variance of n over the pixel's footprint; foam is where n exceeds the threshold
+// Phi^-1(1 - share), and the pixel shows the probability of that under a normal of those moments. Where the
+// pattern is resolved this is its sharp edge, where it is not the edge softens exactly as much as the pixel
+// averages it, and at every distance the mean over the sea is the share itself. `softness` s adds an
+// unseen normal of variance s to n (the threshold scaled by sqrt(1 + s) to keep the share): 0 gives the
+// whitecaps' crisp lace, more gives churned water's soft clouds.
+float foamCover(float mean, float variance, float share, float softness) {
+    if (share <= 0.0)
+        return 0.0;
+    if (share >= 1.0)
+        return 1.0;
+    float threshold = normalQuantile(1.0 - share) * sqrt(1.0 + softness);
+    return normalCdf((mean - threshold) * inversesqrt(max(variance + softness, FOAM_MIN_VARIANCE)));
 }
 
 // The lit, fogged sea at this pixel (scene-linear).
@@ -168,15 +220,17 @@ vec3 shadeSea() {
     // highlight.
     float coverage = max(foamAlpha(fi.x), foamAlphaJacobian(fi.y)) * uFoamIntensity * nearFade;
     // The coverage thresholds the pattern (the §18.3 "foam texture", its alpha the coverage): a little
-    // coverage shows only its densest films and bubbles, full coverage is solid foam. Two layers at
-    // incommensurate scales drift apart, so the bubbles change over time and the repetition does not show.
-    // Where the fine layer is not resolved (its mipmaps blur the ranks) the threshold gives way to its mean,
-    // so the share of the sea under foam is foamOpacity(coverage) at every distance.
+    // coverage shows only the pattern's densest streaks and lace, full coverage is solid foam (foamCover).
+    // Two layers at incommensurate scales, laid along the wind (uFoamWind), drift apart, so the lace changes
+    // over time; each is mixed with a shifted copy of itself (foamMixWeights), so neither tile repeats.
     // Most of the sea has no foam: its fetches and shading are skipped there, the derivatives taken first
     // (in uniform control flow) and the layers read with them.
-    vec2 nearUv = vGrid / FOAM_TILE_NEAR + uFoamOffsetNear;
+    vec2 windGrid = vec2(dot(vGrid, uFoamWind), dot(vGrid, vec2(-uFoamWind.y, uFoamWind.x)));
+    vec2 nearUv = windGrid / FOAM_TILE_NEAR + uFoamOffsetNear;
 #ifdef SHADE_COMPUTE
-    vec2 dnx = gGridDx / FOAM_TILE_NEAR, dny = gGridDy / FOAM_TILE_NEAR;
+    vec2 wdx = vec2(dot(gGridDx, uFoamWind), dot(gGridDx, vec2(-uFoamWind.y, uFoamWind.x)));
+    vec2 wdy = vec2(dot(gGridDy, uFoamWind), dot(gGridDy, vec2(-uFoamWind.y, uFoamWind.x)));
+    vec2 dnx = wdx / FOAM_TILE_NEAR, dny = wdy / FOAM_TILE_NEAR;
 #else
     vec2 dnx = dFdx(nearUv), dny = dFdy(nearUv);
 #endif
@@ -188,17 +242,21 @@ vec3 shadeSea() {
     if (coverage > 0.0) {
 #endif
         const float farScale = FOAM_TILE_NEAR / FOAM_TILE_FAR;
-        float a = textureGrad(uFoamMap, nearUv, dnx, dny).r;
-        float b = textureGrad(uFoamMap, vGrid / FOAM_TILE_FAR + uFoamOffsetFar, dnx * farScale, dny * farScale).r;
-        // The fine layer's level of detail, log2 of its footprint in texels (GL 4.5 §8.14.1).
-        float lod = log2(max(max(length(dnx), length(dny)) * float(FOAM_PATTERN_SIZE), 1e-6));
-        float resolved = 1.0 - smoothstep(0.5, 2.5, lod);
-        float foam = mix(foamOpacity(coverage), foamThreshold(foamRank(a, b), coverage), resolved);
+        const vec2 shift = vec2(OCTAVE_MIX_SHIFT_U, OCTAVE_MIX_SHIFT_V);
+        vec2 farUv = windGrid / FOAM_TILE_FAR + uFoamOffsetFar;
+        vec2 fdx = dnx * farScale, fdy = dny * farScale;
+        vec2 a = foamLayerMoments(textureGrad(uFoamMap, nearUv, dnx, dny).rg,
+                                  textureGrad(uFoamMap, nearUv + shift, dnx, dny).rg, foamMixWeights(0, vGrid));
+        vec2 b = foamLayerMoments(textureGrad(uFoamMap, farUv, fdx, fdy).ba,
+                                  textureGrad(uFoamMap, farUv + shift, fdx, fdy).ba, foamMixWeights(1, vGrid));
+        float mean = FOAM_NEAR_WEIGHT * a.x + FOAM_FAR_WEIGHT * b.x;
+        float variance = FOAM_NEAR_WEIGHT * FOAM_NEAR_WEIGHT * a.y + FOAM_FAR_WEIGHT * FOAM_FAR_WEIGHT * b.y;
+        float foam = foamCover(mean, variance, foamOpacity(coverage), 0.0);
 #ifdef EFFECT_FIELD
-        // Effect foam (crown, crests, wake strip) is churned white water: its coverage is the foam itself,
-        // textured by the pattern, and not faded with distance (the field resolves it wherever it is, and a
-        // wake must stay visible from 10 km).
-        foam = max(foam, clamp(effectFoam * (0.7 + 0.3 * (0.6 * a + 0.4 * b)), 0.0, 1.0));
+        // Effect foam (crown, crests, wake strip) is churned white water: its coverage is the share itself,
+        // thresholded softly in the same pattern (clouds, not lace), and not faded with distance (the field resolves it wherever it
+        // is, and a wake must stay visible from 10 km).
+        foam = max(foam, foamCover(mean, variance, min(effectFoam, 1.0), FOAM_EFFECT_SOFTNESS));
 #endif
         vec3 foamColor =
             FOAM_ALBEDO / PI * (sunLight * (SUN_DIFFUSE_SCALE * max(dot(n, uSunDir), 0.0)) + skyIrradiance());

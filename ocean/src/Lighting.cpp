@@ -43,9 +43,9 @@ int wrapIndex(int i, int n) {
     return m < 0 ? m + n : m;
 }
 
-/// Periodic 3D gradient noise (Perlin 2002 "Improving noise": quintic fade, 12 edge gradients), period
-/// `period` lattice cells on every axis, evaluated at lattice coordinates p.
-double periodicPerlin(const glm::dvec3& p, int period, uint32_t seed) {
+/// Periodic 3D gradient noise (Perlin 2002 "Improving noise": quintic fade, 12 edge gradients), periods
+/// `period` lattice cells along each axis, evaluated at lattice coordinates p.
+double periodicPerlin(const glm::dvec3& p, const glm::ivec3& period, uint32_t seed) {
     static constexpr double G[12][3] = {{1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0},
                                         {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
                                         {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}};
@@ -56,9 +56,9 @@ double periodicPerlin(const glm::dvec3& p, int period, uint32_t seed) {
     double corner[8];
     for (int c = 0; c < 8; ++c) {
         const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-        const uint32_t h =
-            hash4(wrapIndex(x0 + dx, period), wrapIndex(y0 + dy, period), wrapIndex(z0 + dz, period), seed) %
-            12U;
+        const uint32_t h = hash4(wrapIndex(x0 + dx, period.x), wrapIndex(y0 + dy, period.y),
+                                 wrapIndex(z0 + dz, period.z), seed) %
+                           12U;
         corner[c] = G[h][0] * (r.x - dx) + G[h][1] * (r.y - dy) + G[h][2] * (r.z - dz);
     }
     auto lerp = [](double a, double b, double t) { return a + (b - a) * t; };
@@ -67,16 +67,20 @@ double periodicPerlin(const glm::dvec3& p, int period, uint32_t seed) {
     return lerp(lerp(x00, x10, w.y), lerp(x01, x11, w.y), w.z);
 }
 
-/// Distances to the nearest and second-nearest feature point of a periodic jittered grid of cells x cells
-/// points over the unit square (Worley 1996), in cell units.
-glm::dvec2 periodicWorley(const glm::dvec2& uv, int cells, uint32_t seed) {
-    const glm::dvec2 p = uv * static_cast<double>(cells);
+double periodicPerlin(const glm::dvec3& p, int period, uint32_t seed) {
+    return periodicPerlin(p, glm::ivec3(period), seed);
+}
+
+/// Distances to the nearest and second-nearest feature point of a periodic jittered grid of cells.x x
+/// cells.y points over the unit square (Worley 1996), in cell units.
+glm::dvec2 periodicWorley(const glm::dvec2& uv, const glm::ivec2& cells, uint32_t seed) {
+    const glm::dvec2 p = uv * glm::dvec2(cells);
     const glm::dvec2 c = glm::floor(p);
     double f1 = 1e9, f2 = 1e9;
     for (int j = -2; j <= 2; ++j)
         for (int i = -2; i <= 2; ++i) {
             const int cx = static_cast<int>(c.x) + i, cy = static_cast<int>(c.y) + j;
-            const uint32_t h = hash4(wrapIndex(cx, cells), wrapIndex(cy, cells), 0, seed);
+            const uint32_t h = hash4(wrapIndex(cx, cells.x), wrapIndex(cy, cells.y), 0, seed);
             const glm::dvec2 feature(cx + 0.1 + 0.8 * unit(h), cy + 0.1 + 0.8 * unit(hash32(h)));
             const double d = glm::length(feature - p);
             if (d < f1) {
@@ -305,6 +309,8 @@ void validateLighting(const LightingDesc& l) {
         fail("foamJacobianThreshold must be finite");
     if (!finite(l.foamIntensity) || l.foamIntensity < 0.0f)
         fail("foamIntensity must be finite and >= 0, got " + std::to_string(l.foamIntensity));
+    if (!std::isfinite(l.windDirectionDeg))
+        fail("windDirectionDeg must be finite");
 }
 
 double fogOpticalDepth(double z0, double z1, double distance, const LightingDesc& l) {
@@ -369,40 +375,112 @@ std::vector<float> makeFogNoise(int size, uint32_t seed) {
     return v;
 }
 
-std::vector<float> makeFoamPattern(int size, uint32_t seed) {
-    if (size < 8)
-        throw std::invalid_argument("makeFoamPattern(): size must be >= 8, got " + std::to_string(size));
-    std::vector<float> v(static_cast<size_t>(size) * size);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const glm::dvec2 uv((x + 0.5) / size, (y + 0.5) / size);
-            // Patchiness: periodic fBm (4 octaves of gradient noise) — where foam is dense and where thin.
-            double patches = 0.0, amplitude = 1.0;
-            for (int o = 0; o < 4; ++o) {
-                const int period = 4 << o;
-                patches += amplitude * periodicPerlin(glm::dvec3(uv * static_cast<double>(period), 0.5 + o),
-                                                      period, seed + 31U * static_cast<uint32_t>(o));
-                amplitude *= 0.55;
-            }
-            patches = std::clamp(0.5 + 0.9 * patches, 0.0, 1.0);
-            // Bubbles: dark centres of cellular (Worley 1996) cells at two scales with bright films between
-            // them; the larger bubbles open holes in the foam.
-            const glm::dvec2 large = periodicWorley(uv, 14, seed + 7U);
-            const glm::dvec2 small = periodicWorley(uv, 40, seed + 8U);
-            const double hole = 1.0 - smoothstep(0.12, 0.42, large.x);
-            const double film =
-                smoothstep(0.15, 0.55, small.x) * 0.6 + 0.4 * (1.0 - smoothstep(0.0, 0.1, small.y - small.x));
-            const double s = patches * (0.3 + 0.7 * film) * (1.0 - 0.75 * hole);
-            v[static_cast<size_t>(y) * size + x] = static_cast<float>(s);
-        }
-    // Equalise: each texel's rank (ties by index), so a threshold covers a known share (meanFoamOpacity).
+namespace {
+
+/// Replaces each value by its rank (ties by index) through the normal quantile: a standard normal sample
+/// whatever the shapes (foamCover's threshold needs that marginal).
+void gaussianise(std::vector<float>& v) {
     std::vector<size_t> order(v.size());
     for (size_t i = 0; i < order.size(); ++i)
         order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return v[a] < v[b]; });
     for (size_t k = 0; k < order.size(); ++k)
-        v[order[k]] = static_cast<float>((static_cast<double>(k) + 0.5) / static_cast<double>(order.size()));
+        v[order[k]] = static_cast<float>(
+            normalQuantile((static_cast<double>(k) + 0.5) / static_cast<double>(order.size())));
+}
+
+/// Periodic fBm of `octaves` octaves of gradient noise with FOAM_STREAK_ASPECT times more cells across (y)
+/// than along (x), the first octave `cells` cells along: streaks drawn out along x.
+double streakNoise(const glm::dvec2& uv, int cells, int octaves, uint32_t seed) {
+    double sum = 0.0, amplitude = 1.0;
+    for (int o = 0; o < octaves; ++o) {
+        const glm::ivec2 period(cells << o, FOAM_STREAK_ASPECT * (cells << o));
+        sum += amplitude * periodicPerlin(glm::dvec3(uv * glm::dvec2(period), 0.5 + o),
+                                          glm::ivec3(period, 64), seed + 31U * static_cast<uint32_t>(o));
+        amplitude *= 0.6;
+    }
+    return sum;
+}
+
+void requirePatternSize(const char* what, int size) {
+    if (size < 8)
+        throw std::invalid_argument(std::string(what) + "(): size must be >= 8, got " + std::to_string(size));
+}
+
+} // namespace
+
+std::vector<float> makeFoamPattern(int size, uint32_t seed) {
+    requirePatternSize("makeFoamPattern", size);
+    std::vector<float> v(static_cast<size_t>(size) * size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const glm::dvec2 uv((x + 0.5) / size, (y + 0.5) / size);
+            // Lace: the walls between cellular (Worley 1996) bubbles at two scales, cells stretched along
+            // the wind; the larger cells' centres open holes in the foam. Over them, fine streaks.
+            // Nothing coarser than 1/16 of the tile: coarser shapes would repeat with the tile where its
+            // detail is not resolved (a 7 m lattice over a wake from 600 m).
+            const glm::dvec2 large = periodicWorley(uv, {20, 32}, seed + 7U);
+            const glm::dvec2 small = periodicWorley(uv, {48, 64}, seed + 8U);
+            const double hole = 1.0 - smoothstep(0.1, 0.45, large.x);
+            const double lace = 1.0 - smoothstep(0.0, 0.15, large.y - large.x);
+            const double film = 1.0 - smoothstep(0.0, 0.12, small.y - small.x);
+            const double streaks = streakNoise(uv, 16, 2, seed);
+            v[static_cast<size_t>(y) * size + x] =
+                static_cast<float>(0.6 * streaks + 0.4 * lace + 0.2 * film - 0.35 * hole);
+        }
+    gaussianise(v);
     return v;
+}
+
+std::vector<float> makeFoamStreaks(int size, uint32_t seed) {
+    requirePatternSize("makeFoamStreaks", size);
+    std::vector<float> v(static_cast<size_t>(size) * size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const glm::dvec2 uv((x + 0.5) / size, (y + 0.5) / size);
+            v[static_cast<size_t>(y) * size + x] = static_cast<float>(streakNoise(uv, 2, 5, seed));
+        }
+    gaussianise(v);
+    return v;
+}
+
+double normalCdf(double x) {
+    // Abramowitz & Stegun, "Handbook of Mathematical Functions", 7.1.26: erf(z) = 1 - (a1 t + ... + a5 t^5)
+    // e^(-z^2), t = 1 / (1 + p z), z >= 0, |error| <= 1.5e-7; Phi(x) = (1 + erf(x / sqrt 2)) / 2.
+    const double z = std::abs(x) / std::numbers::sqrt2;
+    const double t = 1.0 / (1.0 + ERF_AS_P * z);
+    const double poly =
+        t * (ERF_AS_A[0] + t * (ERF_AS_A[1] + t * (ERF_AS_A[2] + t * (ERF_AS_A[3] + t * ERF_AS_A[4]))));
+    const double erf = 1.0 - poly * std::exp(-z * z);
+    return 0.5 * (1.0 + (x < 0.0 ? -erf : erf));
+}
+
+double normalQuantile(double p) {
+    // Phi^-1(p) = sqrt 2 erfinv(2p - 1), erfinv by M. Giles, "Approximating the erfinv function" (GPU
+    // Computing Gems, 2011), its single-precision polynomials in w = -ln(1 - x^2): central (w < 5) and tail.
+    const double x = 2.0 * std::clamp(p, FOAM_SHARE_MIN, 1.0 - FOAM_SHARE_MIN) - 1.0;
+    double w = -std::log((1.0 - x) * (1.0 + x)), q;
+    if (w < 5.0) {
+        w -= 2.5;
+        q = ERFINV_CENTRAL[0];
+        for (int i = 1; i < 9; ++i)
+            q = ERFINV_CENTRAL[i] + q * w;
+    } else {
+        w = std::sqrt(w) - 3.0;
+        q = ERFINV_TAIL[0];
+        for (int i = 1; i < 9; ++i)
+            q = ERFINV_TAIL[i] + q * w;
+    }
+    return std::numbers::sqrt2 * q * x;
+}
+
+double foamCover(double mean, double variance, double share, double softness) {
+    if (share <= 0.0)
+        return 0.0;
+    if (share >= 1.0)
+        return 1.0;
+    const double threshold = normalQuantile(1.0 - share) * std::sqrt(1.0 + softness);
+    return normalCdf((mean - threshold) / std::sqrt(std::max(variance + softness, FOAM_MIN_VARIANCE)));
 }
 
 double meanFoamOpacity(double coverage) {

@@ -36,6 +36,17 @@ public:
     }
     Defines& add(const char* name, float value) { return add(name, static_cast<double>(value)); }
     Defines& add(const char* name, int value) { return line(name, std::to_string(value)); }
+    /// "#define NAME float[N](v0, v1, ...)": GLSL indexes the array constructor like a constant array.
+    template <size_t N>
+    Defines& add(const char* name, const double (&values)[N]) {
+        std::string list = "float[" + std::to_string(N) + "](";
+        for (size_t i = 0; i < N; ++i) {
+            char number[32];
+            std::snprintf(number, sizeof number, "%.9g", values[i]);
+            list += (i ? ", " : "") + std::string(number);
+        }
+        return line(name, list + ")");
+    }
     std::string text;
 
 private:
@@ -80,6 +91,15 @@ std::string shaderConstantDefines() {
         .add("CREST_SCATTER_PATH", CREST_SCATTER_PATH)
         .add("FOAM_EDGE", FOAM_EDGE)
         .add("FOAM_PATTERN_SIZE", FOAM_PATTERN_SIZE)
+        .add("FOAM_NEAR_WEIGHT", FOAM_NEAR_WEIGHT)
+        .add("FOAM_FAR_WEIGHT", FOAM_FAR_WEIGHT)
+        .add("FOAM_MIN_VARIANCE", FOAM_MIN_VARIANCE)
+        .add("FOAM_SHARE_MIN", FOAM_SHARE_MIN)
+        .add("FOAM_EFFECT_SOFTNESS", FOAM_EFFECT_SOFTNESS)
+        .add("ERF_AS_P", ERF_AS_P)
+        .add("ERF_AS_A", ERF_AS_A)
+        .add("ERFINV_CENTRAL", ERFINV_CENTRAL)
+        .add("ERFINV_TAIL", ERFINV_TAIL)
         .add("FOG_NOISE_TILE_2", FOG_NOISE_TILE_2)
         .add("FOG_NOISE_TILE_VERTICAL_2", FOG_NOISE_TILE_VERTICAL_2)
         .add("FOG_NOISE_WARP", FOG_NOISE_WARP);

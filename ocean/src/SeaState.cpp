@@ -173,6 +173,7 @@ OceanDesc applySeaState(OceanDesc d, const SeaState& sea) {
     d.fft.windSpeed = u;
     d.fft.windDirectionDeg = sea.windDirectionDeg;
     d.octaves.windDirectionDeg = sea.windDirectionDeg;
+    d.lighting.windDirectionDeg = sea.windDirectionDeg;
     for (OctaveDesc& o : d.octaves.octaves)
         o.amplitude *= scale;
     if (d.gerstner.waves.empty())

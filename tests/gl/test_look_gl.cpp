@@ -776,12 +776,13 @@ TEST_F(LookGl, RenderedFftWhitecapCoverageFollowsMonahan) {
     expectWhitecapCoverageFollowsMonahan(renderer, ocean::SurfaceKind::Fft, {8.0, 16.0}, 8, 61, 0.15);
 }
 
-// The Gerstner sum with its living whitecaps (GerstnerDesc::foamMemory): 8 and 16 m/s, 8 views, every 7th
-// pixel predicted (within 10%). Measured (llvmpipe): rendered / W = 1.02 and 0.91; rendered / CPU 0.97 and
-// 0.93.
+// The Gerstner sum with its living whitecaps (GerstnerDesc::foamMemory): 8 and 16 m/s, 32 views, every 7th
+// pixel predicted (within 10%). The foam pattern's streaks reach ~19 m, so a view's few whitecaps sample only
+// a few of them: 8 views measured rendered / CPU 0.89 at 8 m/s, 32 views 0.98. Measured (llvmpipe, 32
+// views): rendered / W = 1.04 and 0.94; rendered / CPU 0.98 and 0.93.
 TEST_F(LookGl, RenderedGerstnerWhitecapCoverageFollowsMonahan) {
     ocean::OceanRenderer renderer;
-    expectWhitecapCoverageFollowsMonahan(renderer, ocean::SurfaceKind::Gerstner, {8.0, 16.0}, 8, 7, 0.1);
+    expectWhitecapCoverageFollowsMonahan(renderer, ocean::SurfaceKind::Gerstner, {8.0, 16.0}, 32, 7, 0.1);
 }
 
 namespace {

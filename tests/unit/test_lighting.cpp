@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 using namespace pacifica::ocean;
 
@@ -269,23 +271,104 @@ TEST(ProceduralTextures, FogNoiseIsInRangeAndTiles) {
     EXPECT_LT(inside, 0.2); // smooth (blurred)
 }
 
-TEST(ProceduralTextures, FoamPatternIsInRangeAndTiles) {
-    const int n = 128;
-    const std::vector<float> v = makeFoamPattern(n);
+namespace {
+
+/// Autocorrelation of a size x size periodic field at a lag of `lag` texels along x and along y.
+std::pair<double, double> autocorrelation(const std::vector<float>& v, int n, int lag) {
+    auto at = [&](int x, int y) { return double(v[static_cast<size_t>((y + n) % n) * n + (x + n) % n]); };
+    double along = 0.0, across = 0.0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            along += at(x, y) * at(x + lag, y) / (n * n);
+            across += at(x, y) * at(x, y + lag) / (n * n);
+        }
+    return {along, across};
+}
+
+/// The foam patterns' shared contract: a standard normal sample (its sorted values are the normal quantiles
+/// of the ranks) that tiles without a seam.
+void expectNormalAndTiling(const std::vector<float>& v, int n) {
     ASSERT_EQ(v.size(), static_cast<size_t>(n) * n);
-    // Equalised: the sorted values are the ranks (k + 0.5) / n^2, so a threshold at 1 - c keeps a share c.
     std::vector<float> sorted = v;
     std::sort(sorted.begin(), sorted.end());
     for (size_t k = 0; k < sorted.size(); ++k)
-        ASSERT_FLOAT_EQ(sorted[k], static_cast<float>((k + 0.5) / static_cast<double>(sorted.size()))) << k;
-    double inside = 0.0, across = 0.0;
+        ASSERT_FLOAT_EQ(sorted[k], static_cast<float>(normalQuantile((k + 0.5) / static_cast<double>(n * n))))
+            << k;
+    double mean = 0.0, var = 0.0;
+    for (float x : v)
+        mean += x / static_cast<double>(v.size());
+    for (float x : v)
+        var += (x - mean) * (x - mean) / static_cast<double>(v.size());
+    EXPECT_NEAR(mean, 0.0, 1e-6);
+    EXPECT_NEAR(var, 1.0, 0.01);
+    auto at = [&](int x, int y) { return double(v[static_cast<size_t>(y) * n + x]); };
+    double inside = 0.0, seam = 0.0;
     for (int y = 0; y < n; ++y) {
-        for (int x = 0; x + 1 < n; ++x)
-            inside = std::max(inside, double(std::abs(v[y * n + x + 1] - v[y * n + x])));
-        across = std::max(across, double(std::abs(v[y * n] - v[y * n + n - 1])));
-        across = std::max(across, double(std::abs(v[y] - v[(n - 1) * n + y])));
+        for (int x = 0; x + 1 < n; ++x) // steps along both axes: across the streaks they are larger
+            inside = std::max({inside, std::abs(at(x + 1, y) - at(x, y)), std::abs(at(y, x + 1) - at(y, x))});
+        seam = std::max(seam, std::abs(at(0, y) - at(n - 1, y)));
+        seam = std::max(seam, std::abs(at(y, 0) - at(y, n - 1)));
     }
-    EXPECT_LE(across, inside) << "seam at the wrap";
+    EXPECT_LE(seam, inside) << "seam at the wrap";
+}
+
+} // namespace
+
+// The fine foam layer (lace and bubbles) and the coarse one (streaks) are standard normal and tile; the
+// streaks lie along x: at a lag of 8 texels they correlate > 0.6 along x and at least 0.4 less across.
+TEST(ProceduralTextures, FoamPatternsAreNormalTileAndStreakAlongTheWind) {
+    const int n = 128;
+    expectNormalAndTiling(makeFoamPattern(n), n);
+    const std::vector<float> streaks = makeFoamStreaks(n);
+    expectNormalAndTiling(streaks, n);
+    const auto [along, across] = autocorrelation(streaks, n, 8);
+    std::printf("streaks' autocorrelation at 8 texels: along %.3f, across %.3f\n", along, across);
+    EXPECT_GT(along, 0.6);
+    EXPECT_LT(across, along - 0.4);
+}
+
+// normalCdf and normalQuantile against std::erfc and each other: within the published bounds (1.5e-7 for
+// A&S 7.1.26; Giles' single-precision erfinv ~ 1e-6 relative here).
+TEST(ProceduralTextures, NormalCdfAndQuantileMatchTheNormal) {
+    double worst = 0.0;
+    for (int i = -800; i <= 800; ++i) {
+        const double x = i / 100.0;
+        worst = std::max(worst, std::abs(normalCdf(x) - 0.5 * std::erfc(-x / std::sqrt(2.0))));
+    }
+    EXPECT_LT(worst, 2e-7);
+    EXPECT_NEAR(normalCdf(0.0), 0.5, 1e-9);
+    for (double p : {1e-5, 1e-4, 0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 0.9999, 1.0 - 1e-5}) {
+        const double x = normalQuantile(p);
+        EXPECT_NEAR(0.5 * std::erfc(-x / std::sqrt(2.0)), p, 2e-6 * std::max(p, 1e-3)) << "p = " << p;
+    }
+    EXPECT_NEAR(normalQuantile(0.975), 1.959964, 1e-5);
+    EXPECT_EQ(normalQuantile(0.0), normalQuantile(FOAM_SHARE_MIN)); // clamped, finite
+    EXPECT_TRUE(std::isfinite(normalQuantile(1.0)));
+}
+
+// foamCover keeps the share at every footprint and softness: a standard normal field split into a resolved
+// part of variance v (the pixels' means, normal) and an unresolved part 1 - v gives mean opacity = share;
+// a sharp pixel (variance 0) is a step at the threshold; no share is no foam, a full share solid foam.
+TEST(ProceduralTextures, FoamCoverKeepsTheShareAtEveryFootprint) {
+    for (double softness : {0.0, FOAM_EFFECT_SOFTNESS})
+        for (double share : {0.01, 0.05, 0.2, 0.5, 0.9})
+            for (double resolved : {0.0, 0.3, 0.7, 0.95, 1.0}) {
+                double sum = 0.0;
+                constexpr int R = 20000;
+                for (int k = 0; k < R; ++k) {
+                    const double mean = std::sqrt(resolved) * normalQuantile((k + 0.5) / R);
+                    sum += foamCover(mean, 1.0 - resolved, share, softness);
+                }
+                EXPECT_NEAR(sum / R, share, 2e-3 + 0.02 * share)
+                    << "share " << share << ", resolved " << resolved << ", softness " << softness;
+            }
+    // Softer: a resolved pixel just above the threshold is less than solid foam.
+    EXPECT_LT(foamCover(normalQuantile(0.9) + 0.3, 0.0, 0.1, FOAM_EFFECT_SOFTNESS), 0.9);
+    const double t = normalQuantile(0.9); // the threshold of a 10 % share
+    EXPECT_GT(foamCover(t + 0.05, 0.0, 0.1), 0.99);
+    EXPECT_LT(foamCover(t - 0.05, 0.0, 0.1), 0.01);
+    EXPECT_EQ(foamCover(5.0, 1.0, 0.0), 0.0);
+    EXPECT_EQ(foamCover(-5.0, 1.0, 1.0), 1.0);
 }
 
 // meanFoamOpacity is the mean of ocean.frag's threshold clamp((r - 1 + c (1 + e)) / e, 0, 1) over uniform

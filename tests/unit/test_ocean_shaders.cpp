@@ -77,11 +77,12 @@ TEST(OceanShaders, ConstantDefinesHoldEachConstantOnce) {
     expectLine("#define FFT_MAX_CASCADES " + std::to_string(FFT_MAX_CASCADES));
     expectLine("#define FFT_MIX_AMPLITUDE 1.5");
     expectLine("#define EFFECT_EXPLOSIONS_BINDING 4");
-    // Every line is a define; 37 constants, 11 binding slots and an image unit.
+    expectLine("#define ERF_AS_A float[5](0.254829592, -0.284496736, 1.42141374, -1.45315203, 1.06140543)");
+    // Every line is a define; 46 constants (3 of them arrays), 11 binding slots and an image unit.
     size_t lines = 0;
     for (size_t at = 0; (at = d.find('\n', at)) != std::string::npos; ++at)
         ++lines;
-    EXPECT_EQ(lines, 49u);
+    EXPECT_EQ(lines, 58u);
     EXPECT_EQ(d.rfind("#define ", 0), 0u);
     EXPECT_EQ(d.back(), '\n');
 }

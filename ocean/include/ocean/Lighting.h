@@ -139,6 +139,9 @@ struct LightingDesc {
     /// (Tessendorf 2001 §4.4); only models that provide modelFoamInputs() report J (others: J = 1).
     float foamJacobianThreshold = 0.3f;
     float foamIntensity = 1.0f; ///< scales the foam coverage; 0 disables foam
+    /// Compass direction the wind blows toward, degrees (as SeaState::windDirectionDeg): the foam's streaks
+    /// lie along it and its pattern drifts with it. applySeaState() sets it with the sea's wind.
+    double windDirectionDeg = 60.0;
     /// Upwelling radiance of the water body seen straight down under the default sky (seed 004's "dull
     /// colour"; oblique views and other skies scale it, sky.glsl waterBody), scene-linear, each >= 0.
     glm::vec3 waterColor{DEEP_WATER_COLOR[0], DEEP_WATER_COLOR[1], DEEP_WATER_COLOR[2]};
@@ -173,21 +176,39 @@ double foamAlpha(double height, const LightingDesc& lighting);
 /// Folding foam: clamp((J0 - J) / J0, 0, 1) (0 when J0 <= 0).
 double foamAlphaJacobian(double jacobian, const LightingDesc& lighting);
 
-/// The share of the sea that foam covers where the foam coverage (foamAlpha, times foamIntensity) is c:
-/// ocean.frag thresholds the pattern's rank r (uniform on [0, 1]: makeFoamPattern is equalised and the two
-/// layers' mix is equalised again by its CDF) as clamp((r - 1 + c (1 + e)) / e, 0, 1), e = FOAM_EDGE, whose
-/// mean over r is this closed form: 0 at c = 0, 1 at c = 1, increasing. Where the pattern is not resolved
-/// (its mipmaps blur the ranks) the shader uses this mean itself, so the share does not change with distance.
-/// What applySeaState() matches to Monahan's whitecap coverage.
+/// The share of the sea that foam covers where the foam coverage (foamAlpha, times foamIntensity) is c: a
+/// threshold ramp of soft edge e = FOAM_EDGE over a uniform rank, clamp((r - 1 + c (1 + e)) / e, 0, 1),
+/// averaged over r: 0 at c = 0, 1 at c = 1, increasing. ocean.frag thresholds the foam pattern so that
+/// each pixel's expected opacity is this share (foamCover), at every distance. What applySeaState() matches
+/// to Monahan's whitecap coverage.
 double meanFoamOpacity(double coverage);
 
 /// The tileable fog density noise: size^3 values in [0, 1] (x fastest), mean ~0.5, a sum of 3 octaves of
 /// periodic gradient (Perlin) noise blurred once with the binomial (1,2,1) kernel, wrapping at the edges
 /// (seed 003: noise octaves + Gaussian blur, "a mod operator to wrap the sampling space").
 std::vector<float> makeFogNoise(int size, uint32_t seed = 7);
-/// The tileable foam pattern: size^2 values in [0, 1], a bubbly cellular (Worley) texture: bright cell
-/// walls and speckle over two scales, wrapping at the edges. Equalised: the values are the texels' ranks,
-/// (k + 0.5) / size^2, so thresholding it at 1 - c covers exactly a share c of the texels.
+/// The tileable foam patterns, size^2 values each (x fastest), wrapping at the edges. Each is a standard
+/// normal sample (its texels' ranks through normalQuantile) whose shapes are foam's, x laid along the wind:
+/// makeFoamPattern, the fine layer: the lace of cell walls between bubbles at two scales, holes, and fine
+/// streaks; makeFoamStreaks, the coarse layer: streaks and windrows, fBm FOAM_STREAK_ASPECT times longer
+/// along x than across, with no cells (whose regular spacing showed from a distance). LightingGpu uploads
+/// both with their squares (the moments ocean.frag's foamCover filters).
 std::vector<float> makeFoamPattern(int size, uint32_t seed = 11);
+std::vector<float> makeFoamStreaks(int size, uint32_t seed = 12);
+
+/// The standard normal CDF Phi(x) (Abramowitz & Stegun 7.1.26: |error| <= 1.5e-7); ocean.frag's normalCdf is
+/// the same expression.
+double normalCdf(double x);
+/// The standard normal quantile Phi^-1(p) (M. Giles' single-precision erfinv), p clamped to [FOAM_SHARE_MIN,
+/// 1 - FOAM_SHARE_MIN]; ocean.frag's normalQuantile is the same expression.
+double normalQuantile(double p);
+/// The foam opacity of a pixel whose footprint holds the pattern's threshold field with this mean and
+/// variance, where a share `share` of the sea is to be foam: Phi((mean - Phi^-1(1 - share) sqrt(1 + s)) /
+/// sqrt(variance + s)) (the denominator's variance at least FOAM_MIN_VARIANCE), 0 at share <= 0 and 1 at
+/// share >= 1. The softness s >= 0 adds an unseen normal of variance s to the field: 0 for the whitecaps'
+/// crisp edges, FOAM_EFFECT_SOFTNESS for effects' churned water. Over a standard normal field its mean is
+/// `share` for every softness, however the field is split between resolved mean and unresolved variance.
+/// ocean.frag's foamCover is the same expression.
+double foamCover(double mean, double variance, double share, double softness = 0.0);
 
 } // namespace pacifica::ocean

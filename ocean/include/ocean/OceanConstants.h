@@ -33,6 +33,9 @@ inline constexpr double FFT_MIX_DIRECTIONS_DEG[FFT_MIX_TERMS] = {17.0, 79.0, 133
 inline constexpr double OCTAVE_MIX_SHIFT_U = 0.381966011250105;
 inline constexpr double OCTAVE_MIX_SHIFT_V = 0.618033988749895;
 inline constexpr int OCTAVE_MIX_SET = 16;
+/// The foam layers' mixes (ocean.frag foamMixWeights) take phase sets FOAM_MIX_SET (fine) and + 1 (coarse),
+/// their shifted copies the octaves' shift.
+inline constexpr int FOAM_MIX_SET = OCTAVE_MIX_SET + MAX_OCTAVES;
 inline constexpr double EARTH_RADIUS = 6371000.0; ///< m, mean radius (IUGG) for the curvature drop
 
 // Shading (ocean.frag, sky.glsl; docs/ARCHITECTURE.md "Shading").
@@ -58,10 +61,36 @@ inline constexpr float CREST_SCATTER_G = 0.6f;
 inline constexpr float CREST_SCATTER_PATH = 3.0f;
 inline constexpr int FOAM_PATTERN_SIZE = 256;   ///< texels per side of the foam texture (mipmapped)
 inline constexpr double FOAM_TILE_NEAR = 7.3;   ///< metres per repeat of the fine foam layer
-inline constexpr double FOAM_TILE_FAR = 23.9;   ///< metres per repeat of the coarse layer (incommensurate)
-inline constexpr double FOAM_DRIFT_SPEED = 0.4; ///< m/s the two foam layers drift apart (animation)
-/// Width of the foam's soft edge in pattern rank (ocean.frag foamThreshold, Lighting.h meanFoamOpacity).
+inline constexpr double FOAM_TILE_FAR = 37.9;   ///< metres per repeat of the coarse layer (incommensurate)
+inline constexpr double FOAM_DRIFT_SPEED = 0.4; ///< m/s the two foam layers drift apart, along the wind
+/// The foam pattern's cells are this many times shorter across the wind than along it: streaks.
+inline constexpr int FOAM_STREAK_ASPECT = 4;
+/// Weights of the fine and coarse foam layers in the threshold field n = wn a + wf b (a, b standard normal
+/// and independent, wn^2 + wf^2 = 1 so n is standard normal too; ocean.frag, Lighting.h foamCover).
+inline constexpr double FOAM_NEAR_WEIGHT = 0.6;
+inline constexpr double FOAM_FAR_WEIGHT = 0.8;
+/// The unresolved variance of the threshold field never falls below this (a texel's own edge, antialiased).
+inline constexpr double FOAM_MIN_VARIANCE = 1e-4;
+/// Effects' foam (crowns, slicks, wake strips: churned water) thresholds the pattern with this softness
+/// (Lighting.h foamCover): soft clouds of the share's mean, not the whitecaps' crisp lace.
+inline constexpr double FOAM_EFFECT_SOFTNESS = 1.5;
+/// Shares closer than this to 0 or 1 are clamped before the normal quantile (float precision in GLSL).
+inline constexpr double FOAM_SHARE_MIN = 1e-5;
+/// Width of the foam's soft edge in coverage (Lighting.h meanFoamOpacity: the share of the sea a coverage c
+/// puts under foam).
 inline constexpr double FOAM_EDGE = 0.3;
+/// Abramowitz & Stegun, "Handbook of Mathematical Functions", 7.1.26 (erf, |error| <= 1.5e-7): p, a1..a5.
+inline constexpr double ERF_AS_P = 0.3275911;
+inline constexpr double ERF_AS_A[5] = {0.254829592, -0.284496736, 1.421413741, -1.453152027, 1.061405429};
+/// M. Giles, "Approximating the erfinv function" (GPU Computing Gems, 2011), single precision: Horner
+/// coefficients (highest power first) of the central branch (w = -ln(1 - x^2) < 5, in w - 2.5) and the tail
+/// (in sqrt(w) - 3).
+inline constexpr double ERFINV_CENTRAL[9] = {2.81022636e-08,  3.43273939e-07, -3.5233877e-06,
+                                             -4.39150654e-06, 0.00021858087,  -0.00125372503,
+                                             -0.00417768164,  0.246640727,    1.50140941};
+inline constexpr double ERFINV_TAIL[9] = {-0.000200214257, 0.000100950558, 0.00134934322,
+                                          -0.00367342844,  0.00573950773,  -0.0076224613,
+                                          0.00943887047,   1.00167406,     2.83297682};
 inline constexpr int FOG_NOISE_SIZE = 32;                 ///< texels per side of the 3D fog noise (mipmapped)
 inline constexpr double FOG_NOISE_TILE = 12000.0;         ///< metres per horizontal repeat of the fog noise
 inline constexpr double FOG_NOISE_TILE_VERTICAL = 1500.0; ///< metres per vertical repeat of the fog noise

@@ -2,7 +2,9 @@
 // foam pattern, fog noise), each uploaded once and counted for the renderer's stats.
 #include "gpu/LightingGpu.h"
 
+#include "engine/Time.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/SurfaceModel.h"
 
 #include <epoxy/gl.h>
 
@@ -159,11 +161,21 @@ const LightingGpu::GeneratedSky& LightingGpu::generatedSky(const LightingDesc& l
 void LightingGpu::ensureNoiseTextures() {
     if (!mFoam) {
         const int n = FOAM_PATTERN_SIZE;
-        mFoam = gl::Texture::create2D(GL_R16F, n, n, mipLevels(n, n));
-        const std::vector<uint16_t> half = toHalfClamped(makeFoamPattern(n));
+        // The patterns and their squares (fine layer RG, coarse BA): the mipmaps average them, so a
+        // filtered read gives the mean and the variance of each field over a footprint (ocean.frag
+        // foamCover). 32-bit: the variance of a magnified texel is a small difference of large squares.
+        mFoam = gl::Texture::create2D(GL_RGBA32F, n, n, mipLevels(n, n));
+        const std::vector<float> fine = makeFoamPattern(n), coarse = makeFoamStreaks(n);
+        std::vector<float> moments(fine.size() * 4);
+        for (size_t i = 0; i < fine.size(); ++i) {
+            moments[4 * i] = fine[i];
+            moments[4 * i + 1] = fine[i] * fine[i];
+            moments[4 * i + 2] = coarse[i];
+            moments[4 * i + 3] = coarse[i] * coarse[i];
+        }
         {
             const UnpackAlignment tight;
-            glTextureSubImage2D(mFoam.id(), 0, 0, 0, n, n, GL_RED, GL_HALF_FLOAT, half.data());
+            glTextureSubImage2D(mFoam.id(), 0, 0, 0, n, n, GL_RGBA, GL_FLOAT, moments.data());
         }
         glGenerateTextureMipmap(mFoam.id());
         mFoam.setSampling(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_REPEAT);
@@ -235,13 +247,32 @@ void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& 
     glBindTextureUnit(static_cast<GLuint>(firstUnit + 2), mFogNoise.id());
     glProgramUniform1i(prog, loc("uFoamMap"), firstUnit + 1);
     glProgramUniform1i(prog, loc("uFogNoiseMap"), firstUnit + 2);
-    const glm::dvec2 drift = FOAM_DRIFT_SPEED * glm::dvec2(0.6, 0.8) * time;
-    const glm::dvec2 nearOff = (glm::dvec2(cam) + drift) / FOAM_TILE_NEAR;
-    const glm::dvec2 farOff = (glm::dvec2(cam) - drift) / FOAM_TILE_FAR;
+    // The pattern's x axis lies along the wind: the camera in the wind's frame (along, across), the two
+    // layers drifting apart along the wind.
+    const double wind = l.windDirectionDeg * std::numbers::pi / 180.0;
+    const glm::dvec2 along(std::sin(wind), std::cos(wind)); // compass angle to (east, north)
+    glProgramUniform2f(prog, loc("uFoamWind"), static_cast<float>(along.x), static_cast<float>(along.y));
+    const glm::dvec2 camWind(glm::dot(glm::dvec2(cam), along),
+                             glm::dot(glm::dvec2(cam), glm::dvec2(-along.y, along.x)));
+    const glm::dvec2 drift(FOAM_DRIFT_SPEED * time, 0.0);
+    const glm::dvec2 nearOff = (camWind + drift) / FOAM_TILE_NEAR;
+    const glm::dvec2 farOff = (camWind - drift) / FOAM_TILE_FAR;
     glProgramUniform2f(prog, loc("uFoamOffsetNear"), static_cast<float>(wrap01(nearOff.x)),
                        static_cast<float>(wrap01(nearOff.y)));
     glProgramUniform2f(prog, loc("uFoamOffsetFar"), static_cast<float>(wrap01(farOff.x)),
                        static_cast<float>(wrap01(farOff.y)));
+    // Each layer is a mix cos theta A + sin theta B of the pattern and a shifted copy, theta quasi-periodic
+    // (aperiodicMixWeights, SurfaceModel.h, phase set FOAM_MIX_SET + layer), so no tile repeats over a
+    // wide foam (a wake, a slick): psi = wrap(k.camera + phase, 2 pi) in double, the float sees k.rel.
+    const double tiles[2] = {FOAM_TILE_NEAR, FOAM_TILE_FAR};
+    for (int layer = 0; layer < 2; ++layer)
+        for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+            const glm::dvec3 m = aperiodicMixTerm(tiles[layer], FOAM_MIX_SET + layer, j);
+            const double psi = wrapPhase(m.x * cam.x + m.y * cam.y + m.z, 2.0 * std::numbers::pi);
+            const std::string name = "uFoamMix[" + std::to_string(layer * FFT_MIX_TERMS + j) + "]";
+            glProgramUniform3f(prog, loc(name.c_str()), static_cast<float>(m.x), static_cast<float>(m.y),
+                               static_cast<float>(psi));
+        }
     glProgramUniform1f(prog, loc("uFoamHeightStart"), l.foamHeightStart);
     glProgramUniform1f(prog, loc("uFoamHeightFull"), l.foamHeightFull);
     glProgramUniform1f(prog, loc("uFoamJacobianThreshold"), l.foamJacobianThreshold);

@@ -6,7 +6,8 @@
 //                  physical clear sky's map (ClearSky::skyMap) for the camera's altitude level and the sun,
 //                  computed once per level and sun (the levels next to the camera's ahead of time, on
 //                  a worker thread) and uploaded when first used (the last few kept)
-//   firstUnit + 1: the foam pattern (makeFoamPattern), R16F, mipmapped, repeating
+//   firstUnit + 1: the foam patterns (makeFoamPattern, makeFoamStreaks) and their squares, RGBA32F,
+//                  mipmapped, repeating
 //   firstUnit + 2: the fog noise (makeFogNoise), R16F 3D, mipmapped, repeating
 // Sampler uniforms are always pointed at these units, even when unused, because GL forbids samplers of
 // different types on one unit (the surface model binds 2D arrays from unit 0).
