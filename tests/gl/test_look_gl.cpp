@@ -996,3 +996,123 @@ TEST_F(LookGl, FarSeaDoesNotShimmerInASlowPan) {
         }
     }
 }
+
+namespace {
+
+/// The foam pattern as rendered: a sea whose foam coverage is 0.3 everywhere (thresholds far below and above
+/// the waves), the wind toward `windDeg`, looked at straight down from `altitude` (90 degree field of view,
+/// 256x256, heading 0) at `views` places; each pixel's opacity from renders without foam, with it, and with
+/// foam everywhere (as the Monahan test does). The autocorrelations are taken along and across 60 degrees.
+struct RenderedFoam {
+    double meanOpacity = 0.0; ///< over every pixel of every view
+    double soft = 0.0;        ///< share of the foamed pixels (opacity > 0.02) whose opacity is in [0.1, 0.9]
+    double along = 0.0;       ///< autocorrelation of the opacity at `lag` metres along the wind
+    double across = 0.0;      ///< ... and across it
+};
+
+RenderedFoam renderedFoam(double altitude, int views, double lag, double windDeg = 60.0) {
+    constexpr int S = 256;
+    constexpr double C = 0.3;
+    ocean::OceanDesc base = ocean::applySeaState(ocean::OceanDesc{}, {10.0, windDeg});
+    ecs::Registry scenes[3]; // 0: no foam, 1: coverage C everywhere, 2: foam everywhere
+    for (int mode = 0; mode < 3; ++mode) {
+        ocean::OceanDesc d = base;
+        const double el = 30.0 * M_PI / 180.0; // the sun's glitter far out of view
+        d.lighting.sunDirection = glm::dvec3(0.0, std::cos(el), std::sin(el));
+        d.lighting.foamIntensity = mode == 0 ? 0.0f : 1.0f;
+        d.lighting.foamHeightStart = mode == 2 ? -100.0f : -1000.0f;
+        d.lighting.foamHeightFull = mode == 2 ? -99.0f : static_cast<float>(1000.0 / C - 1000.0);
+        scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(), ocean::makeOcean(d));
+    }
+    ocean::OceanRenderer renderer;
+    gl::FrameTargets targets(S, S);
+    const double wind = 60.0 * M_PI / 180.0; // the measure's axes
+    const glm::dvec2 along(std::sin(wind), std::cos(wind)), across(-along.y, along.x);
+    RenderedFoam r;
+    double sum = 0.0, sum2 = 0.0, alongSum = 0.0, acrossSum = 0.0;
+    long pixels = 0, foamed = 0, soft = 0, pairs = 0;
+    for (int view = 0; view < views; ++view) {
+        Pose cam;
+        cam.position = {1.7e4 + 313.0 * view, -2.3e4 + 171.0 * view, altitude};
+        cam.pitchDeg = -89.0;
+        const CameraFrame frame = makeCameraFrame(cam, static_cast<float>(M_PI / 2.0), 1.0f, 1.0f);
+        std::vector<float> px[3];
+        for (int mode = 0; mode < 3; ++mode)
+            px[mode] = renderInto(renderer, targets, scenes[mode], frame, 40.0 + 7.0 * view);
+        std::vector<double> opacity(static_cast<size_t>(S) * S);
+        for (size_t i = 0; i < opacity.size(); ++i) {
+            const double y0 = luminance(px[0], i), y1 = luminance(px[1], i), yw = luminance(px[2], i);
+            opacity[i] = std::clamp((y1 - y0) / std::max(yw - y0, 1e-6), 0.0, 1.0);
+            sum += opacity[i];
+            sum2 += opacity[i] * opacity[i];
+            ++pixels;
+            if (opacity[i] > 0.02) {
+                ++foamed;
+                soft += opacity[i] >= 0.1 && opacity[i] <= 0.9 ? 1 : 0;
+            }
+        }
+        // Pairs at `lag` metres along and across the wind: a pixel's ground point moved, projected back.
+        const glm::mat4 inv = glm::inverse(frame.viewProj);
+        auto pixelOf = [&](const glm::dvec2& ground) -> long {
+            const glm::vec2 rel(ground - glm::dvec2(cam.position)); // camera-relative, the sea at -altitude
+            const glm::vec4 q = frame.viewProj * glm::vec4(rel, static_cast<float>(-altitude), 1.0f);
+            const double x = (q.x / q.w * 0.5 + 0.5) * S, y = (0.5 - q.y / q.w * 0.5) * S;
+            if (x < 0.0 || y < 0.0 || x >= S || y >= S)
+                return -1;
+            return static_cast<long>(y) * S + static_cast<long>(x);
+        };
+        for (int row = 0; row < S; row += 2)
+            for (int col = 0; col < S; col += 2) {
+                const glm::vec4 ndc((col + 0.5f) / S * 2.0f - 1.0f, 1.0f - (row + 0.5f) / S * 2.0f, 1.0f,
+                                    1.0f);
+                const glm::vec4 q = inv * ndc;
+                const glm::dvec3 dir = glm::normalize(glm::dvec3(q) / double(q.w));
+                const glm::dvec2 ground = glm::dvec2(cam.position) + glm::dvec2(dir) * (altitude / -dir.z);
+                const long a = pixelOf(ground + lag * along), b = pixelOf(ground + lag * across);
+                if (a < 0 || b < 0)
+                    continue;
+                const double o = opacity[static_cast<size_t>(row) * S + col];
+                alongSum += o * opacity[static_cast<size_t>(a)];
+                acrossSum += o * opacity[static_cast<size_t>(b)];
+                ++pairs;
+            }
+    }
+    r.meanOpacity = sum / static_cast<double>(pixels);
+    const double var = sum2 / static_cast<double>(pixels) - r.meanOpacity * r.meanOpacity;
+    r.along = (alongSum / static_cast<double>(pairs) - r.meanOpacity * r.meanOpacity) / var;
+    r.across = (acrossSum / static_cast<double>(pairs) - r.meanOpacity * r.meanOpacity) / var;
+    r.soft = static_cast<double>(soft) / static_cast<double>(std::max(foamed, 1L));
+    std::printf(
+        "foam from %6.0f m: mean opacity %.4f (share %.4f), soft pixels %.3f, autocorrelation at %.1f m "
+        "along the wind %.3f, across %.3f\n",
+        altitude, r.meanOpacity, ocean::meanFoamOpacity(C), r.soft, lag, r.along, r.across);
+    return r;
+}
+
+} // namespace
+
+// Whitecaps are streaks and lace with crisp edges, not soft blobs: a uniform foam coverage renders the foam
+// pattern (ocean.frag foamCover). Close up its edges are crisp (few pixels between 10 % and 90 % opacity;
+// from 1 km, where the pattern is finer than a pixel, most are, which shows the measure can fail), its
+// streaks lie along the wind (higher autocorrelation along the wind than across), and at both distances the
+// mean opacity is the share meanFoamOpacity(c) (the coverage Monahan's W is matched to). Turning the wind a
+// quarter turn swaps the autocorrelations. Measured (llvmpipe): mean / share 0.99 / 0.97 / 0.995 from 12 m,
+// 40 m and 1 km; soft pixels 0.63 / 0.68 / 0.96 (the shader this replaced showed the pattern's mean wherever
+// its fine layer was not resolved, i.e. soft everywhere beyond ~10 m); along / across 0.65 / 0.38 (1.5 m lag)
+// and 0.63 / 0.19 (3 m), turned 0.19 / 0.63.
+TEST_F(LookGl, FoamIsCrispStreakyAndKeepsItsShareAtEveryDistance) {
+    const double share = ocean::meanFoamOpacity(0.3);
+    const RenderedFoam near = renderedFoam(12.0, 8, 1.5);
+    const RenderedFoam mid = renderedFoam(40.0, 4, 3.0);
+    const RenderedFoam far = renderedFoam(1000.0, 2, 60.0);
+    const RenderedFoam turned = renderedFoam(40.0, 4, 3.0, 150.0); // the wind a quarter turn from the axes
+    EXPECT_NEAR(near.meanOpacity / share, 1.0, 0.12);
+    EXPECT_NEAR(mid.meanOpacity / share, 1.0, 0.12);
+    EXPECT_NEAR(far.meanOpacity / share, 1.0, 0.03);
+    EXPECT_LT(near.soft, 0.75);
+    EXPECT_LT(mid.soft, 0.75);
+    EXPECT_GT(far.soft, 0.9);
+    EXPECT_GT(near.along, near.across + 0.15);
+    EXPECT_GT(mid.along, mid.across + 0.25);
+    EXPECT_LT(turned.along, turned.across - 0.1);
+}
