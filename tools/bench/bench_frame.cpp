@@ -96,6 +96,10 @@ void fftSettings(const AddHighRow& high) {
     fft("high/fft-sea-state-9", "the FFT sea under applySeaState at U10 = 9 m/s", [](ocean::OceanDesc& d) {
         d = ocean::applySeaState(d, {9.0, d.fft.windDirectionDeg});
     });
+    fft("high/fft-sea-state-16", "the FFT sea under applySeaState at U10 = 16 m/s: ~5 % whitecaps",
+        [](ocean::OceanDesc& d) {
+            d = ocean::applySeaState(d, {16.0, d.fft.windDirectionDeg});
+        });
     fft("high/fft-no-mix", "FFT cascades with one draw each (FftDesc::aperiodic off)",
         [](ocean::OceanDesc& d) { d.fft.aperiodic = false; });
     fft("high/fft-detail-64", "FFT cascades 1-3 of 64^2 (FftDesc::detailSize 128 -> 64)",
@@ -170,6 +174,15 @@ void lookSettings(const AddHighRow& high) {
          [](ocean::OceanDesc& d) {
              d.octaves.aperiodic = false;
              d = ocean::applySeaState(d, {9.0, d.octaves.windDirectionDeg});
+         });
+    // Whitecaps: a strong sea (~5 % foam, Monahan) with and without its foam (ocean.frag foamCover).
+    high("high/sea-state-16", "applySeaState at U10 = 16 m/s: ~5 % whitecaps", [](ocean::OceanDesc& d) {
+        d = ocean::applySeaState(d, {16.0, d.octaves.windDirectionDeg});
+    });
+    high("high/sea-state-16-no-foam", "the 16 m/s sea without foam (LightingDesc::foamIntensity 0)",
+         [](ocean::OceanDesc& d) {
+             d = ocean::applySeaState(d, {16.0, d.octaves.windDirectionDeg});
+             d.lighting.foamIntensity = 0.0f;
          });
     high("high/no-octave-mix", "the high preset without the lighting octaves' aperiodic mix",
          [](ocean::OceanDesc& d) { d.octaves.aperiodic = false; });
