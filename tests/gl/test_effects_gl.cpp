@@ -8,7 +8,8 @@
 //   bound, for an explosion near the camera, at r = 0 just after t = 0, 40 km away (outside the field: no
 //   effect drawn), at 10^7 m from the origin at t = 10^6 s, 64 overlapping ones, a ship in a tight circle;
 //   every captured value and every pixel finite;
-// - a wake is visible from 10 km altitude.
+// - a wake is visible from 10 km altitude; a carrier's wake foam runs along its track from 3 km and follows
+//   the CPU's field.
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/gl/FrameTargets.h"
@@ -541,6 +542,82 @@ TEST_F(EffectsGl, WakeIsVisibleFromTenKilometres) {
                     onTrack, effectsFoamAt(registry, {0.0, 2880.0 - behind}, 240.0), beside);
         EXPECT_GT(onTrack, 1.5 * beside) << behind << " m behind the ship";
     }
+}
+
+// A carrier's turbulent wake is a white trail seen from 3 km: a 300 m ship at 15 m/s heading north for 200 s,
+// looked at straight down from 3 km (~19 m pixels). Each pixel's foam opacity comes from renders without
+// foam, with the defaults and with whitecap foam at full coverage. Beyond 1.5 km the whitecaps fade
+// (FOAM_FADE_START..END), so the last render covers only a share a = meanFoamOpacity(fade) of a pixel, and
+// the opacity is a (Y - Y_none) / (Y_full - Y_none). Along the track 0.5, 1 and 1.5 km behind the ship the
+// opacity (mean over 5 pixels) must be >= 10x that 800 m beside the track (clear of the strip's 3-width cut),
+// and across the strip it must follow the CPU's field (sampleEffectField) within 0.05 + 10 % wherever the
+// field's foam is below 0.9 a (above, the full-coverage render, max(whitecaps, wake), is the wake's own foam,
+// and the measure saturates at a): the rendered foam is the field's share at every footprint (foamCover).
+// Measured (llvmpipe): on the track >= 0.55 (saturated; CPU 0.80) / 0.62 (CPU 0.64) / 0.51 (CPU 0.51),
+// beside <= 0.0003.
+TEST_F(EffectsGl, CarrierWakeFoamRunsAlongTheTrackFromThreeKilometres) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 300.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    const glm::dvec3 camera{0.0, 1500.0, 3000.0};
+    for (int i = 0; i <= 200; ++i) {
+        registry.get<Ship>(ship).position = {0.0, i * 15.0};
+        events.dispatch();
+        fx.update(i, camera);
+    }
+    const OceanFrame f = frameAt(camera, 0.0, -90.0, 200.0);
+    std::vector<float> px[3]; // no foam, the defaults, whitecaps at full coverage
+    for (int mode = 0; mode < 3; ++mode) {
+        OceanDesc d;
+        d.lighting.foamIntensity = mode == 0 ? 0.0f : 1.0f;
+        if (mode == 2) {
+            d.lighting.foamHeightStart = -100.0f;
+            d.lighting.foamHeightFull = -99.0f;
+        }
+        registry.get<OceanComponent>(oceanEntity) = makeOcean(d);
+        renderer.render(registry, f);
+        targets.readScene(px[mode]);
+    }
+    const EffectFieldLayout layout = effectFieldLayout(OceanDesc{}.effectField, f);
+    double full = 0.0;                            // of the last opacity() call
+    auto opacity = [&](const glm::dvec2& world) { // mean over the pixel and its 4 neighbours
+        const glm::vec4 clip = f.camera.viewProj * glm::vec4(glm::vec2(world - glm::dvec2(f.camera.origin)),
+                                                             static_cast<float>(-f.camera.origin.z), 1.0f);
+        const int cx = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * W);
+        const int cy = static_cast<int>((0.5f - clip.y / clip.w * 0.5f) * H); // rows top-down
+        const double dist = glm::length(glm::dvec3(world, 0.0) - camera);
+        const double s = std::clamp((dist - FOAM_FADE_START) / (FOAM_FADE_END - FOAM_FADE_START), 0.0, 1.0);
+        full = meanFoamOpacity(1.0 - s * s * (3.0 - 2.0 * s)); // ocean.frag nearFade
+        double sum = 0.0;
+        for (const glm::ivec2 o : {glm::ivec2(0, 0), {1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+            const size_t i = static_cast<size_t>(cy + o.y) * W + static_cast<size_t>(cx + o.x);
+            auto y = [&](int mode) {
+                const float* c = &px[mode][i * 4];
+                return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+            };
+            sum += std::clamp(full * (y(1) - y(0)) / std::max(y(2) - y(0), 1e-6), 0.0, 1.0);
+        }
+        return sum / 5.0;
+    };
+    for (double behind : {500.0, 1000.0, 1500.0}) {
+        const double y = 3000.0 - behind;
+        const double on = opacity({0.0, y}), beside = std::max(opacity({-800.0, y}), opacity({800.0, y}));
+        std::printf(
+            "[carrier wake from 3 km] %.0f m behind: foam on the track %.3f (CPU %.3f), 800 m beside %.4f\n",
+            behind, on, sampleEffectField(registry, layout, {0.0, y}, 200.0).w, beside);
+        EXPECT_GT(on, 0.3) << behind << " m behind";
+        EXPECT_GE(on, 10.0 * beside) << behind << " m behind";
+        for (double lateral : {0.0, 100.0, 200.0, 300.0}) {
+            const double cpu = sampleEffectField(registry, layout, {lateral, y}, 200.0).w;
+            const double rendered = opacity({lateral, y});
+            if (cpu <
+                0.9 * full) // else the full-coverage render, max(whitecaps, wake), shows the wake's foam
+                EXPECT_NEAR(rendered, cpu, 0.05 + 0.1 * cpu)
+                    << behind << " m behind, " << lateral << " m beside";
+        }
+    }
+    EXPECT_EQ(nonFinitePixels(), 0u);
 }
 
 // The defaults: the field draws every effect (the base grid reads it) and a secondary grid is drawn only for
