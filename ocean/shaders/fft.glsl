@@ -39,12 +39,7 @@ uniform float uFftFadeEnd[FFT_MAX_CASCADES]; // FftCascades::displacementFadeEnd
 vec2 fftMixWeights(int c, vec2 rel) {
     if (uFftDraws < 2)
         return vec2(1.0, 0.0);
-    float theta = 0.0;
-    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
-        vec3 m = uFftMix[c * FFT_MIX_TERMS + j];
-        theta += sin(m.z + dot(m.xy, rel));
-    }
-    theta *= FFT_MIX_AMPLITUDE;
+    float theta = APERIODIC_MIX_THETA(uFftMix, c * FFT_MIX_TERMS, rel);
     return vec2(cos(theta), sin(theta));
 }
 

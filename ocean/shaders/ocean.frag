@@ -146,12 +146,7 @@ float normalQuantile(float p) {
 // A foam layer's mix weights (cos theta, sin theta), theta = FFT_MIX_AMPLITUDE sum_j sin(psi_j + k_j . rel)
 // (aperiodicMixWeights in SurfaceModel.h, phase set FOAM_MIX_SET + layer).
 vec2 foamMixWeights(int layer, vec2 rel) {
-    float theta = 0.0;
-    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
-        vec3 m = uFoamMix[layer * FFT_MIX_TERMS + j];
-        theta += sin(m.z + dot(m.xy, rel));
-    }
-    theta *= FFT_MIX_AMPLITUDE;
+    float theta = APERIODIC_MIX_THETA(uFoamMix, layer * FFT_MIX_TERMS, rel);
     return vec2(cos(theta), sin(theta));
 }
 // The mean and variance of a layer's field cos theta A + sin theta B over a footprint, from the two reads'

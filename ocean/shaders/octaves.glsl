@@ -185,12 +185,7 @@ float combinedHeight(vec2 rel) {
 uniform bool uOctaveAperiodic;
 uniform vec3 uOctaveMix[MAX_OCTAVES * FFT_MIX_TERMS]; // (k_x, k_y, psi) per octave and term
 vec2 octaveMixWeights(int i, vec2 rel) {
-    float theta = 0.0;
-    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
-        vec3 m = uOctaveMix[i * FFT_MIX_TERMS + j];
-        theta += sin(m.z + dot(m.xy, rel));
-    }
-    theta *= FFT_MIX_AMPLITUDE;
+    float theta = APERIODIC_MIX_THETA(uOctaveMix, i * FFT_MIX_TERMS, rel);
     return vec2(cos(theta), sin(theta));
 }
 

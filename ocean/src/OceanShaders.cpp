@@ -60,6 +60,19 @@ private:
     }
 };
 
+/// The aperiodic mix's angle, theta = FFT_MIX_AMPLITUDE sum_j sin(psi_j + k_j . rel) over the FFT_MIX_TERMS
+/// terms m[first + j] = (k_x, k_y, psi) of a uniform array (aperiodicMixWeights in SurfaceModel.h), as one
+/// function-like macro written out term by term: the FFT's cascades, the octaves and the foam layers share it
+/// (a GLSL function would copy the uniform array into a parameter).
+std::string aperiodicMixMacro() {
+    std::string m = "#define APERIODIC_MIX_THETA(m, first, rel) (FFT_MIX_AMPLITUDE * (";
+    for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+        const std::string term = "m[(first) + " + std::to_string(j) + "]";
+        m += (j ? " + " : "") + std::string("sin(") + term + ".z + dot(" + term + ".xy, rel))";
+    }
+    return m + "))\n";
+}
+
 } // namespace
 
 std::string shaderConstantDefines() {
@@ -113,6 +126,7 @@ std::string shaderConstantDefines() {
         .add("FFT_MIX_AMPLITUDE", FFT_MIX_AMPLITUDE)
         .add("OCTAVE_MIX_SHIFT_U", OCTAVE_MIX_SHIFT_U)
         .add("OCTAVE_MIX_SHIFT_V", OCTAVE_MIX_SHIFT_V);
+    d.text += aperiodicMixMacro();
     // Storage-buffer binding slots (gpu/GpuInterface.h).
     d.add("FFT_PLANES_BINDING", FFT_PLANES_BINDING)
         .add("FFT_H0_PAIRS_BINDING", FFT_H0_PAIRS_BINDING)
