@@ -130,37 +130,60 @@ WakeCoords wakeCoords(int i, vec2 q, int first, int last) {
     return best;
 }
 
-float kelvinHeight(int i, WakeCoords c, float behind, float lateral, float kMax) {
+// (h, dh/dbehind, dh/dlateral) of the Kelvin pattern: kelvinWave() in Effects.cpp, the derivatives carried
+// forward through each factor (x = behind, y = |lateral|); the phase's gradient at a stationary root is its
+// wave vector k0 sqrt(1 + T^2) (1, -T).
+vec3 kelvinWave(int i, WakeCoords c, float behind, float lateral, float kMax) {
     float x = behind;
     int n = int(uWakes[i].points);
     if (!(x > 0.0) || c.amplitude <= 0.0 || n < 2)
-        return 0.0;
+        return vec3(0.0);
     float y = abs(lateral);
     float ta = y / x;
+    vec2 dta = vec2(-ta / x, 1.0 / x);
     float u = 8.0 * ta * ta;
     if (u >= 1.0)
-        return 0.0;
+        return vec3(0.0);
+    vec2 du = 16.0 * ta * dta;
     float sd = sqrt(1.0 - u);
-    float roots[2] = float[2](2.0 * ta / (1.0 + sd), min((1.0 + sd) / (4.0 * max(ta, 1e-6)), 1000.0));
+    float t2raw = (1.0 + sd) / (4.0 * max(ta, 1e-6));
+    float roots[2] = float[2](2.0 * ta / (1.0 + sd), min(t2raw, 1000.0));
+    float guard = max(sd, 1e-9);
+    float dRoots[2] = float[2]((2.0 * roots[0] * roots[0] + 1.0) / guard,
+                               t2raw < 1000.0 && ta > 1e-6 ? -(2.0 * roots[1] * roots[1] + 1.0) / guard : 0.0);
     float weights[2] = float[2](1.0, 0.6);
-    float sum = 0.0;
+    const float decay = EFFECT_TWO_PI * KELVIN_DECAY_WAVELENGTHS;
+    vec3 sum = vec3(0.0);
     for (int j = 0; j < 2; ++j) {
         float tt = roots[j];
+        vec2 dt = dRoots[j] * dta;
         float k = c.k0 * (1.0 + tt * tt);
-        float fade = effectBandFade(k, kMax) * exp(-x * k / (EFFECT_TWO_PI * KELVIN_DECAY_WAVELENGTHS));
+        vec2 dk = 2.0 * c.k0 * tt * dt;
+        float e = exp(-x * k / decay);
+        float fade = effectBandFade(k, kMax) * e;
         if (fade <= 0.0)
             continue;
-        float phase = c.k0 * sqrt(1.0 + tt * tt) * (x - y * tt); // kelvinPhase() in Effects.cpp
-        sum += weights[j] * fade * cos(phase);
+        vec2 dFade = -effectSmoothstepDerivative(0.5 * kMax, kMax, k) * dk * e - fade * (vec2(k, 0.0) + x * dk) / decay;
+        float kk = c.k0 * sqrt(1.0 + tt * tt);
+        float phase = kk * (x - y * tt); // kelvinPhase() in Effects.cpp
+        float cp = cos(phase), sp = sin(phase);
+        sum += weights[j] * vec3(fade * cp, dFade * cp - fade * sp * vec2(kk, -kk * tt));
     }
     float lambda0 = EFFECT_TWO_PI / c.k0;
     float start = smoothstep(0.0, 0.5 * lambda0, x);
+    float dStart = effectSmoothstepDerivative(0.0, 0.5 * lambda0, x);
     float cusp = 1.0 - smoothstep(0.8, 1.0, u);
+    vec2 dCusp = -effectSmoothstepDerivative(0.8, 1.0, u) * du;
     float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
     float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, x);
+    float dEnd = -effectSmoothstepDerivative(0.85 * sigmaMax, sigmaMax, x);
     WakeGpu wake = uWakes[i];
     float a = c.amplitude * exp(-c.age / wake.waveLife) / sqrt(1.0 + x / wake.shipLength);
-    return a * start * cusp * end * sum;
+    float dA = -a / (2.0 * (wake.shipLength + x));
+    float env = a * start * cusp * end;
+    vec2 dEnv = vec2((dA * start * end + a * dStart * end + a * start * dEnd) * cusp, 0.0) + a * start * end * dCusp;
+    vec2 dH = dEnv * sum.x + env * sum.yz;
+    return vec3(env * sum.x, dH.x, sign(lateral) * dH.y);
 }
 
 // (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship), its path walked over segments first..last.
@@ -171,16 +194,8 @@ vec4 wakeWave(int i, vec2 q, float kMax, int first, int last, float filter2) {
     if (R <= 0.0 || dot(q, q) >= R * R || q.x <= boxMin.x || q.y <= boxMin.y || q.x >= boxMax.x || q.y >= boxMax.y)
         return vec4(0.0);
     WakeCoords c = wakeCoords(i, q, first, last);
-    float h = kelvinHeight(i, c, c.behind, c.lateral, kMax);
-    const float e = 0.1;
-    bool outside = c.behind + e <= 0.0 || abs(c.lateral) - e >= sqrt(KELVIN_TAN2) * (c.behind + e);
-    float dx = 0.0, dy = 0.0;
-    if (!outside) {
-        dx = (kelvinHeight(i, c, c.behind + e, c.lateral, kMax) - kelvinHeight(i, c, c.behind - e, c.lateral, kMax)) /
-             (2.0 * e);
-        dy = (kelvinHeight(i, c, c.behind, c.lateral + e, kMax) - kelvinHeight(i, c, c.behind, c.lateral - e, kMax)) /
-             (2.0 * e);
-    }
+    vec3 kelvin = kelvinWave(i, c, c.behind, c.lateral, kMax);
+    float h = kelvin.x, dx = kelvin.y, dy = kelvin.z;
     vec2 left = vec2(-c.direction.y, c.direction.x);
     vec2 g = -dx * c.direction + dy * left;
     // wakeFoam(): the turbulent strip behind the stern.

@@ -235,39 +235,69 @@ double kelvinPhase(double k0, double x, double y, double t) {
 }
 
 double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral, double kMax) {
+    return kelvinWave(s, c, behind, lateral, kMax).x;
+}
+
+glm::dvec3 kelvinWave(const WakeState& s, const WakeCoords& c, double behind, double lateral, double kMax) {
+    // Each factor f carries (f, df/dx, df/dy) with x = behind, y = |lateral| (forward-mode derivatives).
     const double x = behind;
     if (!(x > 0.0) || c.amplitude <= 0.0 || s.sigma.empty())
-        return 0.0;
+        return glm::dvec3(0.0);
     const double y = std::abs(lateral);
     const double ta = y / x;
+    const glm::dvec2 dta(-ta / x, 1.0 / x);
     const double u = 8.0 * ta * ta; // tan^2 a / tan^2 a_Kelvin
     if (u >= 1.0)
-        return 0.0;
+        return glm::dvec3(0.0);
+    const glm::dvec2 du = 16.0 * ta * dta;
     const double sd = std::sqrt(1.0 - u);
-    // Roots of 2 tan(a) T^2 - T + tan(a) = 0, written so neither divides by a vanishing tan(a).
+    // Roots of 2 tan(a) T^2 - T + tan(a) = 0, written so neither divides by a vanishing tan(a); dT/dtan(a) =
+    // -(2 T^2 + 1) / (4 tan(a) T - 1) (implicit), and 4 tan(a) T - 1 = -sd, +sd at the two roots.
     const double t1 = 2.0 * ta / (1.0 + sd);
-    const double t2 = std::min((1.0 + sd) / (4.0 * std::max(ta, 1e-6)), 1000.0);
-    double sum = 0.0;
-    const double weights[2] = {1.0, 0.6};
+    const double t2raw = (1.0 + sd) / (4.0 * std::max(ta, 1e-6));
+    const double t2 = std::min(t2raw, 1000.0);
+    const double guard = std::max(sd, 1e-9);
     const double roots[2] = {t1, t2};
+    const double dRoots[2] = {(2.0 * t1 * t1 + 1.0) / guard,
+                              t2raw < 1000.0 && ta > 1e-6 ? -(2.0 * t2 * t2 + 1.0) / guard : 0.0};
+    const double weights[2] = {1.0, 0.6};
+    glm::dvec3 sum(0.0);
     for (int j = 0; j < 2; ++j) {
         const double tt = roots[j];
+        const glm::dvec2 dt = dRoots[j] * dta;
         const double k = c.k0 * (1.0 + tt * tt);
-        const double fade =
-            effectBandFade(k, kMax) *
-            std::exp(-x * k / (TWO_PI * KELVIN_DECAY_WAVELENGTHS)); // short waves fade first (Effects.h)
+        const glm::dvec2 dk = 2.0 * c.k0 * tt * dt;
+        const double decay = TWO_PI * KELVIN_DECAY_WAVELENGTHS;
+        const double band = effectBandFade(k, kMax), e = std::exp(-x * k / decay);
+        const double fade = band * e; // short waves fade first (Effects.h)
         if (fade <= 0.0)
             continue;
+        const double dBand = -smoothstepDerivative(0.5 * kMax, kMax, k);
+        const glm::dvec2 dFade = dBand * dk * e - fade * (glm::dvec2(k, 0.0) + x * dk) / decay;
         const double phase = kelvinPhase(c.k0, x, y, tt);
-        sum += weights[j] * fade * std::cos(phase);
+        // The phase is stationary in T at the roots: its gradient is the wave vector's, T held.
+        const double kk = c.k0 * std::sqrt(1.0 + tt * tt);
+        const glm::dvec2 dPhase(kk, -kk * tt);
+        const double cp = std::cos(phase), sp = std::sin(phase);
+        sum += weights[j] * glm::dvec3(fade * cp, dFade * cp - fade * sp * dPhase);
     }
     const double lambda0 = TWO_PI / c.k0;
     const double start = smoothstep(0.0, 0.5 * lambda0, x);
+    const double dStart = smoothstepDerivative(0.0, 0.5 * lambda0, x);
     const double cusp = 1.0 - smoothstep(0.8, 1.0, u);
+    const glm::dvec2 dCusp = -smoothstepDerivative(0.8, 1.0, u) * du;
     const double sigmaMax = s.sigma.back();
     const double end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, x);
+    const double dEnd = -smoothstepDerivative(0.85 * sigmaMax, sigmaMax, x);
     const double a = c.amplitude * std::exp(-c.age / s.waveLife) / std::sqrt(1.0 + x / s.length);
-    return a * start * cusp * end * sum;
+    const double dA = -a / (2.0 * (s.length + x));
+    // The envelope a * start * cusp * end and its gradient (x-only factors carry no y derivative).
+    const double env = a * start * cusp * end;
+    const glm::dvec2 dEnv = glm::dvec2((dA * start * end + a * dStart * end + a * start * dEnd) * cusp, 0.0) +
+                            a * start * end * dCusp;
+    const glm::dvec2 dH = dEnv * sum.x + env * glm::dvec2(sum.y, sum.z);
+    const double side = lateral > 0.0 ? 1.0 : lateral < 0.0 ? -1.0 : 0.0; // d|lateral| / d lateral
+    return {env * sum.x, dH.x, side * dH.y};
 }
 
 bool insideWakeBox(const WakeState& s, const glm::dvec2& q) {
@@ -282,22 +312,12 @@ glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q, double kMax) {
 }
 
 glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax) {
-    const double h = kelvinHeight(s, c, c.behind, c.lateral, kMax);
-    // Slope by central differences in the path's frame (e = 0.1 m: 0.2% error at the shortest 3 m wave),
-    // turned into world axes: d(behind)/dq = -direction, d(lateral)/dq = the left normal. Where all four
-    // difference points lie outside the wedge (or ahead of the ship) they are 0: skipped.
-    const double e = 0.1;
-    if (c.behind + e <= 0.0 || std::abs(c.lateral) - e >= std::sqrt(KELVIN_TAN2) * (c.behind + e))
-        return {h, 0.0, 0.0};
-    const double dx = (kelvinHeight(s, c, c.behind + e, c.lateral, kMax) -
-                       kelvinHeight(s, c, c.behind - e, c.lateral, kMax)) /
-                      (2.0 * e);
-    const double dy = (kelvinHeight(s, c, c.behind, c.lateral + e, kMax) -
-                       kelvinHeight(s, c, c.behind, c.lateral - e, kMax)) /
-                      (2.0 * e);
+    // The slope in the path's frame turned into world axes: d(behind)/dq = -direction, d(lateral)/dq = the
+    // left normal.
+    const glm::dvec3 w = kelvinWave(s, c, c.behind, c.lateral, kMax);
     const glm::dvec2 left(-c.direction.y, c.direction.x);
-    const glm::dvec2 g = -dx * c.direction + dy * left;
-    return {h, g.x, g.y};
+    const glm::dvec2 g = -w.y * c.direction + w.z * left;
+    return {w.x, g.x, g.y};
 }
 
 double wakeFoam(const WakeState& s, const WakeCoords& c, double filter2) {

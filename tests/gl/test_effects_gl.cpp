@@ -611,10 +611,11 @@ TEST_F(EffectsGl, CarrierWakeFoamRunsAlongTheTrackFromThreeKilometres) {
         for (double lateral : {0.0, 100.0, 200.0, 300.0}) {
             const double cpu = sampleEffectField(registry, layout, {lateral, y}, 200.0).w;
             const double rendered = opacity({lateral, y});
-            if (cpu <
-                0.9 * full) // else the full-coverage render, max(whitecaps, wake), shows the wake's foam
+            // Above 0.9 a the full-coverage render, max(whitecaps, wake), shows the wake's own foam.
+            if (cpu < 0.9 * full) {
                 EXPECT_NEAR(rendered, cpu, 0.05 + 0.1 * cpu)
                     << behind << " m behind, " << lateral << " m beside";
+            }
         }
     }
     EXPECT_EQ(nonFinitePixels(), 0u);

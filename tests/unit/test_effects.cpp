@@ -166,6 +166,43 @@ TEST(Wake, KelvinPhaseIsStationaryAtItsRoots) {
     }
 }
 
+// kelvinWave()'s analytic gradient against central differences of kelvinHeight() (e = 1 mm) over the wedge of
+// a 60 m ship at 8 m/s (waves from 3 m up), across the band limit, near the cusp, just behind the stern and
+// on the track: within 1e-3 of the largest slope, and the same height.
+TEST(Wake, KelvinWaveGradientIsTheHeightsDerivative) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const ecs::Entity ship = sail(reg, events, fx, 120.0, 8.0, 0.0);
+    const WakeState s = wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), 120.0);
+    double worst = 0.0, largest = 0.0;
+    int points = 0;
+    for (double kMax : {EFFECT_K_MAX, 0.2})
+        for (double x = 0.5; x < 900.0; x *= 1.37)
+            for (double a = -0.36; a <= 0.36; a += 0.0237) {
+                const WakeCoords c = wakeCoords(s, glm::dvec2(-x, a * x)); // heading +x: behind is -x
+                const double lateral = c.lateral, behind = c.behind;
+                const glm::dvec3 w = kelvinWave(s, c, behind, lateral, kMax);
+                ASSERT_EQ(w.x, kelvinHeight(s, c, behind, lateral, kMax));
+                const double e = 1e-3;
+                const double dx = (kelvinHeight(s, c, behind + e, lateral, kMax) -
+                                   kelvinHeight(s, c, behind - e, lateral, kMax)) /
+                                  (2.0 * e);
+                const double dy = (kelvinHeight(s, c, behind, lateral + e, kMax) -
+                                   kelvinHeight(s, c, behind, lateral - e, kMax)) /
+                                  (2.0 * e);
+                if (std::abs(lateral) < 2.0 * e)
+                    continue; // |lateral| has a kink on the track: central differences straddle it
+                worst = std::max({worst, std::abs(w.y - dx), std::abs(w.z - dy)});
+                largest = std::max({largest, std::abs(dx), std::abs(dy)});
+                ++points;
+            }
+    std::printf("kelvinWave vs central differences: worst %.3g, largest slope %.3g, %d points\n", worst,
+                largest, points);
+    EXPECT_GT(largest, 0.01);
+    EXPECT_LT(worst, 1e-3 * largest);
+}
+
 TEST(Wake, TurningShipLeavesACurvedWake) {
     ecs::Registry reg;
     ecs::EventQueue events;

@@ -199,6 +199,12 @@ double kelvinPhase(double k0, double x, double y, double t);
 /// system is scaled by effectBandFade(k, kMax). Returns h.
 double kelvinHeight(const WakeState& s, const WakeCoords& c, double behind, double lateral,
                     double kMax = EFFECT_K_MAX);
+/// (h, dh/dbehind, dh/dlateral) of kelvinHeight(), the derivatives analytic (c held, as the path's
+/// amplitude, k0 and age are): the phase's gradient at a stationary root is its wave vector k0 sqrt(1 + T^2)
+/// (1, -T) (T held), plus the envelope's and the roots' own variation (dT/dtan(a) from the quadratic). One
+/// evaluation instead of the five of central differences.
+glm::dvec3 kelvinWave(const WakeState& s, const WakeCoords& c, double behind, double lateral,
+                      double kMax = EFFECT_K_MAX);
 /// (h, dh/dx, dh/dy) of the wake at q (relative to the ship).
 glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q, double kMax = EFFECT_K_MAX);
 /// The same from the point's path coordinates (wakeCoords), for a caller that also needs them (foam); no box
