@@ -195,6 +195,40 @@ void LightingGpu::ensureNoiseTextures() {
     }
 }
 
+void LightingGpu::setFoamUniforms(unsigned prog, const LightingDesc& l, double time, const glm::dvec3& cam) {
+    auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
+    // The pattern's x axis lies along the wind: the camera in the wind's frame (along, across), the two
+    // layers drifting apart along it; offsets wrapped in double (camera + drift).
+    const double wind = l.windDirectionDeg * std::numbers::pi / 180.0;
+    const glm::dvec2 along(std::sin(wind), std::cos(wind)); // compass angle to (east, north)
+    glProgramUniform2f(prog, loc("uFoamWind"), static_cast<float>(along.x), static_cast<float>(along.y));
+    const glm::dvec2 camWind(glm::dot(glm::dvec2(cam), along),
+                             glm::dot(glm::dvec2(cam), glm::dvec2(-along.y, along.x)));
+    const glm::dvec2 drift(FOAM_DRIFT_SPEED * time, 0.0);
+    const glm::dvec2 nearOff = (camWind + drift) / FOAM_TILE_NEAR;
+    const glm::dvec2 farOff = (camWind - drift) / FOAM_TILE_FAR;
+    glProgramUniform2f(prog, loc("uFoamOffsetNear"), static_cast<float>(wrap01(nearOff.x)),
+                       static_cast<float>(wrap01(nearOff.y)));
+    glProgramUniform2f(prog, loc("uFoamOffsetFar"), static_cast<float>(wrap01(farOff.x)),
+                       static_cast<float>(wrap01(farOff.y)));
+    // Each layer is a mix cos theta A + sin theta B of the pattern and a shifted copy, theta quasi-periodic
+    // (aperiodicMixWeights, SurfaceModel.h, phase set FOAM_MIX_SET + layer), so no tile repeats over a
+    // wide foam (a wake, a slick): psi = wrap(k.camera + phase, 2 pi) in double, the float sees k.rel.
+    const double tiles[2] = {FOAM_TILE_NEAR, FOAM_TILE_FAR};
+    for (int layer = 0; layer < 2; ++layer)
+        for (int j = 0; j < FFT_MIX_TERMS; ++j) {
+            const glm::dvec3 m = aperiodicMixTerm(tiles[layer], FOAM_MIX_SET + layer, j);
+            const double psi = wrapPhase(m.x * cam.x + m.y * cam.y + m.z, 2.0 * std::numbers::pi);
+            const std::string name = "uFoamMix[" + std::to_string(layer * FFT_MIX_TERMS + j) + "]";
+            glProgramUniform3f(prog, loc(name.c_str()), static_cast<float>(m.x), static_cast<float>(m.y),
+                               static_cast<float>(psi));
+        }
+    glProgramUniform1f(prog, loc("uFoamHeightStart"), l.foamHeightStart);
+    glProgramUniform1f(prog, loc("uFoamHeightFull"), l.foamHeightFull);
+    glProgramUniform1f(prog, loc("uFoamJacobianThreshold"), l.foamJacobianThreshold);
+    glProgramUniform1f(prog, loc("uFoamIntensity"), l.foamIntensity);
+}
+
 void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& l, double time,
                               const glm::dvec3& cam, double cameraAltitude) {
     auto loc = [prog](const char* name) { return glGetUniformLocation(prog, name); };
@@ -241,42 +275,13 @@ void LightingGpu::setUniforms(unsigned prog, int firstUnit, const LightingDesc& 
         glProgramUniform3f(prog, loc("uEnvironmentHorizonMean"), mean.r, mean.g, mean.b);
     }
 
-    // Foam on firstUnit + 1, fog noise on firstUnit + 2; offsets wrapped in double (camera + drift).
+    // Foam on firstUnit + 1, fog noise on firstUnit + 2.
     ensureNoiseTextures();
     glBindTextureUnit(static_cast<GLuint>(firstUnit + 1), mFoam.id());
     glBindTextureUnit(static_cast<GLuint>(firstUnit + 2), mFogNoise.id());
     glProgramUniform1i(prog, loc("uFoamMap"), firstUnit + 1);
     glProgramUniform1i(prog, loc("uFogNoiseMap"), firstUnit + 2);
-    // The pattern's x axis lies along the wind: the camera in the wind's frame (along, across), the two
-    // layers drifting apart along the wind.
-    const double wind = l.windDirectionDeg * std::numbers::pi / 180.0;
-    const glm::dvec2 along(std::sin(wind), std::cos(wind)); // compass angle to (east, north)
-    glProgramUniform2f(prog, loc("uFoamWind"), static_cast<float>(along.x), static_cast<float>(along.y));
-    const glm::dvec2 camWind(glm::dot(glm::dvec2(cam), along),
-                             glm::dot(glm::dvec2(cam), glm::dvec2(-along.y, along.x)));
-    const glm::dvec2 drift(FOAM_DRIFT_SPEED * time, 0.0);
-    const glm::dvec2 nearOff = (camWind + drift) / FOAM_TILE_NEAR;
-    const glm::dvec2 farOff = (camWind - drift) / FOAM_TILE_FAR;
-    glProgramUniform2f(prog, loc("uFoamOffsetNear"), static_cast<float>(wrap01(nearOff.x)),
-                       static_cast<float>(wrap01(nearOff.y)));
-    glProgramUniform2f(prog, loc("uFoamOffsetFar"), static_cast<float>(wrap01(farOff.x)),
-                       static_cast<float>(wrap01(farOff.y)));
-    // Each layer is a mix cos theta A + sin theta B of the pattern and a shifted copy, theta quasi-periodic
-    // (aperiodicMixWeights, SurfaceModel.h, phase set FOAM_MIX_SET + layer), so no tile repeats over a
-    // wide foam (a wake, a slick): psi = wrap(k.camera + phase, 2 pi) in double, the float sees k.rel.
-    const double tiles[2] = {FOAM_TILE_NEAR, FOAM_TILE_FAR};
-    for (int layer = 0; layer < 2; ++layer)
-        for (int j = 0; j < FFT_MIX_TERMS; ++j) {
-            const glm::dvec3 m = aperiodicMixTerm(tiles[layer], FOAM_MIX_SET + layer, j);
-            const double psi = wrapPhase(m.x * cam.x + m.y * cam.y + m.z, 2.0 * std::numbers::pi);
-            const std::string name = "uFoamMix[" + std::to_string(layer * FFT_MIX_TERMS + j) + "]";
-            glProgramUniform3f(prog, loc(name.c_str()), static_cast<float>(m.x), static_cast<float>(m.y),
-                               static_cast<float>(psi));
-        }
-    glProgramUniform1f(prog, loc("uFoamHeightStart"), l.foamHeightStart);
-    glProgramUniform1f(prog, loc("uFoamHeightFull"), l.foamHeightFull);
-    glProgramUniform1f(prog, loc("uFoamJacobianThreshold"), l.foamJacobianThreshold);
-    glProgramUniform1f(prog, loc("uFoamIntensity"), l.foamIntensity);
+    setFoamUniforms(prog, l, time, cam);
 
     glProgramUniform1f(prog, loc("uFogDensity"), l.fogDensity);
     glProgramUniform3f(prog, loc("uWaterColor"), l.waterColor.r, l.waterColor.g, l.waterColor.b);

@@ -75,6 +75,9 @@ private:
     void ensureNoiseTextures();
     void setUniforms(unsigned program, int firstUnit, const LightingDesc& lighting, double time,
                      const glm::dvec3& cameraWorld, double cameraAltitude);
+    /// The foam's uniforms: its wind frame, the layers' offsets and mixes, the thresholds.
+    void setFoamUniforms(unsigned program, const LightingDesc& lighting, double time,
+                         const glm::dvec3& cameraWorld);
 
     std::vector<Environment> mEnvironments;
     /// A sky being computed on a worker thread: the levels next to the camera's, so that a climb or a descent
