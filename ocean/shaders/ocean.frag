@@ -3,7 +3,7 @@
 // (§18.2.6), Schlick's Fresnel (Schlick 1994), reflection of the sky or environment map over the LEAN
 // roughness lobe, the sun glitter of Cox & Munk (Beckmann microfacets, Smith masking), the view-dependent
 // water body colour (Snell), foam (§18.3 height threshold, Jacobian folding) and Perlin fog with height
-// falloff (seed 003). The shared
+// falloff (the Intel projected-grid ocean's fog, C. De Sylva). The shared
 // pieces (sky, fog, water body, highlight) are in sky.glsl, included before this file.
 //
 // Foam inputs — the optional third function of the surface-model contract (ocean/src/gpu/SurfaceGpu.h):
@@ -47,8 +47,8 @@ uniform float uFoamIntensity;
 uniform float uSubsurface;  // LightingDesc::subsurface
 uniform float uCrestHeight; // Hs / 2 of the surface model, metres
 
-// Sunlight scattered out of thin lit crests toward the eye (issue 10: "light scattered under the surface
-// brightens thin lit crests"). Sunlight entering a wave's sunward face crosses the crest, width
+// Sunlight scattered out of thin lit crests toward the eye: light scattered under the surface brightens thin
+// lit crests. Sunlight entering a wave's sunward face crosses the crest, width
 // w = CREST_SCATTER_PATH, losing e^(-sigma w) (the red most: the glow is blue-green), and is scattered on in
 // the lit water under the eye's side over a length l = w c (c = z / crest height, clamped: the higher and
 // thinner the crest, the more of it the light reaches; none at or below mean sea level, where the water
@@ -258,7 +258,7 @@ vec3 shadeSea() {
         color = mix(water, foamColor, foam);
     }
 
-    // Fog between the eye and the surface (seed 003: f = e^(-tau n)), tau integrated over the height falloff
+    // Fog between the eye and the surface (De Sylva's fog: f = e^(-tau n)), tau integrated over the height falloff
     // and the noise over the path (fogNoiseAlongPath).
     float tau = fogOpticalDepth(uCameraHeight, z, dist) * fogNoiseAlongPath(vRel, uCameraHeight, z);
     return mix(fogColor(-v), color, exp(-tau));

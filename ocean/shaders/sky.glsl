@@ -37,7 +37,7 @@ uniform vec3 uEnvironmentHorizonMean;
 uniform float uCameraHeight;
 uniform float uCurvature;
 
-// Fog (seed 003, with height falloff): rho(z) = uFogDensity e^(-z / uFogHeightFalloff), modulated by a
+// Fog (the Intel projected-grid ocean's fog, C. De Sylva, with height falloff): rho(z) = uFogDensity e^(-z / uFogHeightFalloff), modulated by a
 // tileable 3D noise n in [1 - uFogNoise, 1 + uFogNoise]; transmittance f = e^(-tau n).
 uniform float uFogDensity;
 uniform float uFogHeightFalloff; // H, metres; 0 = uniform fog on the sea, clear sky
@@ -216,7 +216,7 @@ vec3 fogNoiseWarp(vec3 rel, float along) {
     return vec3(FOG_NOISE_WARP * (w - 0.5), FOG_NOISE_WARP * (0.5 - w), 0.0);
 }
 
-// Seed 003's noise factor n at a camera-relative point: 1 + uFogNoise (2 N - 1), N the tileable noise
+// De Sylva's fog noise factor n at a camera-relative point: 1 + uFogNoise (2 N - 1), N the tileable noise
 // (mean 0.5) scrolled with the wind, read at FOG_NOISE_TILE moved by `warp` (fogNoiseWarp). Mipmapped, so
 // far away it averages to n = 1.
 // `along` scales the pixel's footprint: the point is rel * along of the way from the eye (compute shading
@@ -230,7 +230,7 @@ float fogNoiseFactor(vec3 rel, float along, vec3 warp) {
 // The noise factor of the whole path from a sea point (camera-relative rel, altitude zSurface) to the eye at
 // zCamera: tau = integral rho(z) n ds over the path, rho = rho0 e^(-z/H), by the two-point Gauss-Legendre
 // rule in optical depth -- n at the points where the path's optical depth from the sea is 1/2 -+ 1/(2 sqrt 3)
-// of its total, tau = tau_plain * mean(n). Seed 003 evaluates n at the surface alone, which "gave fog which
+// of its total, tau = tau_plain * mean(n). De Sylva evaluates n at the surface alone, which "gave fog which
 // appeared glued to the geometry surface" (its words): from altitude the noise then reads as blotches
 // printed on the sea, repeating at the noise tile. Along the path the noise moves through the air and a long
 // path through the layer averages it, as a real one does. The quantile q's height above the surface is
@@ -277,7 +277,7 @@ vec3 sunLightAt(float z) {
     return uSunColor * uSunIntensity * skyTransmittance(z, uSunDir) * step(0.0, uSunDir.z);
 }
 
-// Light scattered up out of the water body toward the eye (seed 004's "dull colour", made view dependent):
+// Light scattered up out of the water body toward the eye (the "dull colour" of the "Complex Ocean Shader with Example" article, made view dependent):
 // the view ray refracts into the water (Snell, n = WATER_IOR) and crosses the sunlit layer of depth D over
 // D / cos(theta_t), gathering scatter (1 - e^(-sigma D / cos theta_t)). Scaled so that looking straight down
 // gives uWaterColor (LightingDesc::waterColor, default DEEP_WATER_COLOR) under the default sky; oblique views see more (bluer) scattering. The light in the

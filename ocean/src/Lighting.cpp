@@ -358,7 +358,8 @@ std::vector<float> makeFogNoise(int size, uint32_t seed) {
                 }
                 v[(static_cast<size_t>(z) * n + y) * n + x] = static_cast<float>(s);
             }
-    // Binomial (1,2,1)/4 blur along each axis, wrapping (seed 003: Pascal-triangle blur, mod-wrapped).
+    // Binomial (1,2,1)/4 blur along each axis, wrapping (as De Sylva's fog noise: Pascal-triangle blur,
+    // mod-wrapped).
     std::vector<float> tmp(v.size());
     const size_t stride[3] = {1, n, n * n};
     for (int axis = 0; axis < 3; ++axis) {

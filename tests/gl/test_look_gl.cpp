@@ -1,4 +1,4 @@
-// Look tests (label `look`), headless EGL (issue 10): the sun's glitter as rendered matches Cox & Munk's
+// Look tests (label `look`), headless EGL: the sun's glitter as rendered matches Cox & Munk's
 // (1954) radiance for the wind's slope variance; from 3 to 15 km the sea's luminance does not repeat at the
 // octave or fog-noise tile; no step at the grid's outer radius; thin lit crests glow.
 #include <epoxy/gl.h>
@@ -146,7 +146,7 @@ std::unique_ptr<gl::GlContext> LookGl::sCtx;
 
 } // namespace
 
-// Issue 10: the mean sun-glitter radiance against the Cox-Munk prediction within 20 % at three wind speeds,
+// The mean sun-glitter radiance against the Cox-Munk prediction within 20 % at three wind speeds,
 // and the glitter's width (the radiance-weighted mean tan^2 of the facet tilt) within 15 %.
 TEST_F(LookGl, SunGlitterFollowsCoxAndMunk) {
     for (double u : {6.0, 12.0, 20.0}) {
@@ -270,11 +270,11 @@ double repetition(const std::vector<double>& img, double altitude, double pitchD
 
 } // namespace
 
-// Issue 10, "no visible tiling from altitude": from 3, 10 and 15 km, looking west with the sun behind, the
+// No visible tiling from altitude: from 3, 10 and 15 km, looking west with the sun behind, the
 // sea's luminance must not repeat at the largest octave's tile (1109 m) nor at the fog noise's (12 km).
-// Measured (llvmpipe): with the fog noise taken at the sea point alone (seed 003, before fogNoiseAlongPath)
-// the 12 km repetition was 0.074 / 0.064 / 0.056 at 3 / 10 / 15 km -- the blotches the issue saw; along the
-// path -0.032 / -0.001 / 0.003. The octave tile: 0.008 / 0.002 / 0.001 either way.
+// Measured (llvmpipe): with the fog noise taken at the sea point alone (as De Sylva's fog does, before
+// fogNoiseAlongPath) the 12 km repetition was 0.074 / 0.064 / 0.056 at 3 / 10 / 15 km -- the blotches the
+// issue saw; along the path -0.032 / -0.001 / 0.003. The octave tile: 0.008 / 0.002 / 0.001 either way.
 TEST_F(LookGl, NoTileRepetitionFromAltitude) {
     const double octaveTile = ocean::OceanDesc{}.octaves.octaves[0].tileSize;
     for (const auto& [altitude, pitch] : {std::pair{3000.0, -20.0}, {10000.0, -30.0}, {15000.0, -35.0}}) {
@@ -458,10 +458,10 @@ double edgeStep(double altitude, double pitchDeg, double rollDeg, double heading
 
 } // namespace
 
-// Issue 10 item 1: no seam where the displaced grid ends (rMax, 40 km) and the undisplaced skirt begins --
-// seen from 4 km banked toward the sun (the issue's view), and from 10 and 15 km with the edge in the glitter
-// and away from it: the luminance step at the edge, the same in every column if there were a seam, stays
-// below 1% of the local mean (mean over the columns; each column's own fit noise is printed).
+// No seam where the displaced grid ends (rMax, 40 km) and the undisplaced skirt begins --
+// seen from 4 km banked toward the sun (a view where the seam had shown), and from 10 and 15 km with the edge
+// in the glitter and away from it: the luminance step at the edge, the same in every column if there were a
+// seam, stays below 1% of the local mean (mean over the columns; each column's own fit noise is printed).
 TEST_F(LookGl, NoSeamAtTheGridsOuterRadius) {
     const double rMax = ocean::OceanDesc{}.grid.rMax;
     struct View {
@@ -554,7 +554,7 @@ CrestGlow crestGlow(double headingDeg) {
 
 } // namespace
 
-// Issue 10 item 5: light scattered under the surface brightens thin lit crests. Looking toward a low sun the
+// Light scattered under the surface brightens thin lit crests. Looking toward a low sun the
 // added light follows the crests (its correlation with the height above mean sea level), is blue-green (red
 // is absorbed on the way: its green/red is well above the sunlight's), and brightens the sea by a visible
 // amount; looking away from the sun (back scattering) it nearly vanishes. The sunlight is the physical
@@ -641,7 +641,7 @@ HorizonBands horizonBands(double altitude, double headingDeg, double pitchDeg) {
 
 } // namespace
 
-// Issue 10: "sea radiance near the horizon between the near-field sea and the sky just above it" -- the
+// Sea radiance near the horizon lies between the near-field sea and the sky just above it -- the
 // Fresnel brightening toward grazing views, over the whole look sweep (6 altitudes x toward the sun, away,
 // across). Toward the sun the near sea is glitter, brighter than the horizon, so there only the upper bound
 // holds: the sea at the horizon is no brighter than the sky above it.
@@ -662,7 +662,7 @@ TEST_F(LookGl, HorizonSeaLiesBetweenTheNearSeaAndTheSky) {
         }
 }
 
-// Issue 10: "whitecap coverage against Monahan within a factor 1.5 over 5-20 m/s", on rendered images.
+// Whitecap coverage against Monahan within a factor 1.5 over 5-20 m/s, on rendered images.
 // Looking down from 128 m (pitch -89 degrees, 90 degree field of view, 256x256: 1 m pixels; the sun 30
 // degrees high, its glitter out of view) at several views, each pixel's foam opacity is (Y_foam - Y_none) /
 // (Y_white - Y_none): renders with the sea state's foam, without foam, and with foam everywhere (thresholds
@@ -856,7 +856,7 @@ effectRimStep(double altitude, double t, const glm::dvec2& centre,
 
 } // namespace
 
-// Issue 10: no seam at effect grids. An effect's secondary grid replaces the base grid over its disc of
+// No seam at effect grids. An effect's secondary grid replaces the base grid over its disc of
 // radius R, where its field is 0 (Effects.h: an explosion's is tapered by T = 1 - smoothstep(0.8 R, R, r)
 // and its wave group's window ends there; a wake's disc holds its whole trail): across the rim the sea must
 // look the same as without the effect. The step of the luminance ratio with / without the effect between

@@ -1,5 +1,5 @@
 // pacifica-bench-recording: how fast the Tacview ACMI reader parses, and how much memory it holds, on a
-// generated recording shaped like a busy DCS export (../shared/NOTES-flights.md: ~97% of objects are shells,
+// generated recording shaped like a busy DCS export (~97% of its objects are shells,
 // flares and chaff that live a few seconds; aircraft with 9-field transforms and extra properties at 10 Hz;
 // ships at 1 Hz; removals and events). The text file and a zip of it are parsed in a fresh child process each
 // (fork + exec of this program), so the peak resident memory (getrusage ru_maxrss) belongs to one parse

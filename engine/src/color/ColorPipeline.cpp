@@ -22,9 +22,8 @@ constexpr const char* EMBEDDED_SOURCE = "embedded default";
 constexpr const char* GPU_FUNCTION_NAME = "pacificaOCIODisplay";
 constexpr const char* GPU_RESOURCE_PREFIX = "pacifica_ocio";
 
-// Names shared with the ACES studio config
-// (../shared/data/ocio/studio-config-v1.0.0_aces-v1.3_ocio-v2.1.ocio) except the display, which the brief
-// names "sRGB" (the studio config's is "sRGB - Display").
+// Names shared with the ACES studio config (studio-config-v1.0.0_aces-v1.3_ocio-v2.1.ocio) except the
+// display, which we name "sRGB" (the studio config's is "sRGB - Display").
 constexpr const char* CS_ACES2065_1 = "ACES2065-1";
 constexpr const char* CS_LINEAR_REC709 = "Linear Rec.709 (sRGB)";
 constexpr const char* CS_XYZ_D65 = "CIE-XYZ-D65";

@@ -1,6 +1,7 @@
 // FftOcean: Tessendorf's statistical FFT ocean ("Simulating Ocean Water", 2001) — a spectrum of random
 // Fourier amplitudes h0(k) evolved with the dispersion relation and transformed to heights, slopes and
-// horizontal ("choppy", seed 002 "direct displacement") displacements by inverse FFT on the GPU.
+// horizontal ("choppy": the water-rendering notes' "direct displacement") displacements by inverse FFT on the
+// GPU.
 //
 //   h(x, t) = sum_k htilde(k, t) e^{i k.x}                                                   (eq. 26)
 //   htilde(k, t) = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}

@@ -1,5 +1,5 @@
-// GerstnerWaves: a sum of Gerstner (trochoidal) waves, the "Gerstner sums" of the water notes (seed 002)
-// after Tessendorf 2001 §3.1 and Finch, GPU Gems 1 ch.1 eq. 9:
+// GerstnerWaves: a sum of Gerstner (trochoidal) waves, the "Gerstner sums" of the water-rendering notes'
+// "Choppy waves" section after Tessendorf 2001 §3.1 and Finch, GPU Gems 1 ch.1 eq. 9:
 //
 //   P(x, t) = ( x + sum_i Q_i A_i D_i cos(theta_i),  sum_i A_i sin(theta_i) )
 //   theta_i = k_i D_i.x - w_i t + phi_i,  k_i = 2 pi / L_i,  w_i = sqrt(g k_i) (deep water)

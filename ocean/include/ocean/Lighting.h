@@ -142,8 +142,9 @@ struct LightingDesc {
     /// Compass direction the wind blows toward, degrees (as SeaState::windDirectionDeg): the foam's streaks
     /// lie along it and its pattern drifts with it. applySeaState() sets it with the sea's wind.
     double windDirectionDeg = 60.0;
-    /// Upwelling radiance of the water body seen straight down under the default sky (seed 004's "dull
-    /// colour"; oblique views and other skies scale it, sky.glsl waterBody), scene-linear, each >= 0.
+    /// Upwelling radiance of the water body seen straight down under the default sky (the "Complex Ocean
+    /// Shader with Example" article's "dull colour"; oblique views and other skies scale it, sky.glsl
+    /// waterBody), scene-linear, each >= 0.
     glm::vec3 waterColor{DEEP_WATER_COLOR[0], DEEP_WATER_COLOR[1], DEEP_WATER_COLOR[2]};
     /// Scale of the sunlight scattered out of thin lit crests toward the eye (ocean.frag crestScatter:
     /// single scattering over the crest's sunlit path, Henyey-Greenstein forward lobe), in [0, 10]; 0 = off.
@@ -166,8 +167,8 @@ void validateLighting(const LightingDesc& lighting);
 /// (z linear in s), and the horizontal limit z1 -> z0 is rho0 e^(-z0/H) d. Evaluated in the equivalent
 /// form rho0 d e^(-min(z0,z1)/H) (1 - e^(-delta)) / delta, delta = |z1 - z0| / H, whose factors all lie in
 /// [0, 1], so it neither overflows nor cancels (15 km above a 10 m scale height included). H = 0 gives the
-/// uniform rho0 d. The noise factor n of seed 003 multiplies this in the shader. ocean.frag/sky.glsl use
-/// the same expression (fogOpticalDepth in sky.glsl).
+/// uniform rho0 d. The noise factor n of De Sylva's fog multiplies this in the shader. ocean.frag/sky.glsl
+/// use the same expression (fogOpticalDepth in sky.glsl).
 double fogOpticalDepth(double z0, double z1, double distance, const LightingDesc& lighting);
 
 /// GPU Gems 2 §18.3: clamp((height - H0) / (Hmax - H0), 0, 1); a step at H0 when Hmax <= H0. The shader's
@@ -185,7 +186,7 @@ double meanFoamOpacity(double coverage);
 
 /// The tileable fog density noise: size^3 values in [0, 1] (x fastest), mean ~0.5, a sum of 3 octaves of
 /// periodic gradient (Perlin) noise blurred once with the binomial (1,2,1) kernel, wrapping at the edges
-/// (seed 003: noise octaves + Gaussian blur, "a mod operator to wrap the sampling space").
+/// (De Sylva's fog: noise octaves + Gaussian blur, "a mod operator to wrap the sampling space").
 std::vector<float> makeFogNoise(int size, uint32_t seed = 7);
 /// The tileable foam patterns, size^2 values each (x fastest), wrapping at the edges. Each is a standard
 /// normal sample (its texels' ranks through normalQuantile) whose shapes are foam's, x laid along the wind:

@@ -44,7 +44,8 @@ inline constexpr double WATER_IOR = 1.33; ///< refractive index of sea water (Sn
 /// (Pope & Fry 1997: ~0.3 at 600 nm, 0.06 at 550 nm, 0.01 at 450 nm) plus particle scattering.
 inline constexpr float WATER_EXTINCTION[3] = {0.35f, 0.075f, 0.045f};
 /// Depth of the sunlit layer whose in-scattering the eye sees, metres: a view ray refracted to angle
-/// theta_t crosses it over WATER_SCATTER_DEPTH / cos(theta_t) (seed 004 "dull colour": view dependence).
+/// theta_t crosses it over WATER_SCATTER_DEPTH / cos(theta_t) (the "dull colour" of the "Complex Ocean Shader
+/// with Example" article, made view dependent).
 inline constexpr float WATER_SCATTER_DEPTH = 8.0f;
 /// Irradiance of the sun on diffuse surfaces (foam) per unit of LightingDesc::sunIntensity, which is
 /// calibrated for the specular glitter: 0.2 puts the default sun at ~6x the procedural sky's irradiance, the

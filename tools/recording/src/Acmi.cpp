@@ -1,9 +1,9 @@
 // Tacview ACMI 2.x text parser, streaming (Tacview's "ACMI 2.2 file format" reference; the edge cases seen in
-// real DCS exports are listed in ../shared/NOTES-flights.md). Lines are joined before they are classified
-// (a line ending in an odd number of '\' continues on the next one), so a continued Comments or Briefing
-// block is never mistaken for a frame, a removal or an object. Numbers go through std::from_chars (no
-// locale). Properties the replay does not use are skipped without being copied; unknown ones are never
-// fatal. Memory: the tracks kept plus the current line.
+// real DCS exports are handled below and tested in tests/unit/test_recording.cpp). Lines are joined before
+// they are classified (a line ending in an odd number of '\' continues on the next one), so a continued
+// Comments or Briefing block is never mistaken for a frame, a removal or an object. Numbers go through
+// std::from_chars (no locale). Properties the replay does not use are skipped without being copied; unknown
+// ones are never fatal. Memory: the tracks kept plus the current line.
 #include "recording/Recording.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // EarthFrame: places geodetic (WGS84) positions in the renderer's world -- x east, y north, z up, metres,
 // double -- around an origin near the action (never the ACMI reference point, which is 600-1000 km away in
-// DCS files; ../shared/NOTES-flights.md).
+// DCS files).
 //
 // The ocean draws a flat world and drops the sea by curvatureDrop(d) = d^2 / 2R with the horizontal distance
 // d from the camera (ocean/OceanConstants.h). So the world frame here is flat too: x, y are the azimuthal
