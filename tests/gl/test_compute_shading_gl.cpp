@@ -197,7 +197,7 @@ struct View {
 };
 
 const View VIEWS[] = {
-    {"20 m, the issue's view", {2000.0, 0.0, 20.0}, 70.0, -3.0, 100.0},
+    {"20 m, the low grazing view", {2000.0, 0.0, 20.0}, 70.0, -3.0, 100.0},
     {"2 m toward the sun", {-300.0, 450.0, 2.0}, 200.0, -8.0, 17.25},
     {"500 m banked down", {0.0, 0.0, 500.0}, 30.0, -25.0, 40.0},
     {"10 km", {5000.0, -3000.0, 10000.0}, 120.0, -35.0, 60.0},
@@ -307,7 +307,7 @@ TEST_F(ComputeShadingGl, SkippingHiddenRingsChangesNoPixel) {
         double maxShare; // vertices shaded with the skip / without, at most
     };
     const Case cases[] = {
-        {"octaves, 20 m, the issue's view",
+        {"octaves, 20 m, the low grazing view",
          SurfaceKind::Octaves,
          {2000.0, 0.0, 20.0},
          70.0,
@@ -400,7 +400,7 @@ TEST_F(ComputeShadingGl, ShadingByTilesChangesNoPixel) {
         bool beyond; // tiles of sky and the sea beyond the grid are in view
     };
     const Case cases[] = {
-        {"octaves, 20 m, the issue's view",
+        {"octaves, 20 m, the low grazing view",
          SurfaceKind::Octaves,
          {2000.0, 0.0, 20.0},
          70.0,

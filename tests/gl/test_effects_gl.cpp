@@ -127,7 +127,7 @@ protected:
         return c;
     }
 
-    /// 1e-3 m (the readback bound) plus one float spacing of the camera height and of the
+    /// 1e-3 m (the required readback bound) plus one float spacing of the camera height and of the
     /// curvature drop (the GPU's z is camera-relative float).
     static double bound(const glm::dvec3& cam, double dropAtEffect) {
         const float z = static_cast<float>(std::abs(cam.z) + dropAtEffect);

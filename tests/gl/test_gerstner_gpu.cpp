@@ -120,7 +120,7 @@ TEST_P(GerstnerGpuCpu, DisplacementAndLightingMatchTheDoubleReference) {
                 "slope = %.3g, variance = %.3g; max |dz| %.3g m\n",
                 c.name, worst, worstIndex, double(glm::length(rel[worstIndex])), bound, worstSlope,
                 worstVariance, maxDz);
-    // The derived bound is ~2e-4 m for this sea, inside the 1e-3 m.
+    // The derived bound is ~2e-4 m for this sea, inside the required 1e-3 m.
     EXPECT_LT(bound, 1e-3);
     EXPECT_LT(worst, bound);
     EXPECT_LT(worstFoamH, bound);

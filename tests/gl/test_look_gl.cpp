@@ -340,9 +340,9 @@ TEST_F(LookGl, NoLatticeInTheGlitter) {
     }
 }
 
-// The octave sea's cross-hatch in the glitter at 50 m (the view): its lighting-only octaves (13.7 m
-// and 3.1 m tiles under a 9 m/s sea state) repeated along every row, 0.66 / 0.63 (high-passed repetition,
-// the glitter test's measure; 50 m, 10 degrees down, into the sun). With the aperiodic mix
+// The octave sea's cross-hatch in the glitter at 50 m (the view where it showed): its lighting-only octaves
+// (13.7 m and 3.1 m tiles under a 9 m/s sea state) repeated along every row, 0.66 / 0.63 (high-passed
+// repetition, the glitter test's measure; 50 m, 10 degrees down, into the sun). With the aperiodic mix
 // (HeightOctavesDesc::aperiodic) 0.040 / 0.012 at 10 degrees and 0.047 / -0.012 at 20 degrees (llvmpipe): the
 // second copy is the octave's own 48 waves shifted, which correlate a little with the first (the mix of two
 // independent FFT draws reaches 0.02), so the bound is 0.06; without the mix the test requires > 0.3.
@@ -860,7 +860,7 @@ effectRimStep(double altitude, double t, const glm::dvec2& centre,
 // radius R, where its field is 0 (Effects.h: an explosion's is tapered by T = 1 - smoothstep(0.8 R, R, r)
 // and its wave group's window ends there; a wake's disc holds its whole trail): across the rim the sea must
 // look the same as without the effect. The step of the luminance ratio with / without the effect between
-// bands just inside and just outside the rim (effectRimStep) must stay under 1% (the bound for grid
+// bands just inside and just outside the rim (effectRimStep) must stay under 1% (the bound required for grid
 // seams). Explosion: 30 s after a blast (R = 129 m, amplitude 0.33 m), from 40, 150 and 400 m. Wake: a 60 m
 // ship after 60 s at 10 m/s heading east, from 150, 400 and 1500 m.
 TEST_F(LookGl, NoSeamAtAnEffectGridsRim) {

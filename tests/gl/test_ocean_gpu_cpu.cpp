@@ -59,7 +59,7 @@ TEST_P(OceanGpuCpu, DisplacedHeightsMatchTheDoubleReference) {
     const ocean::RadialGrid grid(oc.desc.grid);
     ASSERT_EQ(gpu.size(), grid.vertexCount());
 
-    // Bound 1e-3 m (the readback bound). Expected float error: the GPU forms tile coordinates as
+    // Bound 1e-3 m (the required readback bound). Expected float error: the GPU forms tile coordinates as
     // rel * B + fract(camera * B) in float; at 40 km, rel * B reaches ~660 tiles for the 61 m octave, whose
     // float spacing (6e-5 tile) times the map's steepest slope (~0.13 m * 40 per tile) is ~3e-4 m.
     double worst = 0.0;

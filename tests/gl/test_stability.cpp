@@ -46,7 +46,7 @@ std::vector<Model> models() {
     ocean::OceanDesc gerstner;
     gerstner.model = ocean::SurfaceKind::Gerstner;
     ocean::OceanDesc steep = gerstner;
-    // The "Gerstner steepness request of 3": the default sea's steepness sum times this scale is 3;
+    // A "Gerstner steepness request of 3": the default sea's steepness sum times this scale is 3;
     // the model clamps it to the fold limit 1.
     steep.gerstner.steepnessScale = 3.0 / ocean::GerstnerWaves(gerstner.gerstner).requestedSteepnessSum();
     ocean::OceanDesc fft;
@@ -122,8 +122,8 @@ TEST_P(Stability, FiniteFrameVerticesNearReferenceNoHorizonGap) {
         bad += !std::isfinite(v);
     EXPECT_EQ(bad, 0u) << "non-finite pixel values";
 
-    // 2. Displaced vertices vs the double reference. Bound 1e-3 m (the issue's) plus the float spacing of the
-    // camera-relative z (the camera height and the curvature drop are subtracted in float on the GPU).
+    // 2. Displaced vertices vs the double reference. Bound 1e-3 m (the required one) plus the float spacing
+    // of the camera-relative z (the camera height and the curvature drop are subtracted in float on the GPU).
     const auto vertices = renderer.displacedVertices(registry, e, frame);
     const double rMax = ocean.desc.grid.rMax;
     double worst = 0.0;

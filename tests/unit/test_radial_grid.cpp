@@ -13,7 +13,7 @@ using pacifica::ocean::RadialGrid;
 using pacifica::ocean::RadialGridDesc;
 
 TEST(RadialGrid, EndRadiiMatchTheSeedWithin1e6Relative) {
-    // The bound: r_0 = 0.1 m and r_max = 40 km within 1e-6 relative, both as computed in double and
+    // The required bound: r_0 = 0.1 m and r_max = 40 km within 1e-6 relative, both as computed in double and
     // after storage as float (float has 24 bits: 6e-8 relative).
     const RadialGrid grid(RadialGridDesc{});
     EXPECT_NEAR(grid.radius(0), 0.1, 0.1 * 1e-6);

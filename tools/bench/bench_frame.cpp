@@ -73,7 +73,7 @@ double quantile(std::vector<double> v, double q) {
 struct Setting {
     std::string name, knob;
     ocean::OceanDesc desc;
-    // The view: the issue's, unless a row names another.
+    // The view: the benchmark's standard view, unless a row names another.
     glm::dvec3 camera = CAMERA;
     double headingDeg = HEADING_DEG, pitchDeg = PITCH_DEG;
 };
