@@ -220,12 +220,11 @@ vec3 shadeSea() {
     // over time; each is mixed with a shifted copy of itself (foamMixWeights), so neither tile repeats.
     // Most of the sea has no foam: its fetches and shading are skipped there, the derivatives taken first
     // (in uniform control flow) and the layers read with them.
-    vec2 windGrid = vec2(dot(vGrid, uFoamWind), dot(vGrid, vec2(-uFoamWind.y, uFoamWind.x)));
+    mat2 toWind = transpose(mat2(uFoamWind, vec2(-uFoamWind.y, uFoamWind.x))); // (along, across) the wind
+    vec2 windGrid = toWind * vGrid;
     vec2 nearUv = windGrid / FOAM_TILE_NEAR + uFoamOffsetNear;
 #ifdef SHADE_COMPUTE
-    vec2 wdx = vec2(dot(gGridDx, uFoamWind), dot(gGridDx, vec2(-uFoamWind.y, uFoamWind.x)));
-    vec2 wdy = vec2(dot(gGridDy, uFoamWind), dot(gGridDy, vec2(-uFoamWind.y, uFoamWind.x)));
-    vec2 dnx = wdx / FOAM_TILE_NEAR, dny = wdy / FOAM_TILE_NEAR;
+    vec2 dnx = toWind * gGridDx / FOAM_TILE_NEAR, dny = toWind * gGridDy / FOAM_TILE_NEAR;
 #else
     vec2 dnx = dFdx(nearUv), dny = dFdy(nearUv);
 #endif

@@ -403,46 +403,41 @@ double streakNoise(const glm::dvec2& uv, int cells, int octaves, uint32_t seed) 
     return sum;
 }
 
-void requirePatternSize(const char* what, int size) {
+/// A size x size pattern of value(uv) at the texel centres, gaussianised (the foam patterns' common frame).
+template <class Value>
+std::vector<float> normalPattern(const char* what, int size, Value value) {
     if (size < 8)
         throw std::invalid_argument(std::string(what) + "(): size must be >= 8, got " + std::to_string(size));
+    std::vector<float> v(static_cast<size_t>(size) * size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+            v[static_cast<size_t>(y) * size + x] =
+                static_cast<float>(value(glm::dvec2((x + 0.5) / size, (y + 0.5) / size)));
+    gaussianise(v);
+    return v;
 }
 
 } // namespace
 
 std::vector<float> makeFoamPattern(int size, uint32_t seed) {
-    requirePatternSize("makeFoamPattern", size);
-    std::vector<float> v(static_cast<size_t>(size) * size);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const glm::dvec2 uv((x + 0.5) / size, (y + 0.5) / size);
-            // Lace: the walls between cellular (Worley 1996) bubbles at two scales, cells stretched along
-            // the wind; the larger cells' centres open holes in the foam. Over them, fine streaks.
-            // Nothing coarser than 1/16 of the tile: coarser shapes would repeat with the tile where its
-            // detail is not resolved (a 7 m lattice over a wake from 600 m).
-            const glm::dvec2 large = periodicWorley(uv, {20, 32}, seed + 7U);
-            const glm::dvec2 small = periodicWorley(uv, {48, 64}, seed + 8U);
-            const double hole = 1.0 - smoothstep(0.1, 0.45, large.x);
-            const double lace = 1.0 - smoothstep(0.0, 0.15, large.y - large.x);
-            const double film = 1.0 - smoothstep(0.0, 0.12, small.y - small.x);
-            const double streaks = streakNoise(uv, 16, 2, seed);
-            v[static_cast<size_t>(y) * size + x] =
-                static_cast<float>(0.6 * streaks + 0.4 * lace + 0.2 * film - 0.35 * hole);
-        }
-    gaussianise(v);
-    return v;
+    return normalPattern("makeFoamPattern", size, [seed](const glm::dvec2& uv) {
+        // Lace: the walls between cellular (Worley 1996) bubbles at two scales, cells stretched along the
+        // wind; the larger cells' centres open holes in the foam. Over them, fine streaks. Nothing coarser
+        // than 1/16 of the tile: coarser shapes would repeat with the tile where its detail is not resolved
+        // (a 7 m lattice over a wake from 600 m).
+        const glm::dvec2 large = periodicWorley(uv, {20, 32}, seed + 7U);
+        const glm::dvec2 small = periodicWorley(uv, {48, 64}, seed + 8U);
+        const double hole = 1.0 - smoothstep(0.1, 0.45, large.x);
+        const double lace = 1.0 - smoothstep(0.0, 0.15, large.y - large.x);
+        const double film = 1.0 - smoothstep(0.0, 0.12, small.y - small.x);
+        const double streaks = streakNoise(uv, 16, 2, seed);
+        return 0.6 * streaks + 0.4 * lace + 0.2 * film - 0.35 * hole;
+    });
 }
 
 std::vector<float> makeFoamStreaks(int size, uint32_t seed) {
-    requirePatternSize("makeFoamStreaks", size);
-    std::vector<float> v(static_cast<size_t>(size) * size);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-            const glm::dvec2 uv((x + 0.5) / size, (y + 0.5) / size);
-            v[static_cast<size_t>(y) * size + x] = static_cast<float>(streakNoise(uv, 2, 5, seed));
-        }
-    gaussianise(v);
-    return v;
+    return normalPattern("makeFoamStreaks", size,
+                         [seed](const glm::dvec2& uv) { return streakNoise(uv, 2, 5, seed); });
 }
 
 double normalCdf(double x) {
