@@ -44,5 +44,8 @@ void main() {
         vRel.z -= max(0.5, 0.02 * radius);
     vGrid = rel;
     vLocal = qLocal;
+    // Where an earlier grid (explosions' before wakes', nearer first) draws, this one leaves a hole: an
+    // overlap is drawn once, by the finer grid of a smaller effect.
+    clipEffectGrids(rel, uFirstGrid + gl_InstanceID);
     gl_Position = uViewProj * vec4(vRel, 1.0);
 }

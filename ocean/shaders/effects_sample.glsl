@@ -67,3 +67,24 @@ bool insideEffectGrid(vec2 rel) {
     }
     return false;
 }
+
+#ifdef EFFECT_GRID_CLIP
+// Vertex stages only. The hole of the base grid (and of a later grid under an earlier one) cut by the
+// clipper instead of the fragment stage: clip distance i is the distance of the undisplaced point from drawn
+// grid i's disc of 0.98 of its radius, for the grids with index < first (the base grid: all of them; grid k:
+// those drawn before it), 1 for the rest. The clipper interpolates each distance linearly over a triangle,
+// and |q| - R is convex, so the interpolated value is never below the true one: it removes only points inside
+// the disc, never a point the disc's grid does not draw. The base grid's fragment test (insideEffectGrid)
+// stays exact; this spares the fragments in the holes, which on a GPU whose graphics run on few units cost
+// about as much as drawing them (docs/EFFECTS_BENCH.md "Holes cut by the clipper").
+out float gl_ClipDistance[EFFECT_GRID_CLIPS];
+void clipEffectGrids(vec2 rel, int first) {
+    int n = min(first, uEffectGridCount);
+    for (int i = 0; i < EFFECT_GRID_CLIPS; ++i) {
+        float c = 1.0;
+        if (i < n)
+            c = length(rel - uEffectGrids[i].xy) - 0.98 * uEffectGrids[i].z;
+        gl_ClipDistance[i] = c;
+    }
+}
+#endif

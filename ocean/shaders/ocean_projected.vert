@@ -36,5 +36,8 @@ void main() {
 #endif
     vRel = base + d;
     vGrid = rel;
+#ifdef EFFECT_GRID_CLIP
+    clipEffectGrids(rel, uEffectGridCount); // the holes where the secondary grids draw
+#endif
     gl_Position = uViewProj * vec4(vRel, 1.0);
 }

@@ -311,6 +311,13 @@ bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu
     return true;
 }
 
+/// The clip distances the grids' vertex stages write where secondary grids are drawn (effects_sample.glsl
+/// clipEffectGrids), on or off; off outside those draws (a host's enables are restored by the StateGuard).
+void enableGridClips(bool on) {
+    for (int i = 0; i < EFFECT_GRID_CLIPS; ++i)
+        on ? glEnable(GLenum(GL_CLIP_DISTANCE0 + i)) : glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
+}
+
 bool hasEffects(ecs::Registry& registry) {
     auto explosions = registry.view<Explosion>();
     auto trails = registry.view<ShipTrail>();
@@ -370,7 +377,8 @@ unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback, bool geometry) {
         const std::vector<std::string> model = gpu.model->glslFiles();
         const std::string name = "ocean effect grids (" + gpu.programKey + ")";
         const std::string field = "#define EFFECT_FIELD\n";
-        auto vertex = sources(concat(model, {"effects_sample.glsl", "effects.vert"}), field);
+        auto vertex = sources(concat(model, {"effects_sample.glsl", "effects.vert"}),
+                              field + "#define EFFECT_GRID_CLIP\n");
         if (geometry)
             program = gl::buildProgram({{gl::ShaderStage::Vertex, vertex},
                                         {gl::ShaderStage::Fragment, sources({"ocean_gbuffer.frag"})}},
@@ -645,7 +653,8 @@ gl::Program& OceanRenderer::FramePasses::seaProgram() {
             frag.emplace_back("effects_sample.glsl");
         vertex.emplace_back(vert);
         program = gl::buildProgram(
-            {{gl::ShaderStage::Vertex, sources(vertex, fxDefines)},
+            {{gl::ShaderStage::Vertex,
+              sources(vertex, fxDefines + (holes ? "#define EFFECT_GRID_CLIP\n" : ""))},
              {gl::ShaderStage::Fragment, sources(deferred ? concat(frag, {"ocean_gbuffer.frag"})
                                                           : concat(frag, {"sky.glsl", "ocean.frag"}),
                                                  fragDefines)}},
@@ -671,7 +680,9 @@ bool OceanRenderer::FramePasses::sea() {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_GREATER);
     glDepthMask(GL_TRUE);
+    enableGridClips(holes);
     drawSeaGrid();
+    enableGridClips(false);
     marks.mark(PassSea);
     return true;
 }
@@ -709,6 +720,7 @@ void OceanRenderer::FramePasses::grids() {
     setCullUniform(fx, ocean, frame, effectHeightBound(ocean));
     r.mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
     r.mEffects->bindField(fx);
+    enableGridClips(true);
     for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {
         EffectKindStats& ks = kind == EffectKind::Explosion ? r.mStats.explosions : r.mStats.wakes;
         const long long vertices = r.mEffects->draw(fx, kind);
@@ -721,6 +733,7 @@ void OceanRenderer::FramePasses::grids() {
         r.mStats.draws += 1;
         r.mStats.vertices += vertices;
     }
+    enableGridClips(false);
     marks.mark(PassEffects);
 }
 
@@ -742,6 +755,7 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
     glDisable(GL_SCISSOR_TEST);
+    enableGridClips(false); // a host's clip planes must not cut shaders that write no clip distance
     // Reverse-Z (Space.h perspectiveReverseZInfinite): depth 1 at the near plane, 0 at infinity.
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     glClearDepth(0.0);

@@ -151,7 +151,8 @@ std::string effectConstantDefines() {
         .add("KELVIN_TAN2", KELVIN_TAN2)
         .add("KELVIN_DECAY_WAVELENGTHS", KELVIN_DECAY_WAVELENGTHS)
         .add("EFFECT_K_MAX", EFFECT_K_MAX)
-        .add("EFFECT_FIELD_MAX_LEVELS", EFFECT_FIELD_MAX_LEVELS);
+        .add("EFFECT_FIELD_MAX_LEVELS", EFFECT_FIELD_MAX_LEVELS)
+        .add("EFFECT_GRID_CLIPS", EFFECT_GRID_CLIPS);
     return d.text;
 }
 

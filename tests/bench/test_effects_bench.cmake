@@ -19,7 +19,7 @@ file(STRINGS "${OUT_DIR}/effects.csv" lines)
 list(GET lines 0 header)
 set(expectedHeader "setting,kind,count,active,drawn,ms_median,ms_p90,us_per_effect_vs_plain,update_us_median,\
 render_cpu_ms_median,vertices,fx_vertices,fx_passes,fx_draws,fx_uploads,passes,draws,uploads,programs_built,\
-field_tiles,clock,renderer")
+field_tiles,compute_ms,sea_ms,effects_ms,shade_ms,clock,renderer")
 if(NOT header STREQUAL expectedHeader)
     message(FATAL_ERROR "unexpected header: ${header}")
 endif()
@@ -28,7 +28,8 @@ set(num "[-+]?[0-9]*\\.?[0-9]+([eE][-+]?[0-9]+)?")
 set(seen "")
 foreach(line IN LISTS lines)
     # setting,kind,count,active,drawn,ms,p90,us_per_effect,update_us,render_cpu,vertices,fx_vertices,fx_passes,
-    # fx_draws,fx_uploads,passes,draws,uploads,programs_built,field_tiles,"clock","renderer"
+    # fx_draws,fx_uploads,passes,draws,uploads,programs_built,field_tiles,compute_ms,sea_ms,effects_ms,
+    # shade_ms,"clock","renderer"
     if(NOT line MATCHES "^([a-z_]+),([a-z]+),([0-9]+),([^\"]*),\"([^\"]*)\",\"([^\"]*)\"$")
         message(FATAL_ERROR "malformed row: ${line}")
     endif()
@@ -39,9 +40,16 @@ foreach(line IN LISTS lines)
     set(renderer "${CMAKE_MATCH_6}")
     string(REPLACE "," ";" f "${CMAKE_MATCH_4}")
     list(LENGTH f nf)
-    if(NOT nf EQUAL 17)
-        message(FATAL_ERROR "expected 22 columns: ${line}")
+    if(NOT nf EQUAL 21)
+        message(FATAL_ERROR "expected 26 columns: ${line}")
     endif()
+    # The per-pass times of the profiled renderer (same frames, setPassTiming): numbers >= 0.
+    foreach(i 17 18 19 20)
+        list(GET f ${i} passMs)
+        if(NOT passMs MATCHES "^${num}$" OR passMs LESS 0)
+            message(FATAL_ERROR "pass time column ${i} '${passMs}' is not a number >= 0: ${line}")
+        endif()
+    endforeach()
     list(GET f 0 active)
     list(GET f 1 drawn)
     list(GET f 2 ms)
@@ -77,6 +85,14 @@ foreach(line IN LISTS lines)
             message(FATAL_ERROR "${setting} x${count}: active ${active} drawn ${drawn} passes ${fxPasses} draws "
                                 "${fxDraws} vertices ${fxVertices} tiles ${fieldTiles}: ${line}")
         endif()
+    elseif(kind STREQUAL "fleet")
+        # Wakes and explosions together (count = both kinds): every one active and in the field, a grid pass
+        # and draw per kind with grids at most.
+        if(NOT active EQUAL count OR drawn GREATER count OR NOT fieldTiles GREATER tiles_wake_2
+           OR fxPasses GREATER 3 OR fxDraws GREATER 2)
+            message(FATAL_ERROR "fleet x${count}: active ${active}, drawn ${drawn}, tiles ${fieldTiles}, passes "
+                                "${fxPasses}, draws ${fxDraws}: ${line}")
+        endif()
     else()
         # The defaults: every effect in the field (its compute pass over the tiles they touch, the effect
         # data uploaded each frame), grids only for those next to the eye (a grid pass and draw if any).
@@ -97,7 +113,8 @@ foreach(line IN LISTS lines)
     list(APPEND seen "${setting}:${kind}:${count}")
 endforeach()
 foreach(expected "plain:none:0" "zero_effect:none:0" "explosions:explosion:1" "explosions:explosion:4"
-                 "wakes:wake:1" "wakes:wake:2" "explosions_every_grid:explosion:4" "wakes_every_grid:wake:2")
+                 "wakes:wake:1" "wakes:wake:2" "explosions_every_grid:explosion:4" "wakes_every_grid:wake:2"
+                 "fleet:fleet:4")
     if(NOT expected IN_LIST seen)
         message(FATAL_ERROR "missing row ${expected}; rows: ${seen}")
     endif()

@@ -818,6 +818,8 @@ TEST_F(StateGuardTest, RestoresEverySavedState) {
     glClearColor(0.1f, 0.2f, 0.3f, 0.4f);
     glClearDepth(0.25);
     glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
+    glEnable(GL_CLIP_DISTANCE1); // the host's clip planes: 1 and 6 on, the rest off
+    glEnable(GL_CLIP_DISTANCE6);
     glBindFramebuffer(GL_FRAMEBUFFER, fboA.id());
     glUseProgram(programA.id());
     glBindVertexArray(vaoA.id());
@@ -835,6 +837,8 @@ TEST_F(StateGuardTest, RestoresEverySavedState) {
         glClearColor(1.f, 1.f, 1.f, 1.f);
         glClearDepth(1.0);
         glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glDisable(GL_CLIP_DISTANCE1);
+        glEnable(GL_CLIP_DISTANCE2);
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fboB.id());
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         glUseProgram(programB.id());
@@ -851,6 +855,8 @@ TEST_F(StateGuardTest, RestoresEverySavedState) {
     EXPECT_EQ(viewport[2], 3);
     EXPECT_EQ(viewport[3], 4);
     EXPECT_TRUE(glIsEnabled(GL_DEPTH_TEST));
+    for (int i = 0; i < 8; ++i)
+        EXPECT_EQ(glIsEnabled(GLenum(GL_CLIP_DISTANCE0 + i)), i == 1 || i == 6 ? GL_TRUE : GL_FALSE) << i;
     EXPECT_EQ(getInt(GL_DEPTH_FUNC), GL_LEQUAL);
     GLboolean depthMask = GL_TRUE;
     glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);

@@ -66,7 +66,7 @@ constexpr double PITCH_DEG = -20.0;
 constexpr double SHIP_SPEED = 10.0;
 constexpr double HISTORY_SECONDS = 120.0;
 
-enum class Kind { None, Explosion, Wake };
+enum class Kind { None, Explosion, Wake, Fleet }; // Fleet: wakes and explosions together
 
 const char* kindName(Kind k) {
     switch (k) {
@@ -76,9 +76,13 @@ const char* kindName(Kind k) {
         return "explosion";
     case Kind::Wake:
         return "wake";
+    case Kind::Fleet:
+        return "fleet";
     }
     return "?";
 }
+
+constexpr double NAN_MS = std::numeric_limits<double>::quiet_NaN();
 
 struct Row {
     std::string setting; // plain, zero_effect, explosions, wakes
@@ -94,7 +98,11 @@ struct Row {
     int fieldTiles = 0;                           // tiles of the effects field evaluated (max)
     int passes = 0, draws = 0, uploads = 0;       // frame totals, max over the timed frames
     int programsBuilt = 0;                        // summed over the timed frames (must be 0: warm)
-    std::vector<double> samples;                  // ms of each timed frame, one per round (round order)
+    // Medians of the per-pass times (OceanPassTimes) of a second renderer drawing the same frames with
+    // setPassTiming(): compute holds the effects field's pass, sea the base grid, effects the secondary
+    // grids.
+    double computeMs = NAN_MS, seaMs = NAN_MS, effectsMs = NAN_MS, shadeMs = NAN_MS;
+    std::vector<double> samples; // ms of each timed frame, one per round (round order)
 };
 
 double quantile(std::vector<double> v, double q) {
@@ -162,8 +170,9 @@ struct Scene {
     std::unique_ptr<ocean::EffectsSystem> fx;         // null: the plain ocean
     std::unique_ptr<ocean::EffectsTimeline> timeline; // moves the ships, dispatches, updates fx
     std::unique_ptr<ocean::OceanRenderer> renderer;   // one per scene: its cache is keyed by entity
+    std::unique_ptr<ocean::OceanRenderer> profiled;   // the same frames with per-pass timing
     double origin = T0, time = T0;                    // sim time of the first frame, of the next frame
-    std::vector<double> ms, updateUs, renderCpuMs;
+    std::vector<double> ms, updateUs, renderCpuMs, computeMs, seaMs, effectsMs, shadeMs;
 
     Scene(std::string setting, Kind kind, int count, bool withSystem) : row{std::move(setting), kind, count} {
         row.active = row.drawn = std::numeric_limits<int>::max();
@@ -196,15 +205,29 @@ struct Scene {
         if (timed)
             timer.end();
         glFinish();
+        if (!profiled) {
+            profiled = std::make_unique<ocean::OceanRenderer>();
+            profiled->setPassTiming(timer.clock());
+        }
+        profiled->render(registry, f); // outside the timed span
+        glFinish();
         if (!timed)
             return;
         timer.drain(); // the span just ended is the newest sample (the frame has finished: no stall)
         ms.push_back(timer.samples().back());
+        if (const ocean::OceanPassTimes& p = profiled->lastStats().passTimes; p.measured) {
+            computeMs.push_back(p.computeMs);
+            seaMs.push_back(p.seaMs);
+            effectsMs.push_back(p.effectsMs);
+            shadeMs.push_back(p.shadeMs + p.skyMs);
+        }
         renderCpuMs.push_back(std::chrono::duration<double, std::milli>(r1 - r0).count());
         const ocean::OceanStats& s = renderer->lastStats();
-        const ocean::EffectKindStats& k = row.kind == Kind::Wake ? s.wakes : s.explosions;
-        row.active = std::min(row.active, row.kind == Kind::None ? 0 : k.active);
-        row.drawn = std::min(row.drawn, row.kind == Kind::None ? 0 : k.drawn);
+        const bool wakes = row.kind == Kind::Wake || row.kind == Kind::Fleet;
+        const bool explosions = row.kind == Kind::Explosion || row.kind == Kind::Fleet;
+        row.active =
+            std::min(row.active, (wakes ? s.wakes.active : 0) + (explosions ? s.explosions.active : 0));
+        row.drawn = std::min(row.drawn, (wakes ? s.wakes.drawn : 0) + (explosions ? s.explosions.drawn : 0));
         row.vertices = std::max(row.vertices, s.vertices);
         row.fxVertices = std::max(row.fxVertices, s.explosions.vertices + s.wakes.vertices);
         row.fxPasses = std::max(row.fxPasses, s.explosions.passes + s.wakes.passes + s.effectField.passes);
@@ -225,6 +248,12 @@ struct Scene {
         row.renderCpuMsMedian = quantile(renderCpuMs, 0.5);
         if (!updateUs.empty())
             row.updateUsMedian = quantile(updateUs, 0.5);
+        if (!seaMs.empty()) {
+            row.computeMs = quantile(computeMs, 0.5);
+            row.seaMs = quantile(seaMs, 0.5);
+            row.effectsMs = quantile(effectsMs, 0.5);
+            row.shadeMs = quantile(shadeMs, 0.5);
+        }
         std::fprintf(stderr,
                      "[%s] %s x%d: %.3f ms (p90 %.3f), update %.1f us, active %d drawn %d, fx vertices %lld, "
                      "fx passes %d draws %d uploads %d, field tiles %d\n",
@@ -256,15 +285,28 @@ std::unique_ptr<Scene> explosionScene(int n, bool grids = false) {
 
 // Ships with trails, their paths recorded for 120 s of sim time in 0.5 s steps before the first frame
 // (update() only: the renderer never sees that earlier time).
+void addShips(Scene& scene, int n) {
+    const double origin = scene.origin;
+    for (int i = 0; i < n; ++i)
+        scene.timeline->addShip(shipPosition(i, -HISTORY_SECONDS), 60.0,
+                                [i, origin](double t) { return shipPosition(i, t - origin); });
+    scene.timeline->warmUp(origin - HISTORY_SECONDS, origin, CAMERA);
+}
+
 std::unique_ptr<Scene> wakeScene(int n, bool grids = false) {
     auto scene = std::make_unique<Scene>(grids ? "wakes_every_grid" : "wakes", Kind::Wake, n, true);
     if (grids)
         everyGrid(*scene);
-    const double origin = scene->origin;
+    addShips(*scene, n);
+    return scene;
+}
+
+/// The fleet goal's scene: n ships with trails and n explosions at once (count = both kinds together).
+std::unique_ptr<Scene> fleetScene(int n) {
+    auto scene = std::make_unique<Scene>("fleet", Kind::Fleet, 2 * n, true);
     for (int i = 0; i < n; ++i)
-        scene->timeline->addShip(shipPosition(i, -HISTORY_SECONDS), 60.0,
-                                 [i, origin](double t) { return shipPosition(i, t - origin); });
-    scene->timeline->warmUp(origin - HISTORY_SECONDS, origin, CAMERA);
+        scene->events.enqueue(explosionSpawn(i, scene->origin));
+    addShips(*scene, n);
     return scene;
 }
 
@@ -391,14 +433,15 @@ std::string effectsCsv(const std::vector<Row>& rows, const RunSummary& s) {
     std::ostringstream csv;
     csv << "setting,kind,count,active,drawn,ms_median,ms_p90,us_per_effect_vs_plain,update_us_median,"
            "render_cpu_ms_median,vertices,fx_vertices,fx_passes,fx_draws,fx_uploads,passes,draws,uploads,"
-           "programs_built,field_tiles,clock,renderer\n";
+           "programs_built,field_tiles,compute_ms,sea_ms,effects_ms,shade_ms,clock,renderer\n";
     for (const Row& r : rows)
         csv << r.setting << ',' << kindName(r.kind) << ',' << r.count << ',' << r.active << ',' << r.drawn
             << ',' << num(r.msMedian) << ',' << num(r.msP90) << ',' << num(perEffectUs(r, s.plainMs)) << ','
             << num(r.updateUsMedian) << ',' << num(r.renderCpuMsMedian) << ',' << r.vertices << ','
             << r.fxVertices << ',' << r.fxPasses << ',' << r.fxDraws << ',' << r.fxUploads << ',' << r.passes
             << ',' << r.draws << ',' << r.uploads << ',' << r.programsBuilt << ',' << r.fieldTiles << ','
-            << csvQuote(s.clock) << ',' << csvQuote(s.renderer) << '\n';
+            << num(r.computeMs) << ',' << num(r.seaMs) << ',' << num(r.effectsMs) << ',' << num(r.shadeMs)
+            << ',' << csvQuote(s.clock) << ',' << csvQuote(s.renderer) << '\n';
     return csv.str();
 }
 
@@ -753,6 +796,7 @@ int main(int argc, char** argv) {
         // e. the same with a secondary grid for every effect (as before the field): what the grids cost.
         scenes.push_back(explosionScene(quick ? 4 : 64, true));
         scenes.push_back(wakeScene(quick ? 2 : 8, true));
+        scenes.push_back(fleetScene(quick ? 2 : 64)); // the fleet goal: 64 wakes + 64 explosions
         for (auto& scene : scenes)
             for (int i = 0; i < WARMUP_FRAMES; ++i)
                 scene->frame(timer, targets, false);

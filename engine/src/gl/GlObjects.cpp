@@ -148,6 +148,8 @@ StateGuard::StateGuard() {
     mBlend = glIsEnabled(GL_BLEND);
     mCull = glIsEnabled(GL_CULL_FACE);
     mScissor = glIsEnabled(GL_SCISSOR_TEST);
+    for (int i = 0; i < CLIP_DISTANCES; ++i)
+        mClipDistance[i] = glIsEnabled(GLenum(GL_CLIP_DISTANCE0 + i));
 }
 
 StateGuard::~StateGuard() {
@@ -174,6 +176,8 @@ StateGuard::~StateGuard() {
     set(GL_BLEND, mBlend);
     set(GL_CULL_FACE, mCull);
     set(GL_SCISSOR_TEST, mScissor);
+    for (int i = 0; i < CLIP_DISTANCES; ++i)
+        set(GLenum(GL_CLIP_DISTANCE0 + i), mClipDistance[i]);
 }
 
 } // namespace pacifica::gl

@@ -32,6 +32,11 @@ enum ImageUnit : int {
     EFFECT_FIELD_IMAGE_UNIT = 2, ///< effects_field.comp: the field's texture array, written
 };
 
+/// Clip distances the grids' vertex stages write to cut the secondary grids' holes (effects_sample.glsl
+/// clipEffectGrids): GL's least GL_MAX_CLIP_DISTANCES, so every GL 4.5 driver has them. Grids past the first
+/// this many are left out by the base grid's per-pixel test alone.
+inline constexpr int EFFECT_GRID_CLIPS = 8;
+
 /// One tile of 8 x 8 texels of one level of the effects field, as effects_field.comp reads it (std430, 32
 /// bytes): the tile and the range of its effect list (EffectsGpu.cpp bins the effects into tiles).
 struct EffectTileGpu {

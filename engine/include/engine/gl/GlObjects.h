@@ -179,8 +179,8 @@ private:
 
 /// Saves the GL state the ocean component changes and restores it on destruction, so a host's state
 /// survives a frame of ours (viewport, draw framebuffer, program, VAO, depth/blend/cull enables,
-/// depth func and mask, clip control, separate blend factors, polygon offset (fill), clear values, active
-/// texture unit). Texture bindings are not saved.
+/// depth func and mask, clip control, the first 8 clip-distance enables, separate blend factors, polygon
+/// offset (fill), clear values, active texture unit). Texture bindings are not saved.
 class StateGuard {
 public:
     StateGuard();
@@ -196,6 +196,8 @@ private:
     float mPolygonOffsetFactor = 0.0f, mPolygonOffsetUnits = 0.0f;
     unsigned char mDepthMask = 1;
     bool mDepthTest = false, mBlend = false, mCull = false, mScissor = false, mPolygonOffsetFill = false;
+    static constexpr int CLIP_DISTANCES = 8; // GL's least GL_MAX_CLIP_DISTANCES
+    bool mClipDistance[CLIP_DISTANCES]{};
     float mClearColor[4]{};
     double mClearDepth = 1.0;
 };
