@@ -74,6 +74,8 @@ void validateEffectGrids(const EffectGridDesc& g) {
           "maxExplosionGrids and maxWakeGrids must be in [0, 4096]");
     check(std::isfinite(g.minAngularSize) && g.minAngularSize >= 0.0,
           "minAngularSize must be finite and >= 0, got " + std::to_string(g.minAngularSize));
+    check(std::isfinite(g.minAmplitudePixels) && g.minAmplitudePixels >= 0.0,
+          "minAmplitudePixels must be finite and >= 0, got " + std::to_string(g.minAmplitudePixels));
 }
 
 } // namespace

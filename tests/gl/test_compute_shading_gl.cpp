@@ -236,7 +236,7 @@ TEST_F(ComputeShadingGl, GerstnerAndFftSeasMatchForwardShading) {
 
 /// A secondary grid for every effect in view (by default only those next to the eye get one).
 OceanDesc withEveryGrid(OceanDesc desc) {
-    desc.effectGrids.minAngularSize = 0.0;
+    desc.effectGrids.minAngularSize = desc.effectGrids.minAmplitudePixels = 0.0;
     desc.effectGrids.maxExplosionGrids = desc.effectGrids.maxWakeGrids = 1024;
     return desc;
 }

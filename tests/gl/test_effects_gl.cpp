@@ -61,7 +61,7 @@ protected:
 
     static OceanDesc gridsDesc() {
         OceanDesc d;
-        d.effectGrids.minAngularSize = 0.0;
+        d.effectGrids.minAngularSize = d.effectGrids.minAmplitudePixels = 0.0;
         d.effectGrids.maxExplosionGrids = d.effectGrids.maxWakeGrids = 1024;
         return d;
     }
@@ -653,6 +653,40 @@ TEST_F(EffectsGl, DefaultGridsOnlyNextToTheEye) {
     EXPECT_EQ(s.explosions.active, 2);
     EXPECT_EQ(s.explosions.drawn, 1) << "only the one next to the eye has a grid";
     EXPECT_EQ(nonFinitePixels(), 0u);
+}
+
+// EffectGridDesc::minAmplitudePixels: a wake's grid spans its whole trail, so its angular size is large from
+// anywhere near it; the grid is drawn only where its waves are tall enough on screen to need more geometry
+// than the base grid has. A 10 m/s ship's waves (peak ~0.5 m) seen from 450 m away and 100 m up are ~0.2
+// pixels tall at 320 x 180 (focal length ~156 pixels): no grid (the field draws the wake); from 30 m away and
+// 20 m up, ~2 pixels: a grid; with the criterion off, a grid from 450 m too.
+TEST_F(EffectsGl, DefaultWakeGridOnlyWhereItsWavesShow) {
+    registry.get<OceanComponent>(oceanEntity) = makeOcean({});
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 60.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    for (int i = 0; i <= 240; ++i) { // 120 s at 10 m/s along +x
+        registry.get<Ship>(ship).position = {5.0 * i, 0.0};
+        events.dispatch();
+        fx.update(0.5 * i, {1200.0, 0.0, 100.0});
+    }
+    const glm::dvec2 at = registry.get<Ship>(ship).position;
+    auto wakeGrids = [&](double distance, double height, double minPixels) {
+        registry.get<OceanComponent>(oceanEntity).desc.effectGrids.minAmplitudePixels = minPixels;
+        // Looking at the ship across its track (heading +y), from `distance` on its -y side.
+        const double pitch = -std::atan2(height, distance) * 180.0 / std::numbers::pi;
+        renderer.render(registry, frameAt({at.x, at.y - distance, height}, 0.0, pitch, 120.0));
+        const OceanStats& s = renderer.lastStats();
+        EXPECT_EQ(s.wakes.active, 1);
+        EXPECT_EQ(s.effectField.passes, 1);
+        EXPECT_EQ(nonFinitePixels(), 0u);
+        return s.wakes.drawn;
+    };
+    const double byDefault = EffectGridDesc{}.minAmplitudePixels;
+    EXPECT_EQ(wakeGrids(450.0, 100.0, byDefault), 0) << "waves a fraction of a pixel tall: no grid";
+    EXPECT_EQ(wakeGrids(30.0, 20.0, byDefault), 1) << "next to the ship: a grid";
+    EXPECT_EQ(wakeGrids(450.0, 100.0, 0.0), 1) << "the angular size alone draws it";
 }
 
 } // namespace

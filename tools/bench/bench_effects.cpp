@@ -264,11 +264,11 @@ struct Scene {
     }
 };
 
-/// A secondary grid for every effect in view (EffectGridDesc minAngularSize 0, no limit), as before the
-/// effects field: the difference to the default row is what the grids' geometry costs.
+/// A secondary grid for every effect in view (EffectGridDesc minAngularSize and minAmplitudePixels 0, no
+/// limit), as before the effects field: the difference to the default row is what the grids' geometry costs.
 void everyGrid(Scene& scene) {
     scene.registry.view<ocean::OceanComponent>().each([](ecs::Entity, ocean::OceanComponent& oc) {
-        oc.desc.effectGrids.minAngularSize = 0.0;
+        oc.desc.effectGrids.minAngularSize = oc.desc.effectGrids.minAmplitudePixels = 0.0;
         oc.desc.effectGrids.maxExplosionGrids = oc.desc.effectGrids.maxWakeGrids = 4096;
     });
 }

@@ -55,6 +55,13 @@ struct EffectGridDesc {
     int maxExplosionGrids = 4, maxWakeGrids = 2;
     /// A grid is drawn only for an effect whose radius / distance from the camera is at least this.
     double minAngularSize = 0.2;
+    /// ... and whose waves are at least this tall on screen: the effect's largest wave amplitude times the
+    /// focal length in pixels over its distance from the camera (the ship's for a wake). The base grid reads
+    /// the same field at every vertex, so without a grid the surface loses at most the detail between the
+    /// base grid's vertices: less than the waves' height on screen. A wake's grid spans its whole trail and
+    /// covers much of the view; on an H200 at 1080p it cost ~0.3 ms (docs/EFFECTS_BENCH.md) for waves of
+    /// 0.5 m seen from 450 m, about a pixel tall. 0: the angular size alone decides.
+    double minAmplitudePixels = 1.5;
 };
 
 struct OceanDesc {

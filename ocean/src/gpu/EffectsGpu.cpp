@@ -108,17 +108,21 @@ struct Candidate {
     glm::dvec2 centre;   ///< camera-relative grid centre
     double radius = 0.0; ///< grid radius
     double size = 0.0;   ///< radius / distance from the camera; < 0: not in view
+    double pixels = 0.0; ///< the largest wave amplitude's height on screen, pixels
 };
 
 Candidate candidate(const glm::dvec2& rel, double radius, const glm::dvec2& boxMin, const glm::dvec2& boxMax,
-                    const OceanFrame& frame, const ViewTest& inView) {
+                    double amplitude, const OceanFrame& frame, const ViewTest& inView) {
     Candidate c;
     c.centre = rel;
     c.radius = radius;
     c.lo = rel + glm::max(boxMin, glm::dvec2(-radius));
     c.hi = rel + glm::min(boxMax, glm::dvec2(radius));
-    const double distance = glm::length(glm::dvec3(rel, frame.camera.origin.z));
-    c.size = inView(rel, radius) ? radius / std::max(distance, 1.0) : -1.0;
+    const double distance = std::max(glm::length(glm::dvec3(rel, frame.camera.origin.z)), 1.0);
+    c.size = inView(rel, radius) ? radius / distance : -1.0;
+    // The focal length in pixels (the projection's y scale times half the height), as ring thinning takes it.
+    const double focalPixels = std::abs(frame.camera.proj[1][1]) * 0.5 * frame.height;
+    c.pixels = std::abs(amplitude) * focalPixels / distance;
     return c;
 }
 
@@ -147,7 +151,8 @@ std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const OceanFra
         g.slick = static_cast<float>(s.slick);
         g.slickRadius = static_cast<float>(s.slickRadius);
         packed.push_back(g);
-        out.push_back(candidate(rel, s.radius, glm::dvec2(-s.radius), glm::dvec2(s.radius), frame, inView));
+        out.push_back(candidate(rel, s.radius, glm::dvec2(-s.radius), glm::dvec2(s.radius), s.amplitude,
+                                frame, inView));
     });
     return packed;
 }
@@ -177,13 +182,13 @@ void packWake(const WakeState& s, const glm::dvec2& rel, std::vector<WakeGpu>& h
     }
 }
 
-/// The indices of the effects that get a grid: in view, at least `minSize` on screen, the largest first, at
-/// most `max`.
+/// The indices of the effects that get a grid: in view, at least `minSize` on screen with waves at least
+/// `minPixels` tall there (EffectGridDesc), the largest first, at most `max`.
 std::vector<int> chooseGrids(const std::vector<Candidate>& c, size_t first, size_t last, double minSize,
-                             int max) {
+                             double minPixels, int max) {
     std::vector<int> chosen;
     for (size_t i = first; i < last; ++i)
-        if (c[i].size >= minSize && c[i].size >= 0.0)
+        if (c[i].size >= minSize && c[i].size >= 0.0 && c[i].pixels >= minPixels)
             chosen.push_back(static_cast<int>(i));
     std::stable_sort(chosen.begin(), chosen.end(), [&](int a, int b) { return c[a].size > c[b].size; });
     if (chosen.size() > static_cast<size_t>(max))
@@ -457,7 +462,7 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
             return;
         const glm::dvec2 rel = s.ship - mCamera;
         packWake(s, rel, wakes, points);
-        candidates.push_back(candidate(rel, s.radius, s.boxMin, s.boxMax, frame, inView));
+        candidates.push_back(candidate(rel, s.radius, s.boxMin, s.boxMax, s.peak, frame, inView));
         wakePaths.emplace_back();
         wakePath(s, rel, wakePaths.back().points, wakePaths.back().reach);
     });
@@ -484,10 +489,10 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
     binTiles(footprints, mExplosionCount);
     // The grids: explosions' then wakes', each (centre - camera, radius, 0).
     const size_t e = static_cast<size_t>(mExplosionCount);
-    const std::vector<int> explosionGrids =
-        chooseGrids(candidates, 0, e, grids.minAngularSize, grids.maxExplosionGrids);
-    const std::vector<int> wakeGrids =
-        chooseGrids(candidates, e, candidates.size(), grids.minAngularSize, grids.maxWakeGrids);
+    const std::vector<int> explosionGrids = chooseGrids(candidates, 0, e, grids.minAngularSize,
+                                                        grids.minAmplitudePixels, grids.maxExplosionGrids);
+    const std::vector<int> wakeGrids = chooseGrids(candidates, e, candidates.size(), grids.minAngularSize,
+                                                   grids.minAmplitudePixels, grids.maxWakeGrids);
     mExplosionsDrawn = static_cast<int>(explosionGrids.size());
     mWakesDrawn = static_cast<int>(wakeGrids.size());
     std::vector<glm::vec4> gridList;
