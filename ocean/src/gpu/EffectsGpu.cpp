@@ -14,6 +14,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <thread>
 #include <utility>
 
 namespace pacifica::ocean {
@@ -382,19 +383,48 @@ void binWake(const TileGrid& grid, const std::vector<uint8_t>& needed, const glm
     }
 }
 
+/// Every wake's entries, in wake order (footprints: the explosions' first, then the wakes'). A wake's
+/// binning costs about its tiles (~8,600 for a 1.2 km trail seen from 100 m at 1080p, ~60 ns each), so a
+/// fleet's is split over threads: contiguous runs of wakes, each into its own list, joined in order (the same
+/// entries as one thread). At least 4 wakes per thread keep a thread's start (tens of microseconds) small
+/// against its work.
+template <class Footprints>
+void binWakes(const TileGrid& grid, const std::vector<uint8_t>& needed, const Footprints& footprints,
+              int explosions, TileEntries& out) {
+    const int wakes = static_cast<int>(footprints.size()) - explosions;
+    auto run = [&](int from, int to, TileEntries& into) {
+        for (int w = from; w < to; ++w) {
+            const auto& f = footprints[static_cast<size_t>(explosions + w)];
+            binWake(grid, needed, f.lo, f.hi, f.points, f.reach, w, into);
+        }
+    };
+    constexpr int MIN_WAKES_PER_THREAD = 4;
+    const int cores = static_cast<int>(std::thread::hardware_concurrency());
+    const int threads = std::clamp(std::min(cores, wakes / MIN_WAKES_PER_THREAD), 1, 16);
+    if (threads == 1) {
+        run(0, wakes, out);
+        return;
+    }
+    std::vector<TileEntries> parts(static_cast<size_t>(threads));
+    std::vector<std::thread> workers;
+    for (int t = 1; t < threads; ++t)
+        workers.emplace_back(run, wakes * t / threads, wakes * (t + 1) / threads, std::ref(parts[size_t(t)]));
+    run(0, wakes / threads, parts[0]);
+    for (std::thread& w : workers)
+        w.join();
+    for (const TileEntries& p : parts)
+        out.insert(out.end(), p.begin(), p.end());
+}
+
 } // namespace
 
 void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosions) {
     const TileGrid grid(mLayout, mCamera);
     const std::vector<uint8_t> needed = grid.neededMask();
     TileEntries entries[2]; // explosions', wakes'
-    for (int g = 0; g < static_cast<int>(footprints.size()); ++g) {
-        const Footprint& f = footprints[static_cast<size_t>(g)];
-        if (g < explosions)
-            binExplosion(grid, needed, f.lo, f.hi, g, entries[0]);
-        else
-            binWake(grid, needed, f.lo, f.hi, f.points, f.reach, g - explosions, entries[1]);
-    }
+    for (int g = 0; g < explosions; ++g)
+        binExplosion(grid, needed, footprints[size_t(g)].lo, footprints[size_t(g)].hi, g, entries[0]);
+    binWakes(grid, needed, footprints, explosions, entries[1]);
     std::vector<int> counts(2 * grid.count(), 0); // [tile][kind]
     for (int kind = 0; kind < 2; ++kind)
         for (const auto& [t, e] : entries[kind])
