@@ -186,6 +186,12 @@ vec3 kelvinWave(int i, WakeCoords c, float behind, float lateral, float kMax) {
     return vec3(env * sum.x, dH.x, sign(lateral) * dH.y);
 }
 
+// Effects.cpp foamBand(): a band exp(-(d / w)^2) across a line, prefiltered by filter2, cut at 3 widths.
+float foamBand(float d, float w, float filter2) {
+    float width2 = w * w + filter2;
+    return d * d < 9.0 * width2 ? sqrt(w * w / width2) * exp(-(d * d) / width2) : 0.0;
+}
+
 // (h, dh/dx, dh/dy, foam) of wake i at q (relative to the ship), its path walked over segments first..last.
 vec4 wakeWave(int i, vec2 q, float kMax, int first, int last, float filter2) {
     float R = uWakes[i].gridRadius;
@@ -198,19 +204,31 @@ vec4 wakeWave(int i, vec2 q, float kMax, int first, int last, float filter2) {
     float h = kelvin.x, dx = kelvin.y, dy = kelvin.z;
     vec2 left = vec2(-c.direction.y, c.direction.x);
     vec2 g = -dx * c.direction + dy * left;
-    // wakeFoam(): the turbulent strip behind the stern.
+    // wakeFoam(): the propeller wash, the turbulent strip, the stern foam and the bow wave.
     WakeGpu wake = uWakes[i];
     int n = int(wake.points);
     float foam = 0.0;
     if (n >= 2 && c.amplitude > 0.0) {
-        float w = wake.beam * (1.0 + max(c.behind, 0.0) / 400.0);
-        float width2 = w * w + filter2;
-        float strip = c.lateral * c.lateral < 9.0 * width2 ? sqrt(w * w / width2) * exp(-(c.lateral * c.lateral) / width2)
-                                                          : 0.0;
-        float start = smoothstep(-wake.beam, 0.0, c.behind);
+        float L = wake.shipLength, B = wake.beam;
+        float strength = min(1.0, c.amplitude / 0.2) * exp(-c.age / wake.foamLife);
         float sigmaMax = uWakePoints[i * MAX_WAKE_POINTS * 2 + 2 * (n - 1)].z;
         float end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);
-        foam = clamp(min(1.0, c.amplitude / 0.2) * exp(-c.age / wake.foamLife) * strip * start * end, 0.0, 1.0);
+        float xs = c.behind - 0.5 * L;
+        float aft = smoothstep(-0.05 * L, 0.05 * L, xs);
+        float past = max(xs, 0.0);
+        float wash = foamBand(c.lateral, WAKE_WASH_WIDTH * B * sqrt(1.0 + past / (2.0 * L)), filter2);
+        float strip = WAKE_STRIP_SHARE * foamBand(c.lateral, B * (1.0 + past / 400.0), filter2);
+        float stern = exp(-past / (WAKE_STERN_LENGTH * L)) * foamBand(c.lateral, WAKE_STERN_WIDTH * B, filter2);
+        float xb = c.behind + 0.5 * L;
+        float froude = 1.0 / sqrt(max(c.k0, 1e-9) * L);
+        float bowPast = max(xb, 0.0);
+        float bow = smoothstep(WAKE_BOW_FROUDE_START, WAKE_BOW_FROUDE_FULL, froude) *
+                    smoothstep(-0.02 * L, 0.02 * L, xb) * exp(-bowPast / (WAKE_BOW_LENGTH * L)) *
+                    (1.0 - smoothstep(0.6 * WAKE_BOW_END * L, WAKE_BOW_END * L, bowPast)) *
+                    foamBand(abs(c.lateral) - (0.5 * B + sqrt(KELVIN_TAN2) * bowPast),
+                             WAKE_BOW_WIDTH * B + WAKE_BOW_WIDTH_GROWTH * bowPast, filter2);
+        float white = max(aft * max(max(wash, strip), stern), bow);
+        foam = clamp(strength * white * end, 0.0, 1.0);
     }
     return vec4(h, g, foam);
 }

@@ -320,20 +320,44 @@ glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax) {
     return {w.x, g.x, g.y};
 }
 
+namespace {
+
+/// A band exp(-(d / w)^2) across a line, prefiltered by filter2 (strength w / sqrt(w^2 + F^2)), cut at 3
+/// widths (e^-9: the GPU's tiles beyond hold no foam, EffectsGpu.cpp).
+double foamBand(double d, double w, double filter2) {
+    const double width2 = w * w + filter2;
+    return d * d < 9.0 * width2 ? std::sqrt(w * w / width2) * std::exp(-(d * d) / width2) : 0.0;
+}
+
+} // namespace
+
 double wakeFoam(const WakeState& s, const WakeCoords& c, double filter2) {
     if (s.sigma.empty() || c.amplitude <= 0.0)
         return 0.0;
-    const double w = s.beam * (1.0 + std::max(c.behind, 0.0) / 400.0);
-    const double width2 = w * w + filter2;
-    // Cut at 3 widths (e^-9): the GPU's tiles beyond hold no foam (EffectsGpu.cpp).
-    const double strip = c.lateral * c.lateral < 9.0 * width2
-                             ? std::sqrt(w * w / width2) * std::exp(-(c.lateral * c.lateral) / width2)
-                             : 0.0;
-    const double start = smoothstep(-s.beam, 0.0, c.behind);
+    const double L = s.length, B = s.beam;
+    const double strength = wakeFoamStrength(c.amplitude) * std::exp(-c.age / s.foamLife);
     const double sigmaMax = s.sigma.back();
     const double end = 1.0 - smoothstep(0.85 * sigmaMax, sigmaMax, c.behind);
-    return std::clamp(wakeFoamStrength(c.amplitude) * std::exp(-c.age / s.foamLife) * strip * start * end,
-                      0.0, 1.0);
+    // Behind the stern (the hull is centred on the ship's position): the wash, the strip, the stern foam.
+    const double xs = c.behind - 0.5 * L;
+    const double aft = smoothstep(-0.05 * L, 0.05 * L, xs);
+    const double past = std::max(xs, 0.0);
+    const double wash = foamBand(c.lateral, WAKE_WASH_WIDTH * B * std::sqrt(1.0 + past / (2.0 * L)), filter2);
+    const double strip = WAKE_STRIP_SHARE * foamBand(c.lateral, B * (1.0 + past / 400.0), filter2);
+    const double stern =
+        std::exp(-past / (WAKE_STERN_LENGTH * L)) * foamBand(c.lateral, WAKE_STERN_WIDTH * B, filter2);
+    // The bow wave: from each bow shoulder, spreading at the Kelvin angle; Froude number U / sqrt(g L) with
+    // U^2 = g / k0.
+    const double xb = c.behind + 0.5 * L;
+    const double froude = 1.0 / std::sqrt(std::max(c.k0, 1e-9) * L);
+    const double bowPast = std::max(xb, 0.0);
+    const double bow = smoothstep(WAKE_BOW_FROUDE_START, WAKE_BOW_FROUDE_FULL, froude) *
+                       smoothstep(-0.02 * L, 0.02 * L, xb) * std::exp(-bowPast / (WAKE_BOW_LENGTH * L)) *
+                       (1.0 - smoothstep(0.6 * WAKE_BOW_END * L, WAKE_BOW_END * L, bowPast)) *
+                       foamBand(std::abs(c.lateral) - (0.5 * B + std::sqrt(KELVIN_TAN2) * bowPast),
+                                WAKE_BOW_WIDTH * B + WAKE_BOW_WIDTH_GROWTH * bowPast, filter2);
+    const double white = std::max({aft * std::max({wash, strip, stern}), bow});
+    return std::clamp(strength * white * end, 0.0, 1.0);
 }
 
 // ---- Whole field ----------------------------------------------------------------------------------------

@@ -683,3 +683,41 @@ TEST(EffectsSystem, ThousandOverlappingExplosionsSaturate) {
 }
 
 } // namespace
+
+// The wake's white water (wakeFoam, Effects.h WAKE_*): a 60 m ship (beam 12 m) after 120 s at 10 m/s (Froude
+// number 10 / sqrt(9.81 * 60) = 0.41: a breaking bow wave). 100 m behind the stern the propeller wash is a
+// bright core (half-width 0.3 B sqrt(1 + 100 / 120) = 4.9 m) over the paler turbulent strip (0.45 as white,
+// half-width 15 m); beside the bow the bow wave's line leaves the shoulder (6 m out) at the Kelvin angle;
+// under the hull's forward half and ahead of the bow there is none; a ship at Froude 0.1 breaks no bow wave.
+TEST(Wake, WhiteWaterHasAWashCoreAStripAndABowWave) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const ecs::Entity ship = sail(reg, events, fx, 120.0, 10.0, 0.0);
+    const WakeState s = wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), 120.0);
+    auto foamAt = [&](const WakeState& w, double behind, double lateral) {
+        return wakeFoam(w, wakeCoords(w, glm::dvec2(-behind, lateral)));
+    };
+    const double L = 60.0, B = 12.0;
+    const double aged = std::exp(-13.0 / WakeParams{}.foamLife); // 100 m + L/2 behind: laid 13 s ago
+    const double core = foamAt(s, 0.5 * L + 100.0, 0.0), edge = foamAt(s, 0.5 * L + 100.0, 8.0);
+    EXPECT_NEAR(core, aged, 0.01) << "the wash is white on the track";
+    EXPECT_NEAR(edge, 0.45 * std::exp(-std::pow(8.0 / (B * 1.25), 2.0)) * aged, 0.01) << "the strip, paler";
+    EXPECT_GT(core, 2.5 * edge);
+    EXPECT_LT(foamAt(s, 0.5 * L + 100.0, 50.0), 1e-3) << "beyond 3 strip widths";
+    // The bow wave 20 m behind the bow: its line at 6 + 20 / sqrt(8) = 13.1 m out, e^(-20 / 21) strong.
+    const double bow = foamAt(s, -0.5 * L + 20.0, 13.07);
+    EXPECT_NEAR(bow, std::exp(-20.0 / (0.35 * L)), 0.03);
+    EXPECT_GT(bow, 5.0 * foamAt(s, -0.5 * L + 20.0, 20.0)) << "a line, not a sheet";
+    EXPECT_LT(foamAt(s, -0.5 * L + 20.0, 0.0), 1e-6) << "none under the hull's forward half";
+    EXPECT_LT(foamAt(s, -0.5 * L - 10.0, 6.0), 1e-6) << "none ahead of the bow";
+    EXPECT_LT(foamAt(s, 2.0 * L, 40.0), 1e-3) << "the bow wave is gone a ship length behind the bow";
+    // A slow ship (2.4 m/s: Froude 0.1) pushes a smooth bow wave; its stern still leaves wash.
+    ecs::Registry slowReg;
+    ecs::EventQueue slowEvents;
+    EffectsSystem slowFx(slowReg, slowEvents);
+    const ecs::Entity slowShip = sail(slowReg, slowEvents, slowFx, 120.0, 0.1 * std::sqrt(GRAVITY * L), 0.0);
+    const WakeState slow = wakeState(slowReg.get<Ship>(slowShip), slowReg.get<ShipTrail>(slowShip), 120.0);
+    EXPECT_EQ(foamAt(slow, -0.5 * L + 20.0, 13.07), 0.0);
+    EXPECT_GT(foamAt(slow, 0.5 * L + 20.0, 0.0), 0.05);
+}

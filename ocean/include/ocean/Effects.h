@@ -54,6 +54,29 @@ double effectBandFade(double k, double kMax);
 /// weaker). It also keeps the far wake within what its grid can carry.
 inline constexpr double KELVIN_DECAY_WAVELENGTHS = 25.0;
 
+/// The wake's white water (wakeFoam; docs/EFFECTS.md "The wake's white water"), in ship lengths L and beams
+/// B (B = L / 5) from the hull's centre, where the ship's position is:
+/// - propeller wash: a bright core behind the stern, 1/e half-width WAKE_WASH_WIDTH B (1 + x_s / 2L)^(1/2)
+///   at x_s behind the stern;
+/// - turbulent wake: the paler strip around it, WAKE_STRIP_SHARE as white, half-width B (1 + x_s / 400 m);
+/// - stern foam: churned water right behind the stern, half-width WAKE_STERN_WIDTH B, fading over
+///   WAKE_STERN_LENGTH L;
+/// - bow wave: white water breaking off each bow shoulder along a line spreading at the Kelvin angle,
+///   half-width WAKE_BOW_WIDTH B + WAKE_BOW_WIDTH_GROWTH x_b at x_b behind the bow, fading over
+///   WAKE_BOW_LENGTH L and gone by WAKE_BOW_END L (so it stays inside the foam's reach, 3 B beside the
+///   track), and only above a Froude number U / sqrt(g L) of WAKE_BOW_FROUDE_START (full from
+///   WAKE_BOW_FROUDE_FULL): slow ships push a smooth bow wave.
+inline constexpr double WAKE_WASH_WIDTH = 0.3;
+inline constexpr double WAKE_STRIP_SHARE = 0.45;
+inline constexpr double WAKE_STERN_WIDTH = 0.6;
+inline constexpr double WAKE_STERN_LENGTH = 0.25;
+inline constexpr double WAKE_BOW_WIDTH = 0.08;
+inline constexpr double WAKE_BOW_WIDTH_GROWTH = 0.03;
+inline constexpr double WAKE_BOW_LENGTH = 0.35;
+inline constexpr double WAKE_BOW_END = 1.0;
+inline constexpr double WAKE_BOW_FROUDE_START = 0.12;
+inline constexpr double WAKE_BOW_FROUDE_FULL = 0.3;
+
 // ---- Explosion ------------------------------------------------------------------------------------------
 
 /// The §18.3 ring wave's parameters (the seed names I0, b, k and w): amplitude I0, decay b, wave number k,
@@ -210,9 +233,10 @@ glm::dvec3 wakeWave(const WakeState& s, const glm::dvec2& q, double kMax = EFFEC
 /// The same from the point's path coordinates (wakeCoords), for a caller that also needs them (foam); no box
 /// test.
 glm::dvec3 wakeWaveAt(const WakeState& s, const WakeCoords& c, double kMax = EFFECT_K_MAX);
-/// Wake foam in [0, 1]: the turbulent strip behind the stern, exp(-(y / w)^2) for |y| < 3 w (0 beyond),
-/// w = beam (1 + x / 400 m), times its growth/decay over the path's age.
-/// `filter2` prefilters the strip as explosionFoam() does the crown (across it: w^2 -> w^2 + F^2, strength
+/// Wake foam in [0, 1]: the brightest of the propeller wash, the turbulent strip, the stern foam and the bow
+/// wave (the WAKE_* constants above), each a band exp(-(d / w)^2) across its line for |d| < 3 w (0 beyond),
+/// times the strength the ship's speed gave the path there and e^(-age / foamLife).
+/// `filter2` prefilters each band as explosionFoam() does the crown (across it: w^2 -> w^2 + F^2, strength
 /// times w / sqrt(w^2 + F^2)).
 double wakeFoam(const WakeState& s, const WakeCoords& c, double filter2 = 0.0);
 
