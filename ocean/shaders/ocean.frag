@@ -265,7 +265,7 @@ vec3 shadeSea() {
 
 #ifndef SHADE_COMPUTE
 void main() {
-#ifdef EFFECT_HOLES
+#if defined(EFFECT_HOLES) && !defined(EFFECT_HOLES_CLIPPED) // else cut by the clipper
     if (insideEffectGrid(vGrid))
         discard;
 #endif

@@ -11,7 +11,7 @@ layout(location = 0) out vec4 gFootprint; // (dFdx(vGrid), dFdy(vGrid))
 layout(location = 1) out vec4 gOffset;    // (vGrid - vRel.xy, 0, 0): GBUFFER_DISPLACED only
 
 void main() {
-#ifdef EFFECT_HOLES
+#if defined(EFFECT_HOLES) && !defined(EFFECT_HOLES_CLIPPED) // else cut by the clipper
     if (insideEffectGrid(vGrid))
         discard;
 #endif

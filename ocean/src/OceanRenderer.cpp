@@ -515,8 +515,15 @@ void OceanRenderer::FramePasses::compute() {
         countEffectUploads(*r.mEffects, r.mStats);
         r.mStats.passes += r.mStats.effectField.passes;
     }
-    fxDefines =
-        std::string(effects ? "#define EFFECT_FIELD\n" : "") + (holes ? "#define EFFECT_HOLES\n" : "");
+    // With at most EFFECT_GRID_CLIPS grids the clipper cuts every hole (effects_sample.glsl clipEffectGrids):
+    // the base grid's fragments keep no discard, so the depth test runs before them. What the clip leaves
+    // of a hole (slivers between its triangles' chords and the 0.98 R circle) lies under the grid that
+    // draws the same surface there.
+    const int grids =
+        effects ? r.mEffects->drawn(EffectKind::Explosion) + r.mEffects->drawn(EffectKind::Wake) : 0;
+    fxDefines = std::string(effects ? "#define EFFECT_FIELD\n" : "") +
+                (holes ? "#define EFFECT_HOLES\n" : "") +
+                (holes && grids <= EFFECT_GRID_CLIPS ? "#define EFFECT_HOLES_CLIPPED\n" : "");
     marks.mark(PassCompute); // the surface model's passes and the effects field's
     // Compute shading: the grids only fill a G-buffer sharing the host's depth (ComputeShading.h).
     displaced = horizontalGuard(ocean) > 0.0;
