@@ -356,7 +356,7 @@ double wakeFoam(const WakeState& s, const WakeCoords& c, double filter2) {
                        (1.0 - smoothstep(0.6 * WAKE_BOW_END * L, WAKE_BOW_END * L, bowPast)) *
                        foamBand(std::abs(c.lateral) - (0.5 * B + std::sqrt(KELVIN_TAN2) * bowPast),
                                 WAKE_BOW_WIDTH * B + WAKE_BOW_WIDTH_GROWTH * bowPast, filter2);
-    const double white = std::max({aft * std::max({wash, strip, stern}), bow});
+    const double white = std::max(aft * std::max({wash, strip, stern}), bow);
     return std::clamp(strength * white * end, 0.0, 1.0);
 }
 

@@ -505,11 +505,13 @@ void OceanRenderer::FramePasses::compute() {
     r.mStats.passes += work.computePasses;
     r.mStats.uploads += work.uploads;
     // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
+    int grids = 0; // secondary grids drawn this frame
     if (hasEffects(registry)) {
         r.mEffects->prepare(registry, frame, effectHeightBound(ocean), ocean.desc.effectGrids,
                             ocean.desc.effectField);
         effects = r.mEffects->any();
-        holes = effects && r.mEffects->drawn(EffectKind::Explosion) + r.mEffects->drawn(EffectKind::Wake) > 0;
+        grids = effects ? r.mEffects->drawn(EffectKind::Explosion) + r.mEffects->drawn(EffectKind::Wake) : 0;
+        holes = grids > 0;
         if (effects)
             r.mEffects->computeField(r.effectFieldProgram());
         countEffectUploads(*r.mEffects, r.mStats);
@@ -519,8 +521,6 @@ void OceanRenderer::FramePasses::compute() {
     // the base grid's fragments keep no discard, so the depth test runs before them. What the clip leaves
     // of a hole (slivers between its triangles' chords and the 0.98 R circle) lies under the grid that
     // draws the same surface there.
-    const int grids =
-        effects ? r.mEffects->drawn(EffectKind::Explosion) + r.mEffects->drawn(EffectKind::Wake) : 0;
     fxDefines = std::string(effects ? "#define EFFECT_FIELD\n" : "") +
                 (holes ? "#define EFFECT_HOLES\n" : "") +
                 (holes && grids <= EFFECT_GRID_CLIPS ? "#define EFFECT_HOLES_CLIPPED\n" : "");

@@ -112,6 +112,15 @@ ecs::Entity sail(ecs::Registry& reg, ecs::EventQueue& events, EffectsSystem& fx,
     return ship;
 }
 
+/// The wake of a ship that has sailed `seconds` (sail()) as it stands at the end, t = seconds.
+WakeState sailedWake(double seconds, double speed, double turnRate) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const ecs::Entity ship = sail(reg, events, fx, seconds, speed, turnRate);
+    return wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), seconds);
+}
+
 TEST(Wake, KelvinWedgeOnAStraightCourse) {
     ecs::Registry reg;
     ecs::EventQueue events;
@@ -170,11 +179,7 @@ TEST(Wake, KelvinPhaseIsStationaryAtItsRoots) {
 // a 60 m ship at 8 m/s (waves from 3 m up), across the band limit, near the cusp, just behind the stern and
 // on the track: within 1e-3 of the largest slope, and the same height.
 TEST(Wake, KelvinWaveGradientIsTheHeightsDerivative) {
-    ecs::Registry reg;
-    ecs::EventQueue events;
-    EffectsSystem fx(reg, events);
-    const ecs::Entity ship = sail(reg, events, fx, 120.0, 8.0, 0.0);
-    const WakeState s = wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), 120.0);
+    const WakeState s = sailedWake(120.0, 8.0, 0.0);
     double worst = 0.0, largest = 0.0;
     int points = 0;
     for (double kMax : {EFFECT_K_MAX, 0.2})
@@ -204,13 +209,9 @@ TEST(Wake, KelvinWaveGradientIsTheHeightsDerivative) {
 }
 
 TEST(Wake, TurningShipLeavesACurvedWake) {
-    ecs::Registry reg;
-    ecs::EventQueue events;
-    EffectsSystem fx(reg, events);
     // 90 degrees over 60 s at 8 m/s: radius 305 m.
     const double rate = (std::numbers::pi / 2.0) / 60.0;
-    const ecs::Entity ship = sail(reg, events, fx, 60.0, 8.0, rate);
-    const WakeState s = wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), 60.0);
+    const WakeState s = sailedWake(60.0, 8.0, rate);
     // The foam strip follows the path: a point on the path 45 degrees back is white, the point where a
     // straight wake (behind the current heading) would be is not.
     const double radius = 8.0 / rate;
@@ -690,11 +691,7 @@ TEST(EffectsSystem, ThousandOverlappingExplosionsSaturate) {
 // half-width 15 m); beside the bow the bow wave's line leaves the shoulder (6 m out) at the Kelvin angle;
 // under the hull's forward half and ahead of the bow there is none; a ship at Froude 0.1 breaks no bow wave.
 TEST(Wake, WhiteWaterHasAWashCoreAStripAndABowWave) {
-    ecs::Registry reg;
-    ecs::EventQueue events;
-    EffectsSystem fx(reg, events);
-    const ecs::Entity ship = sail(reg, events, fx, 120.0, 10.0, 0.0);
-    const WakeState s = wakeState(reg.get<Ship>(ship), reg.get<ShipTrail>(ship), 120.0);
+    const WakeState s = sailedWake(120.0, 10.0, 0.0);
     auto foamAt = [&](const WakeState& w, double behind, double lateral) {
         return wakeFoam(w, wakeCoords(w, glm::dvec2(-behind, lateral)));
     };
@@ -713,11 +710,7 @@ TEST(Wake, WhiteWaterHasAWashCoreAStripAndABowWave) {
     EXPECT_LT(foamAt(s, -0.5 * L - 10.0, 6.0), 1e-6) << "none ahead of the bow";
     EXPECT_LT(foamAt(s, 2.0 * L, 40.0), 1e-3) << "the bow wave is gone a ship length behind the bow";
     // A slow ship (2.4 m/s: Froude 0.1) pushes a smooth bow wave; its stern still leaves wash.
-    ecs::Registry slowReg;
-    ecs::EventQueue slowEvents;
-    EffectsSystem slowFx(slowReg, slowEvents);
-    const ecs::Entity slowShip = sail(slowReg, slowEvents, slowFx, 120.0, 0.1 * std::sqrt(GRAVITY * L), 0.0);
-    const WakeState slow = wakeState(slowReg.get<Ship>(slowShip), slowReg.get<ShipTrail>(slowShip), 120.0);
+    const WakeState slow = sailedWake(120.0, 0.1 * std::sqrt(GRAVITY * L), 0.0);
     EXPECT_EQ(foamAt(slow, -0.5 * L + 20.0, 13.07), 0.0);
     EXPECT_GT(foamAt(slow, 0.5 * L + 20.0, 0.0), 0.05);
 }
