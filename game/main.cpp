@@ -34,6 +34,7 @@
 #include <ocean/Effects.h>
 #include <ocean/Ocean.h>
 #include <ocean/OceanConstants.h>
+#include <ocean/OceanHost.h>
 #include <ocean/Presets.h>
 #include <ocean/SeaState.h>
 #include <recording/CameraRig.h>
@@ -502,7 +503,7 @@ void Session::draw(const Pose& camPose, const glm::ivec2& size) {
     const ocean::OceanFrame f =
         ocean::makeOceanFrame(camPose, static_cast<float>(gs.fovDeg * std::numbers::pi / 180.0), size.x,
                               size.y, world.time(), targets->sceneFramebuffer().id());
-    renderer->render(sortie->registry, f);
+    render(*renderer, sortie->registry, f);
     const ocean::OceanComponent& oc = sortie->registry.get<ocean::OceanComponent>(sortie->ocean);
     gs.objectsDrawn = objects.draw(sceneObjects(*sortie, gs.camera), f.camera, f.targetFramebuffer, size.x,
                                    size.y, oc.desc.lighting.sunDirection, ocean::EARTH_RADIUS);

@@ -6,6 +6,7 @@
 #include "engine/Log.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanHost.h"
 
 #include <algorithm>
 #include <cmath>
@@ -369,27 +370,27 @@ struct FieldSample {
     double foam = 0.0;
 };
 
-FieldSample sampleEffects(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax,
+FieldSample sampleEffects(const EffectsView& effects, const glm::dvec2& xy, double t, double kMax,
                           double filter2 = 0.0) {
     FieldSample f;
-    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
+    for (const Explosion& e : effects.explosions) {
         const ExplosionState s = explosionState(e, t);
         const glm::dvec2 q = xy - e.center;
         const glm::dvec3 w = explosionWave(e.params, s, q, kMax);
         f.wave += w;
         f.foam = std::max(f.foam, explosionFoam(e.params, s, q, w.x, filter2));
-    });
-    registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
-        if (!trail.active)
-            return;
-        const WakeState s = wakeState(ship, trail, t);
+    }
+    for (const WakeRef& wake : effects.wakes) {
+        if (!wake.trail->active)
+            continue;
+        const WakeState s = wakeState(*wake.ship, *wake.trail, t);
         const glm::dvec2 q = xy - s.ship;
         if (!insideWakeBox(s, q))
-            return;
+            continue;
         const WakeCoords c = wakeCoords(s, q); // one path walk for both
         f.wave += wakeWaveAt(s, c, kMax);
         f.foam = std::max(f.foam, wakeFoam(s, c, filter2));
-    });
+    }
     return f;
 }
 
@@ -402,18 +403,38 @@ glm::dvec3 saturate(const glm::dvec3& sum) {
 
 } // namespace
 
+glm::dvec3 effectsAt(const EffectsView& effects, const glm::dvec2& xy, double t, double kMax) {
+    return saturate(sampleEffects(effects, xy, t, kMax).wave);
+}
+
+double effectsFoamAt(const EffectsView& effects, const glm::dvec2& xy, double t) {
+    return sampleEffects(effects, xy, t, EFFECT_K_MAX).foam;
+}
+
+glm::dvec4 effectsFieldAt(const EffectsView& effects, const glm::dvec2& xy, double t, double kMax,
+                          double foamFilter2) {
+    const FieldSample f = sampleEffects(effects, xy, t, kMax, foamFilter2);
+    return glm::dvec4(saturate(f.wave), f.foam);
+}
+
+RegistryEffects::RegistryEffects(ecs::Registry& registry) {
+    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) { mExplosions.push_back(e); });
+    registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
+        mWakes.push_back({&ship, &trail});
+    });
+}
+
 glm::dvec3 effectsAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax) {
-    return saturate(sampleEffects(registry, xy, t, kMax).wave);
+    return effectsAt(RegistryEffects(registry).view(), xy, t, kMax);
 }
 
 double effectsFoamAt(ecs::Registry& registry, const glm::dvec2& xy, double t) {
-    return sampleEffects(registry, xy, t, EFFECT_K_MAX).foam;
+    return effectsFoamAt(RegistryEffects(registry).view(), xy, t);
 }
 
 glm::dvec4 effectsFieldAt(ecs::Registry& registry, const glm::dvec2& xy, double t, double kMax,
                           double foamFilter2) {
-    const FieldSample f = sampleEffects(registry, xy, t, kMax, foamFilter2);
-    return glm::dvec4(saturate(f.wave), f.foam);
+    return effectsFieldAt(RegistryEffects(registry).view(), xy, t, kMax, foamFilter2);
 }
 
 // ---- The effects field ----------------------------------------------------------------------------------
@@ -470,8 +491,8 @@ namespace {
 
 /// Level l read bilinearly at `world` from texel values computed on the CPU (effects.glsl's
 /// effectFieldLevel()).
-glm::dvec4 bilinear(ecs::Registry& registry, const EffectFieldLayout& layout, int l, const glm::dvec2& world,
-                    double t) {
+glm::dvec4 bilinear(const EffectsView& effects, const EffectFieldLayout& layout, int l,
+                    const glm::dvec2& world, double t) {
     const EffectFieldLevel& level = layout.level(l);
     const int size = layout.desc().size;
     const glm::dvec2 u = (world - level.centre) / level.texel + 0.5 * size - 0.5;
@@ -480,7 +501,7 @@ glm::dvec4 bilinear(ecs::Registry& registry, const EffectFieldLayout& layout, in
     const int i = std::clamp(static_cast<int>(f.x), 0, size - 2);
     const int j = std::clamp(static_cast<int>(f.y), 0, size - 2);
     auto at = [&](int di, int dj) {
-        return effectsFieldAt(registry, layout.texelCentre(l, i + di, j + dj), t, level.kMax,
+        return effectsFieldAt(effects, layout.texelCentre(l, i + di, j + dj), t, level.kMax,
                               level.foamFilter2);
     };
     return glm::mix(glm::mix(at(0, 0), at(1, 0), w.x), glm::mix(at(0, 1), at(1, 1), w.x), w.y);
@@ -488,18 +509,23 @@ glm::dvec4 bilinear(ecs::Registry& registry, const EffectFieldLayout& layout, in
 
 } // namespace
 
-glm::dvec4 sampleEffectField(ecs::Registry& registry, const EffectFieldLayout& layout, const glm::dvec2& xy,
-                             double t) {
+glm::dvec4 sampleEffectField(const EffectsView& effects, const EffectFieldLayout& layout,
+                             const glm::dvec2& xy, double t) {
     const EffectFieldLayout::Pick p = layout.pick(xy);
     if (p.level < 0)
         return glm::dvec4(0.0);
-    glm::dvec4 v = bilinear(registry, layout, p.level, xy, t);
+    glm::dvec4 v = bilinear(effects, layout, p.level, xy, t);
     if (p.blend > 0.0) {
         const glm::dvec4 next =
-            p.level + 1 < layout.levels() ? bilinear(registry, layout, p.level + 1, xy, t) : glm::dvec4(0.0);
+            p.level + 1 < layout.levels() ? bilinear(effects, layout, p.level + 1, xy, t) : glm::dvec4(0.0);
         v = glm::mix(v, next, p.blend);
     }
     return v;
+}
+
+glm::dvec4 sampleEffectField(ecs::Registry& registry, const EffectFieldLayout& layout, const glm::dvec2& xy,
+                             double t) {
+    return sampleEffectField(RegistryEffects(registry).view(), layout, xy, t);
 }
 
 double oceanHeightAt(ecs::Registry& registry, ecs::Entity ocean, const glm::dvec2& xy, double t) {

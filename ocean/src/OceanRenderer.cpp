@@ -3,10 +3,13 @@
 // costs no shader work), and the frame's passes: the sea, its effects, then the sky (optional) where no sea
 // was drawn, into a framebuffer the host lends.
 #include "ocean/Ocean.h"
+#include "ocean/OceanDebug.h"
+#include "ocean/OceanHost.h"
 
 #include "engine/Log.h"
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GlObjects.h"
+#include "engine/gl/PassTimer.h"
 #include "engine/gl/Shader.h"
 #include "gpu/ComputeShading.h"
 #include "gpu/EffectsGpu.h"
@@ -25,16 +28,18 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <new>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 #include <vector>
 
 namespace pacifica::ocean {
 
 OceanFrame makeOceanFrame(const Pose& pose, float fovYRadians, int width, int height, double time,
-                          unsigned framebuffer, float nearPlane) {
+                          unsigned framebuffer, float nearPlane) noexcept {
     OceanFrame f;
     f.camera =
         makeCameraFrame(pose, fovYRadians, static_cast<float>(width) / static_cast<float>(height), nearPlane);
@@ -80,7 +85,31 @@ void validateEffectGrids(const EffectGridDesc& g) {
 
 } // namespace
 
-OceanComponent makeOcean(const OceanDesc& desc) {
+namespace {
+
+/// Runs `body`, turning what it throws into a Status (ErrorCode by the exception's type; the message as
+/// thrown, naming the field or the program): the component boundary's one catch.
+template <class Body>
+Status guarded(Body&& body) noexcept {
+    try {
+        body();
+        return {};
+    } catch (const std::invalid_argument& e) {
+        return {ErrorCode::InvalidArgument, e.what()};
+    } catch (const std::out_of_range& e) {
+        return {ErrorCode::InvalidArgument, e.what()};
+    } catch (const gl::ShaderError& e) {
+        return {ErrorCode::GpuFailure, e.what()};
+    } catch (const std::bad_alloc&) {
+        return {ErrorCode::OutOfMemory, "out of memory"};
+    } catch (const std::exception& e) {
+        return {ErrorCode::Internal, e.what()};
+    } catch (...) {
+        return {ErrorCode::Internal, "unknown exception"};
+    }
+}
+
+OceanComponent buildOcean(const OceanDesc& desc) {
     validateLighting(desc.lighting); // names the field (ocean/include/ocean/Lighting.h)
     validateEffectGrids(desc.effectGrids);
     validate(desc.effectField);
@@ -91,7 +120,68 @@ OceanComponent makeOcean(const OceanDesc& desc) {
     return c;
 }
 
-struct OceanRenderer::Programs {
+void requireFinite(bool finite, const std::string& what) {
+    if (!finite)
+        throw std::invalid_argument(what + " must be finite");
+}
+
+/// What render() needs of its inputs: pixels to draw, a finite time and camera, and no null in the spans.
+void validateScene(const OceanScene& scene, const OceanFrame& frame) {
+    if (frame.width <= 0 || frame.height <= 0)
+        throw std::invalid_argument("OceanFrame.width and .height must be > 0, got " +
+                                    std::to_string(frame.width) + "x" + std::to_string(frame.height));
+    requireFinite(std::isfinite(frame.time), "OceanFrame.time");
+    const glm::dvec3 o = frame.camera.origin;
+    requireFinite(std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z), "OceanFrame.camera.origin");
+    for (size_t i = 0; i < scene.oceans.size(); ++i)
+        if (!scene.oceans[i].ocean)
+            throw std::invalid_argument("OceanScene.oceans[" + std::to_string(i) + "].ocean is null");
+    for (size_t i = 0; i < scene.effects.explosions.size(); ++i) {
+        const Explosion& e = scene.effects.explosions[i];
+        requireFinite(std::isfinite(e.center.x) && std::isfinite(e.center.y) && std::isfinite(e.startTime),
+                      "OceanScene.effects.explosions[" + std::to_string(i) + "] centre and startTime");
+    }
+    for (size_t i = 0; i < scene.effects.wakes.size(); ++i) {
+        const WakeRef& w = scene.effects.wakes[i];
+        if (!w.ship || !w.trail)
+            throw std::invalid_argument("OceanScene.effects.wakes[" + std::to_string(i) +
+                                        "]: ship and trail must not be null");
+        requireFinite(std::isfinite(w.ship->position.x) && std::isfinite(w.ship->position.y),
+                      "OceanScene.effects.wakes[" + std::to_string(i) + "].ship->position");
+    }
+}
+
+} // namespace
+
+Status makeOcean(const OceanDesc& desc, OceanComponent& out) noexcept {
+    return guarded([&] { out = buildOcean(desc); });
+}
+
+Status heightsAt(const OceanComponent& ocean, const EffectsView& effects, std::span<const glm::dvec2> points,
+                 double t, std::span<double> heights) noexcept {
+    return guarded([&] {
+        if (!ocean.surface)
+            throw std::invalid_argument(
+                "heightsAt(): the OceanComponent has no surface (made by makeOcean?)");
+        if (points.size() != heights.size())
+            throw std::invalid_argument(
+                "heightsAt(): points and heights differ in size: " + std::to_string(points.size()) + " vs " +
+                std::to_string(heights.size()));
+        requireFinite(std::isfinite(t), "heightsAt(): time");
+        for (size_t i = 0; i < points.size(); ++i)
+            requireFinite(std::isfinite(points[i].x) && std::isfinite(points[i].y),
+                          "heightsAt(): points[" + std::to_string(i) + "]");
+        std::vector<double> base;
+        ocean.surface->heightsAt(std::vector<glm::dvec2>(points.begin(), points.end()), t, base);
+        for (size_t i = 0; i < points.size(); ++i)
+            base[i] += effects.empty() ? 0.0 : effectsAt(effects, points[i], t).x;
+        std::copy(base.begin(), base.end(), heights.begin());
+    });
+}
+
+namespace detail {
+
+struct Programs {
     std::map<std::string, gl::Program> sea;         // per surface model's GLSL set
     std::map<std::string, gl::Program> seaFeedback; // vertex stage only, captures vRel
     std::map<std::string, gl::Program> effectField; // per kinds present: the effects field's compute pass
@@ -108,7 +198,7 @@ struct OceanRenderer::Programs {
     gl::Framebuffer feedbackFbo;
 };
 
-struct OceanRenderer::Gpu {
+struct OceanGpu {
     std::shared_ptr<const SurfaceModel> surface; // the model these resources were built from
     std::unique_ptr<SurfaceGpu> model;
     std::string programKey;
@@ -123,6 +213,32 @@ struct OceanRenderer::Gpu {
     gl::Buffer thinIndices;
     int thinIndexCount = 0;
     bool thinBound = false; // the VAO's element buffer is thinIndices (else mesh.indices)
+};
+
+} // namespace detail
+
+using detail::OceanGpu;
+using detail::Programs;
+
+/// Everything the renderer keeps between frames (Ocean.h shows only the pointer).
+struct OceanRenderer::Impl {
+    std::unique_ptr<Programs> mPrograms = std::make_unique<Programs>();
+    std::unique_ptr<LightingGpu> mLighting = std::make_unique<LightingGpu>();
+    std::unique_ptr<EffectsGpu> mEffects = std::make_unique<EffectsGpu>();
+    std::unique_ptr<ComputeShading> mCompute =
+        std::make_unique<ComputeShading>();                            // computeShading's G-buffer
+    std::unordered_map<std::uint64_t, std::unique_ptr<OceanGpu>> mGpu; // by OceanInstance::id
+    OceanStats mStats;
+    std::unique_ptr<gl::PassTimer> mPassTimer;
+    OceanPassTimes mPassTimes; // the newest measured frame's
+
+    void render(const OceanScene& scene, const OceanFrame& frame);
+    void renderPasses(const OceanScene& scene, const OceanFrame& frame);
+    OceanGpu& prepare(std::uint64_t id, const OceanComponent& ocean);
+    /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once):
+    /// lit, transform feedback (tests), or into the G-buffer (compute shading).
+    unsigned effectProgram(OceanGpu& gpu, bool feedback, bool geometry);
+    unsigned effectFieldProgram();
 };
 
 namespace {
@@ -165,7 +281,7 @@ bool sameProjected(const ProjectedGridDesc& a, const ProjectedGridDesc& b) {
            a.maxDisplacement == b.maxDisplacement && a.guardBand == b.guardBand;
 }
 
-void buildGrid(OceanRenderer::Gpu& gpu, const OceanDesc& desc) {
+void buildGrid(OceanGpu& gpu, const OceanDesc& desc) {
     gpu.gridKind = desc.gridKind;
     gpu.gridDesc = desc.grid;
     if (desc.gridKind == GridKind::Projected) {
@@ -208,7 +324,7 @@ double verticalReach(const OceanComponent& ocean) {
 /// joining the rings drawn (rebuilt and uploaded when the selection changes; counted in `stats`), less the
 /// inner rings no part of which can be in view (OceanDesc::skipHiddenRings: hiddenDiscRadius()). Binds the
 /// matching element buffer to the grid's VAO. `vertices` = vertices shaded.
-std::vector<RadialGrid::IndexRange> seaIndices(OceanRenderer::Gpu& gpu, const OceanComponent& ocean,
+std::vector<RadialGrid::IndexRange> seaIndices(OceanGpu& gpu, const OceanComponent& ocean,
                                                const OceanFrame& frame, OceanStats& stats,
                                                long long& vertices) {
     if (!gpu.radial) {
@@ -262,8 +378,7 @@ std::vector<RadialGrid::IndexRange> seaIndices(OceanRenderer::Gpu& gpu, const Oc
 /// The uniforms every displaced-grid vertex stage shares (ocean.vert, ocean_projected.vert, effects.vert):
 /// the model's (wrapped in double), the camera-relative transform, the camera height, the displaced radius,
 /// the curvature drop.
-void setSurfaceUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
-                        const OceanFrame& frame) {
+void setSurfaceUniforms(GLuint prog, const OceanComponent& ocean, OceanGpu& gpu, const OceanFrame& frame) {
     gpu.model->bind(prog, 0, frame.time, frame.camera.origin);
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE,
                               glm::value_ptr(frame.camera.viewProj));
@@ -290,8 +405,7 @@ void setCullUniform(GLuint prog, const OceanComponent& ocean, const OceanFrame& 
 
 /// Per-frame uniforms of the sea's vertex stage: setSurfaceUniforms(), the view sector and the cull test.
 /// Returns false when the sea is not in view at all (projected grid: nothing of the wave volume on screen).
-bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanRenderer::Gpu& gpu,
-                    const OceanFrame& frame) {
+bool setSeaUniforms(GLuint prog, const OceanComponent& ocean, OceanGpu& gpu, const OceanFrame& frame) {
     setSurfaceUniforms(prog, ocean, gpu, frame);
     // Horizontal displacement (Gerstner, FFT) can move a vertex from outside the sector into view: widen the
     // sector near the camera by asin(guard / r) (whole circle within guard), guard = 2 Hs, and the cull test
@@ -320,12 +434,6 @@ void enableGridClips(bool on) {
         on ? glEnable(GLenum(GL_CLIP_DISTANCE0 + i)) : glDisable(GLenum(GL_CLIP_DISTANCE0 + i));
 }
 
-bool hasEffects(ecs::Registry& registry) {
-    auto explosions = registry.view<Explosion>();
-    auto trails = registry.view<ShipTrail>();
-    return explosions.begin() != explosions.end() || trails.begin() != trails.end();
-}
-
 /// How far above or below its disc an effect grid's surface can reach: the base surface (2 Hs) plus the
 /// saturated effect field.
 double effectHeightBound(const OceanComponent& ocean) {
@@ -346,16 +454,14 @@ void countEffectUploads(const EffectsGpu& fx, OceanStats& stats) {
 
 } // namespace
 
-OceanRenderer::OceanRenderer()
-    : mPrograms(std::make_unique<Programs>()), mLighting(std::make_unique<LightingGpu>()),
-      mEffects(std::make_unique<EffectsGpu>()), mCompute(std::make_unique<ComputeShading>()) {}
+OceanRenderer::OceanRenderer() noexcept : mImpl(std::make_unique<Impl>()) {}
 
 OceanRenderer::~OceanRenderer() = default;
 
-OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& ocean) {
-    std::unique_ptr<Gpu>& gpu = mGpu[e];
+OceanGpu& OceanRenderer::Impl::prepare(std::uint64_t id, const OceanComponent& ocean) {
+    std::unique_ptr<OceanGpu>& gpu = mGpu[id];
     if (!gpu)
-        gpu = std::make_unique<Gpu>();
+        gpu = std::make_unique<OceanGpu>();
     if (gpu->surface != ocean.surface) {
         gpu->model = makeSurfaceGpu(ocean.surface);
         gpu->surface = ocean.surface;
@@ -370,7 +476,7 @@ OceanRenderer::Gpu& OceanRenderer::prepare(ecs::Entity e, const OceanComponent& 
     return *gpu;
 }
 
-unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback, bool geometry) {
+unsigned OceanRenderer::Impl::effectProgram(OceanGpu& gpu, bool feedback, bool geometry) {
     gl::Program& program = (feedback   ? mPrograms->effectsFeedback
                             : geometry ? mPrograms->effectsGeometry
                                        : mPrograms->effects)[gpu.programKey];
@@ -398,7 +504,7 @@ unsigned OceanRenderer::effectProgram(Gpu& gpu, bool feedback, bool geometry) {
     return program.id();
 }
 
-unsigned OceanRenderer::effectFieldProgram() {
+unsigned OceanRenderer::Impl::effectFieldProgram() {
     const std::string kinds = mEffects->defines();
     gl::Program& program = mPrograms->effectField[kinds];
     if (!program) {
@@ -414,21 +520,34 @@ namespace {
 enum TimedPass { PassCompute, PassSky, PassSea, PassEffects, PassShade, PassCount };
 } // namespace
 
-void OceanRenderer::setPassTiming(std::optional<gl::GpuTimer::Clock> clock) {
-    mPassTimes = {};
+void OceanRenderer::setPassTiming(std::optional<PassClock> clock) noexcept {
+    Impl& r = *mImpl;
+    r.mPassTimes = {};
     if (!clock)
-        mPassTimer.reset();
+        r.mPassTimer.reset();
     else
-        mPassTimer = std::make_unique<gl::PassTimer>(*clock, PassCount);
+        r.mPassTimer = std::make_unique<gl::PassTimer>(*clock == PassClock::TimerQuery
+                                                           ? gl::GpuTimer::Clock::TimerQuery
+                                                           : gl::GpuTimer::Clock::WallAroundFinish,
+                                                       PassCount);
 }
 
-const char* OceanRenderer::passTimingClock() const {
-    return mPassTimer ? mPassTimer->clockName() : "";
+const char* OceanRenderer::passTimingClock() const noexcept {
+    return mImpl->mPassTimer ? mImpl->mPassTimer->clockName() : "";
 }
 
-void OceanRenderer::render(ecs::Registry& registry, const OceanFrame& frame) {
+const OceanStats& OceanRenderer::lastStats() const noexcept {
+    return mImpl->mStats;
+}
+
+Status OceanRenderer::render(const OceanScene& scene, const OceanFrame& frame) noexcept {
+    return guarded([&] { mImpl->render(scene, frame); });
+}
+
+void OceanRenderer::Impl::render(const OceanScene& scene, const OceanFrame& frame) {
     mStats = {};
-    renderPasses(registry, frame);
+    validateScene(scene, frame);
+    renderPasses(scene, frame);
     if (!mPassTimer)
         return;
     if (auto ms = mPassTimer->poll()) {
@@ -469,12 +588,14 @@ struct FrameMarks {
 /// buffers), sea (the base grid, lit or into the G-buffer), effects (the secondary grids), then shade (the
 /// compute pass lights every pixel, the sky's included) or sky. Each pass reads the frame's inputs and the
 /// decisions compute() made from here and adds what it did to the renderer's stats.
-struct OceanRenderer::FramePasses {
-    OceanRenderer& r;
-    ecs::Registry& registry;
+namespace {
+
+struct FramePasses {
+    OceanRenderer::Impl& r;
+    const EffectsView& scene; ///< the frame's effects
     const OceanFrame& frame;
     const OceanComponent& ocean;
-    Gpu& gpu;
+    OceanGpu& gpu;
     const glm::mat4 invViewProj;
     const FrameMarks& marks;
     // Decided by compute():
@@ -500,14 +621,16 @@ private:
     void drawSeaGrid();
 };
 
-void OceanRenderer::FramePasses::compute() {
+} // namespace
+
+void FramePasses::compute() {
     const SurfaceGpuStats work = gpu.model->update(frame.time, frame.camera.origin);
     r.mStats.passes += work.computePasses;
     r.mStats.uploads += work.uploads;
-    // Effects (Effects.h): gathered only when the registry has any; otherwise no buffer, no variant.
+    // Effects (EffectTypes.h): prepared only when the scene has any; otherwise no buffer, no variant.
     int grids = 0; // secondary grids drawn this frame
-    if (hasEffects(registry)) {
-        r.mEffects->prepare(registry, frame, effectHeightBound(ocean), ocean.desc.effectGrids,
+    if (!scene.empty()) {
+        r.mEffects->prepare(scene, frame, effectHeightBound(ocean), ocean.desc.effectGrids,
                             ocean.desc.effectField);
         effects = r.mEffects->any();
         grids = effects ? r.mEffects->drawn(EffectKind::Explosion) + r.mEffects->drawn(EffectKind::Wake) : 0;
@@ -545,7 +668,7 @@ void OceanRenderer::FramePasses::compute() {
 /// far in reverse-Z) and GL_GEQUAL passes only where nothing nearer was drawn, so the early depth test
 /// spares the sky's shading on every sea pixel. (A host's 24-bit depth buffer rounds the skirt's depth to 0
 /// beyond ~840 km; there the sky pass draws its own flat distant sea.)
-void OceanRenderer::FramePasses::sky() {
+void FramePasses::sky() {
     if (!ocean.desc.drawSky)
         return;
     Programs& programs = *r.mPrograms;
@@ -574,7 +697,7 @@ void OceanRenderer::FramePasses::sky() {
 
 /// One lighting program: all of it (untiled, kind < 0), or one kind of tile's part. The sky's kinds need
 /// neither the surface model nor the sea's lighting: one program each for every model and effect.
-GLuint OceanRenderer::FramePasses::shadeProgram(int kind) {
+GLuint FramePasses::shadeProgram(int kind) {
     // Every shading program's defines; the sea's add the model's G-buffer layers.
     const std::string base = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
                              r.mCompute->outputFormat() + "\n" + ComputeShading::tileDefines();
@@ -616,7 +739,7 @@ GLuint OceanRenderer::FramePasses::shadeProgram(int kind) {
 }
 
 /// Compute shading: one pass over every pixel, or the tile sort and one pass per kind of tile.
-void OceanRenderer::FramePasses::shade() {
+void FramePasses::shade() {
     Programs& programs = *r.mPrograms;
     if (tiled) {
         if (!programs.shadeTileSort) {
@@ -645,7 +768,7 @@ void OceanRenderer::FramePasses::shade() {
 }
 
 /// The base grid's program: lit, or into the G-buffer; with holes where the effect grids draw.
-gl::Program& OceanRenderer::FramePasses::seaProgram() {
+gl::Program& FramePasses::seaProgram() {
     const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
     gl::Program& program =
         (deferred ? r.mPrograms->seaGeometry : r.mPrograms->sea)[gpu.programKey + vert + fxDefines];
@@ -673,7 +796,7 @@ gl::Program& OceanRenderer::FramePasses::seaProgram() {
     return program;
 }
 
-bool OceanRenderer::FramePasses::sea() {
+bool FramePasses::sea() {
     const GLuint sea = seaProgram().id();
     glUseProgram(sea);
     if (deferred)
@@ -697,7 +820,7 @@ bool OceanRenderer::FramePasses::sea() {
 }
 
 /// The grid's index ranges in view (the view sector, the ring cut), in one draw call.
-void OceanRenderer::FramePasses::drawSeaGrid() {
+void FramePasses::drawSeaGrid() {
     long long seaVertices = 0;
     const std::vector<RadialGrid::IndexRange> ranges = seaIndices(gpu, ocean, frame, r.mStats, seaVertices);
     glBindVertexArray(gpu.mesh.vao.id());
@@ -720,7 +843,7 @@ void OceanRenderer::FramePasses::drawSeaGrid() {
 }
 
 /// The secondary grids, one instanced draw per kind in view (after the base grid: the same depth test).
-void OceanRenderer::FramePasses::grids() {
+void FramePasses::grids() {
     const GLuint fx = r.effectProgram(gpu, false, deferred);
     glUseProgram(fx);
     setSurfaceUniforms(fx, ocean, gpu, frame);
@@ -746,16 +869,14 @@ void OceanRenderer::FramePasses::grids() {
     marks.mark(PassEffects);
 }
 
-void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& frame) {
-    // Drop GPU resources of oceans that no longer exist.
+void OceanRenderer::Impl::renderPasses(const OceanScene& scene, const OceanFrame& frame) {
+    // Drop GPU resources of oceans the scene no longer lists.
     for (auto it = mGpu.begin(); it != mGpu.end();) {
-        if (!registry.valid(it->first) || !registry.has<OceanComponent>(it->first))
-            it = mGpu.erase(it);
-        else
-            ++it;
+        const bool listed = std::any_of(scene.oceans.begin(), scene.oceans.end(),
+                                        [&](const OceanInstance& o) { return o.id == it->first; });
+        it = listed ? std::next(it) : mGpu.erase(it);
     }
-    auto view = registry.view<OceanComponent>();
-    if (view.begin() == view.end())
+    if (scene.oceans.empty())
         return; // nothing to draw: no pass, no draw, no upload, no shader compiled
 
     gl::StateGuard guard;
@@ -771,30 +892,53 @@ void OceanRenderer::renderPasses(ecs::Registry& registry, const OceanFrame& fram
     glClear(GL_DEPTH_BUFFER_BIT);
 
     const FrameMarks marks(mPassTimer.get());
-    view.each([&](ecs::Entity e, OceanComponent& ocean) {
+    for (const OceanInstance& instance : scene.oceans) {
+        const OceanComponent& ocean = *instance.ocean;
         if (!ocean.surface)
-            return;
-        FramePasses passes{
-            *this, registry, frame, ocean, prepare(e, ocean), glm::inverse(frame.camera.viewProj), marks};
+            continue;
+        FramePasses passes{*this,
+                           scene.effects,
+                           frame,
+                           ocean,
+                           prepare(instance.id, ocean),
+                           glm::inverse(frame.camera.viewProj),
+                           marks};
         passes.compute();
         if (passes.sea() && passes.holes)
             passes.grids();
         passes.last(); // no sea in view: the sky (or the shading pass) alone
-    });
+    }
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }
 
-std::array<int, 4> OceanRenderer::shadeTileCounts() const {
-    return mStats.shadeTiled && mCompute ? mCompute->tileCounts() : std::array<int, 4>{};
+// ---- Debug hooks (OceanDebug.h)
+// ----------------------------------------------------------------------------
+
+namespace debug {
+
+std::array<int, 4> shadeTileCounts(OceanRenderer& renderer) {
+    const OceanRenderer::Impl& r = renderer.impl();
+    return r.mStats.shadeTiled ? r.mCompute->tileCounts() : std::array<int, 4>{};
 }
 
-std::vector<OceanRenderer::DisplacedVertex>
-OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity, const OceanFrame& frame) {
+namespace {
+
+const OceanComponent& oceanOf(ecs::Registry& registry, ecs::Entity entity, const char* where) {
     const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);
     if (!ocean || !ocean->surface)
-        throw std::invalid_argument("OceanRenderer::displacedVertices(): entity " + ecs::toString(entity) +
+        throw std::invalid_argument(std::string(where) + ": entity " + ecs::toString(entity) +
                                     " has no OceanComponent");
-    Gpu& gpu = prepare(entity, *ocean);
+    return *ocean;
+}
+
+} // namespace
+
+std::vector<DisplacedVertex> displacedVertices(OceanRenderer& renderer, ecs::Registry& registry,
+                                               ecs::Entity entity, const OceanFrame& frame) {
+    OceanRenderer::Impl& r = renderer.impl();
+    Programs* const mPrograms = r.mPrograms.get();
+    const OceanComponent* ocean = &oceanOf(registry, entity, "debug::displacedVertices()");
+    OceanGpu& gpu = r.prepare(oceanId(entity), *ocean);
     const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
     gl::Program& program = mPrograms->seaFeedback[gpu.programKey + vert];
     if (!program)
@@ -829,16 +973,15 @@ OceanRenderer::displacedVertices(ecs::Registry& registry, ecs::Entity entity, co
     return out;
 }
 
-std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Registry& registry,
-                                                                       ecs::Entity entity,
-                                                                       const OceanFrame& frame,
-                                                                       EffectKind kind) {
-    const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);
-    if (!ocean || !ocean->surface)
-        throw std::invalid_argument("OceanRenderer::effectVertices(): entity " + ecs::toString(entity) +
-                                    " has no OceanComponent");
-    Gpu& gpu = prepare(entity, *ocean);
-    mEffects->prepare(registry, frame, effectHeightBound(*ocean), ocean->desc.effectGrids,
+std::vector<EffectVertex> effectVertices(OceanRenderer& renderer, ecs::Registry& registry, ecs::Entity entity,
+                                         const OceanFrame& frame, EffectKind kind) {
+    OceanRenderer::Impl& r = renderer.impl();
+    Programs* const mPrograms = r.mPrograms.get();
+    EffectsGpu* const mEffects = r.mEffects.get();
+    const OceanComponent* ocean = &oceanOf(registry, entity, "debug::effectVertices()");
+    OceanGpu& gpu = r.prepare(oceanId(entity), *ocean);
+    const RegistryEffects effects(registry);
+    mEffects->prepare(effects.view(), frame, effectHeightBound(*ocean), ocean->desc.effectGrids,
                       ocean->desc.effectField);
     if (mEffects->drawn(kind) == 0)
         return {};
@@ -849,8 +992,8 @@ std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Regi
     }
     gl::StateGuard guard;
     gpu.model->update(frame.time, frame.camera.origin);
-    mEffects->computeField(effectFieldProgram());
-    const GLuint prog = effectProgram(gpu, true, false);
+    mEffects->computeField(r.effectFieldProgram());
+    const GLuint prog = r.effectProgram(gpu, true, false);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
     glUseProgram(prog);
     setSurfaceUniforms(prog, *ocean, gpu, frame);
@@ -879,5 +1022,7 @@ std::vector<OceanRenderer::EffectVertex> OceanRenderer::effectVertices(ecs::Regi
         out[i] = {raw[i].position, raw[i].local, mEffects->gridCentres()[firstGrid + i / perInstance]};
     return out;
 }
+
+} // namespace debug
 
 } // namespace pacifica::ocean

@@ -1,5 +1,6 @@
 // SeaState: the wind speed -> wave height, whitecaps and slopes (SeaState.h).
 #include "ocean/SeaState.h"
+#include "ocean/OceanHost.h"
 
 #include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"

@@ -5,6 +5,7 @@
 #include <engine/gl/FrameTargets.h>
 #include <engine/gl/GlContext.h>
 #include <ocean/Ocean.h>
+#include <ocean/OceanHost.h>
 #include <recording/EarthFrame.h>
 
 #include <epoxy/gl.h>
@@ -47,7 +48,7 @@ int main() {
     frame.targetFramebuffer = targets.sceneFramebuffer().id();
     frame.width = 64;
     frame.height = 36;
-    renderer.render(registry, frame);
+    render(renderer, registry, frame);
     std::vector<float> rgba;
     targets.readScene(rgba);
     for (float v : rgba)

@@ -14,6 +14,8 @@
 #include "engine/gl/GlObjects.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
+#include "ocean/OceanDebug.h"
+#include "ocean/OceanHost.h"
 #include "ocean/Presets.h"
 
 #include "OceanTestFrame.h"
@@ -146,7 +148,7 @@ protected:
         desc.computeShading = false;
         setOcean(desc);
         target.clear(0.0f);
-        renderer.render(registry, f);
+        render(renderer, registry, f);
         EXPECT_FALSE(renderer.lastStats().computeShaded);
         const std::vector<float> forward = target.readColor();
         const std::vector<float> forwardDepth = target.readDepth();
@@ -155,7 +157,7 @@ protected:
         desc.computeShading = true;
         setOcean(desc);
         target.clear(0.0f);
-        renderer.render(registry, f);
+        render(renderer, registry, f);
         EXPECT_TRUE(renderer.lastStats().computeShaded) << what;
         // The sky's draw becomes the shading dispatch: as many passes, and by tiles (on llvmpipe, where
         // OceanDesc::shadeTiles Auto sorts them) the sorting pass and one dispatch per kind instead of one.
@@ -266,7 +268,7 @@ TEST_F(ComputeShadingGl, WithoutTheSkyTheHostsPixelsStay) {
     desc.computeShading = true;
     setOcean(desc);
     target.clear(7.0f);
-    renderer.render(registry, frameAt(target, {0.0, 0.0, 20.0}, 0.0, 0.0, 10.0)); // horizon mid-screen
+    render(renderer, registry, frameAt(target, {0.0, 0.0, 20.0}, 0.0, 0.0, 10.0)); // horizon mid-screen
     ASSERT_TRUE(renderer.lastStats().computeShaded);
     const std::vector<float> rgba = target.readColor();
     auto at = [&](int x, int y) { return rgba[(static_cast<size_t>(y) * W + x) * 4]; }; // rows bottom-up
@@ -282,14 +284,14 @@ TEST_F(ComputeShadingGl, TargetsItCannotUseAreShadedForward) {
     const HostTarget renderbuffer(true), depth24(false, GL_DEPTH_COMPONENT24);
     for (const auto& [what, host] :
          {std::pair{"renderbuffer colour", &renderbuffer}, {"24-bit depth", &depth24}}) {
-        renderer.render(registry, frameAt(*host, {0.0, 0.0, 20.0}, 0.0, -5.0, 10.0));
+        render(renderer, registry, frameAt(*host, {0.0, 0.0, 20.0}, 0.0, -5.0, 10.0));
         EXPECT_FALSE(renderer.lastStats().computeShaded) << what;
         const std::vector<float> rgba = host->readColor();
         EXPECT_GT(luminance(&rgba[(static_cast<size_t>(5) * W + W / 2) * 4]), 0.0) << what << ": sea drawn";
         EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << what;
     }
     // And back on a target it can use: compute shading again.
-    renderer.render(registry, frameAt(target, {0.0, 0.0, 20.0}, 0.0, -5.0, 10.0));
+    render(renderer, registry, frameAt(target, {0.0, 0.0, 20.0}, 0.0, -5.0, 10.0));
     EXPECT_TRUE(renderer.lastStats().computeShaded);
 }
 
@@ -369,7 +371,7 @@ TEST_F(ComputeShadingGl, SkippingHiddenRingsChangesNoPixel) {
             desc.skipHiddenRings = skip == 1;
             setOcean(desc);
             target.clear(0.0f);
-            renderer.render(registry, f);
+            render(renderer, registry, f);
             vertices[skip] = renderer.lastStats().vertices;
             color[skip] = target.readColor();
             depth[skip] = target.readDepth();
@@ -472,11 +474,11 @@ TEST_F(ComputeShadingGl, ShadingByTilesChangesNoPixel) {
             desc.shadeTiles = tiles ? OceanDesc::ShadeTiles::On : OceanDesc::ShadeTiles::Off;
             setOcean(desc);
             target.clear(7.0f);
-            renderer.render(registry, f);
+            render(renderer, registry, f);
             ASSERT_TRUE(renderer.lastStats().computeShaded);
             EXPECT_EQ(renderer.lastStats().shadeTiled, tiles == 1);
             if (tiles)
-                counts = renderer.shadeTileCounts();
+                counts = ocean::debug::shadeTileCounts(renderer);
             color[tiles] = target.readColor();
             depth[tiles] = target.readDepth();
             EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));

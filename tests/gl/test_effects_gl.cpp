@@ -9,7 +9,9 @@
 //   effect drawn), at 10^7 m from the origin at t = 10^6 s, 64 overlapping ones, a ship in a tight circle;
 //   every captured value and every pixel finite;
 // - a wake is visible from 10 km altitude; a carrier's wake foam runs along its track from 3 km and follows
-//   the CPU's field.
+//   the CPU's field;
+// - the component's API: spans in draw what the registry adapter draws; bad scenes are refused as a Status
+//   naming the field, before any GL work.
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/gl/FrameTargets.h"
@@ -18,6 +20,8 @@
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanDebug.h"
+#include "ocean/OceanHost.h"
 
 #include "OceanTestFrame.h"
 
@@ -27,6 +31,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -86,7 +92,7 @@ protected:
     /// surface plus sampleEffectField(). Returns the largest error (and the largest against the analytic
     /// oceanHeightAt() in analyticError); fails on a non-finite value.
     double compareWithCpu(const OceanFrame& frame, EffectKind kind, size_t expectedGrids) {
-        const auto vertices = renderer.effectVertices(registry, oceanEntity, frame, kind);
+        const auto vertices = ocean::debug::effectVertices(renderer, registry, oceanEntity, frame, kind);
         EXPECT_FALSE(vertices.empty());
         if (vertices.empty())
             return 0.0;
@@ -95,6 +101,7 @@ protected:
         const glm::dvec3 cam = frame.camera.origin;
         const OceanComponent& ocean = registry.get<OceanComponent>(oceanEntity);
         const EffectFieldLayout layout = effectFieldLayout(ocean.desc.effectField, frame);
+        const RegistryEffects effects(registry);
         double worst = 0.0;
         analyticError = 0.0;
         for (size_t i = 0; i < vertices.size(); ++i) {
@@ -110,10 +117,11 @@ protected:
             const glm::dvec2 rel = glm::dvec2(glm::vec2(centre - glm::dvec2(cam)) + v.local);
             const double gpu = double(v.position.z) + cam.z + curvatureDrop(glm::length(rel));
             const double twin = ocean.surface->heightAt(world, frame.time) +
-                                sampleEffectField(registry, layout, world, frame.time).x;
+                                sampleEffectField(effects.view(), layout, world, frame.time).x;
             worst = std::max(worst, std::abs(gpu - twin));
-            analyticError = std::max(analyticError,
-                                     std::abs(gpu - oceanHeightAt(registry, oceanEntity, world, frame.time)));
+            const double analytic =
+                ocean.surface->heightAt(world, frame.time) + effectsAt(effects.view(), world, frame.time).x;
+            analyticError = std::max(analyticError, std::abs(gpu - analytic));
         }
         return worst;
     }
@@ -139,8 +147,8 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
     EffectsSystem fx(registry, events);
     const glm::dvec3 cam(0.0, 0.0, 60.0);
     // 1. Plain ocean, twice (the second frame is the steady state).
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.0));
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.1));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 1.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 1.1));
     const OceanStats plain = renderer.lastStats();
     EXPECT_EQ(plain.programsBuilt, 0);
     for (const EffectKindStats& k : {plain.explosions, plain.wakes}) {
@@ -158,7 +166,7 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
     events.enqueue(SpawnExplosion{{300.0, 0.0}, 1.0, 1.0});
     events.dispatch();
     fx.update(3.0, cam);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 3.0));
     OceanStats s = renderer.lastStats();
     ASSERT_TRUE(s.computeShaded);
     EXPECT_EQ(s.programsBuilt, s.shadeTiled ? 5 : 4);
@@ -177,13 +185,13 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
     EXPECT_EQ(s.passes, plain.passes + 2);
     EXPECT_EQ(s.draws, plain.draws + 1);
     EXPECT_EQ(s.uploads, plain.uploads + 7);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.1));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 3.1));
     EXPECT_EQ(renderer.lastStats().explosions.uploads, 1); // steady state: the data
     EXPECT_EQ(renderer.lastStats().effectField.uploads, 3);
     EXPECT_EQ(renderer.lastStats().programsBuilt, 0);
     EXPECT_EQ(nonFinitePixels(), 0u);
     // 3. Behind the camera: its field is evaluated (active) but its grid is not drawn.
-    renderer.render(registry, frameAt(cam, 270.0, -15.0, 3.2));
+    render(renderer, registry, frameAt(cam, 270.0, -15.0, 3.2));
     s = renderer.lastStats();
     EXPECT_GT(s.effectField.tiles, 0);
     EXPECT_EQ(s.explosions.active, 1);
@@ -194,8 +202,8 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
     registry.clear();
     oceanEntity = registry.create();
     registry.emplace<OceanComponent>(oceanEntity, makeOcean(gridsDesc()));
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0)); // new entity: rebuilds its grid
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.1));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 4.0)); // new entity: rebuilds its grid
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 4.1));
     s = renderer.lastStats();
     EXPECT_EQ(s.passes, plain.passes);
     EXPECT_EQ(s.draws, plain.draws);
@@ -211,17 +219,17 @@ TEST_F(EffectsGl, AbsentEffectsCostNothingAndOnlyPresentKindsWork) {
 TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
     EffectsSystem fx(registry, events);
     const glm::dvec3 cam(0.0, 0.0, 60.0);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 1.0));
     EXPECT_FALSE(renderer.lastStats().passTimes.measured);
     EXPECT_STREQ(renderer.passTimingClock(), "");
     std::vector<float> untimed, timed;
     targets.readScene(untimed);
 
-    renderer.setPassTiming(gl::GpuTimer::Clock::WallAroundFinish);
+    renderer.setPassTiming(PassClock::WallAroundFinish);
     EXPECT_TRUE(std::string(renderer.passTimingClock()).find("glFinish") != std::string::npos);
     glFinish();
     const auto t0 = std::chrono::steady_clock::now();
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 1.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 1.0));
     const double frameMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     targets.readScene(timed);
@@ -239,7 +247,7 @@ TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
     events.enqueue(SpawnExplosion{{300.0, 0.0}, 1.0, 1.0});
     events.dispatch();
     fx.update(3.0, cam);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 3.0));
     p = renderer.lastStats().passTimes;
     ASSERT_EQ(renderer.lastStats().explosions.draws, 1);
     EXPECT_GT(p.effectsMs, 0.0);
@@ -249,7 +257,7 @@ TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
     OceanDesc forward = gridsDesc();
     forward.computeShading = false;
     registry.emplaceOrReplace<OceanComponent>(oceanEntity, makeOcean(forward));
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.05));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 3.05));
     p = renderer.lastStats().passTimes;
     ASSERT_FALSE(renderer.lastStats().computeShaded);
     EXPECT_GT(p.skyMs, 0.0);
@@ -257,7 +265,7 @@ TEST_F(EffectsGl, PassTimingMeasuresPresentPassesAndChangesNoPixel) {
 
     // Off again: no new measurement.
     renderer.setPassTiming(std::nullopt);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 3.1));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 3.1));
     EXPECT_FALSE(renderer.lastStats().passTimes.measured);
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
@@ -273,7 +281,7 @@ TEST_F(EffectsGl, WakeOnlySceneDoesNoExplosionWork) {
         fx.update(i * 0.1, {0.0, -400.0, 200.0});
     }
     const OceanFrame f = frameAt({300.0, -400.0, 200.0}, 0.0, -35.0, 60.0);
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     const OceanStats s = renderer.lastStats();
     EXPECT_EQ(s.wakes.active, 1);
     EXPECT_EQ(s.wakes.draws, 1);
@@ -307,7 +315,7 @@ TEST_P(ExplosionReadback, GridHeightsEqualTheCpuQuery) {
     events.dispatch();
     fx.update(c.time, c.camera);
     const OceanFrame f = frameAt(c.camera, c.heading, c.pitch, c.time);
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     const OceanStats s = renderer.lastStats();
     EXPECT_EQ(nonFinitePixels(), 0u);
     const std::vector<glm::dvec2> centres = explosionCentres(c.time);
@@ -382,7 +390,7 @@ TEST_F(EffectsGl, NoGapBetweenTheBaseGridAndTheEffectGrids) {
         // Negative: no lit pixel is (a sun glint in scene-linear HDR can exceed any positive marker).
         const float marker[4] = {-1000.0f, 0.0f, -1000.0f, 1.0f};
         glClearNamedFramebufferfv(targets.sceneFramebuffer().id(), GL_COLOR, 0, marker);
-        renderer.render(registry, f);
+        render(renderer, registry, f);
         const OceanStats st = renderer.lastStats();
         EXPECT_GE(st.explosions.drawn + st.wakes.drawn, 1) << v.name;
         std::vector<float> rgba;
@@ -410,7 +418,7 @@ TEST_F(EffectsGl, ExplosionAtTimeZeroDrawsNothingAndStaysFinite) {
     events.enqueue(SpawnExplosion{{0.0, 0.0}, 5.0, 1.0});
     events.dispatch();
     fx.update(5.0, {0.0, 0.0, 20.0});
-    renderer.render(registry, frameAt({0.0, 0.0, 20.0}, 0.0, -60.0, 5.0));
+    render(renderer, registry, frameAt({0.0, 0.0, 20.0}, 0.0, -60.0, 5.0));
     EXPECT_EQ(renderer.lastStats().explosions.active, 0); // tau = 0: flat, nothing to draw
     EXPECT_EQ(nonFinitePixels(), 0u);
     EXPECT_EQ(oceanHeightAt(registry, oceanEntity, {0.0, 0.0}, 5.0),
@@ -432,7 +440,7 @@ TEST_F(EffectsGl, TenThousandSpawnsInOneSecondRenderCappedAndFinite) {
     }
     EXPECT_EQ(dropped, 10000 - 1024);
     registry.get<OceanComponent>(oceanEntity).desc.effectGrids = EffectGridDesc{}; // the default grids
-    renderer.render(registry, frameAt(cam, 90.0, -20.0, 2.0));
+    render(renderer, registry, frameAt(cam, 90.0, -20.0, 2.0));
     const OceanStats s = renderer.lastStats();
     // Bounded cost: every explosion in the field, evaluated once per texel it touches; at most
     // maxExplosionGrids grids.
@@ -460,7 +468,7 @@ TEST_F(EffectsGl, TightCircleWakeMatchesCpuAndStaysFinite) {
         fx.update(i * 0.1, {0.0, -150.0, 120.0});
     }
     const OceanFrame f = frameAt({0.0, -150.0, 120.0}, 0.0, -40.0, 120.0);
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     EXPECT_EQ(nonFinitePixels(), 0u);
     EXPECT_EQ(renderer.lastStats().wakes.drawn, 1);
     const double err = compareWithCpu(f, EffectKind::Wake, 1);
@@ -488,16 +496,16 @@ TEST_F(EffectsGl, EffectCullingChangesNoPixel) {
     const OceanFrame f = frameAt({-300.0, 1100.0, 30.0}, 60.0, -8.0, 120.0);
     std::vector<float> culled, full;
     gl::GpuTimer timer(gl::GpuTimer::Clock::WallAroundFinish);
-    renderer.render(registry, f); // builds the programs
+    render(renderer, registry, f); // builds the programs
     timer.begin();
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     timer.end();
     ASSERT_EQ(renderer.lastStats().wakes.drawn, 1);
     targets.readScene(culled);
     registry.get<OceanComponent>(oceanEntity).desc.cullVertices = false;
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     timer.begin();
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     timer.end();
     targets.readScene(full);
     std::printf("[effect culling] frame %.1f ms culled, %.1f ms every vertex\n", timer.samples()[0],
@@ -522,7 +530,7 @@ TEST_F(EffectsGl, WakeIsVisibleFromTenKilometres) {
     }
     // Straight down from 10 km over the middle of the wake: at 320 x 180 and 60 degrees a pixel is ~64 m.
     const OceanFrame f = frameAt({0.0, 1500.0, 10000.0}, 0.0, -90.0, 240.0);
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     ASSERT_EQ(renderer.lastStats().wakes.drawn, 1);
     std::vector<float> rgba;
     targets.readScene(rgba);
@@ -576,7 +584,7 @@ TEST_F(EffectsGl, CarrierWakeFoamRunsAlongTheTrackFromThreeKilometres) {
             d.lighting.foamHeightFull = -99.0f;
         }
         registry.get<OceanComponent>(oceanEntity) = makeOcean(d);
-        renderer.render(registry, f);
+        render(renderer, registry, f);
         targets.readScene(px[mode]);
     }
     const EffectFieldLayout layout = effectFieldLayout(OceanDesc{}.effectField, f);
@@ -628,13 +636,13 @@ TEST_F(EffectsGl, DefaultGridsOnlyNextToTheEye) {
     registry.get<OceanComponent>(oceanEntity) = makeOcean({});
     EffectsSystem fx(registry, events);
     const glm::dvec3 cam(0.0, 0.0, 60.0);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 4.0));
     std::vector<float> plain, far, near;
     targets.readScene(plain);
     events.enqueue(SpawnExplosion{{300.0, 0.0}, 1.0, 1.0});
     events.dispatch();
     fx.update(4.0, cam);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 4.0));
     OceanStats s = renderer.lastStats();
     EXPECT_EQ(s.explosions.active, 1);
     EXPECT_EQ(s.explosions.drawn, 0);
@@ -648,7 +656,7 @@ TEST_F(EffectsGl, DefaultGridsOnlyNextToTheEye) {
     events.enqueue(SpawnExplosion{{40.0, 0.0}, 1.0, 1.0});
     events.dispatch();
     fx.update(4.0, cam);
-    renderer.render(registry, frameAt(cam, 90.0, -15.0, 4.0));
+    render(renderer, registry, frameAt(cam, 90.0, -15.0, 4.0));
     s = renderer.lastStats();
     EXPECT_EQ(s.explosions.active, 2);
     EXPECT_EQ(s.explosions.drawn, 1) << "only the one next to the eye has a grid";
@@ -676,7 +684,7 @@ TEST_F(EffectsGl, DefaultWakeGridOnlyWhereItsWavesShow) {
         registry.get<OceanComponent>(oceanEntity).desc.effectGrids.minAmplitudePixels = minPixels;
         // Looking at the ship across its track (heading +y), from `distance` on its -y side.
         const double pitch = -std::atan2(height, distance) * 180.0 / std::numbers::pi;
-        renderer.render(registry, frameAt({at.x, at.y - distance, height}, 0.0, pitch, 120.0));
+        render(renderer, registry, frameAt({at.x, at.y - distance, height}, 0.0, pitch, 120.0));
         const OceanStats& s = renderer.lastStats();
         EXPECT_EQ(s.wakes.active, 1);
         EXPECT_EQ(s.effectField.passes, 1);
@@ -687,6 +695,97 @@ TEST_F(EffectsGl, DefaultWakeGridOnlyWhereItsWavesShow) {
     EXPECT_EQ(wakeGrids(450.0, 100.0, byDefault), 0) << "waves a fraction of a pixel tall: no grid";
     EXPECT_EQ(wakeGrids(30.0, 20.0, byDefault), 1) << "next to the ship: a grid";
     EXPECT_EQ(wakeGrids(450.0, 100.0, 0.0), 1) << "the angular size alone draws it";
+}
+
+// The component's own API (Ocean.h): plain spans in, the same pixels as the registry adapter; bad input
+// refused as a Status naming the field, before any GL work.
+TEST_F(EffectsGl, SpansDrawWhatTheRegistryDraws) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 80.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    events.enqueue(SpawnExplosion{{150.0, 250.0}, 55.0, 1.0});
+    for (int i = 0; i <= 120; ++i) { // 60 s at 10 m/s along +x
+        registry.get<Ship>(ship).position = {5.0 * i, 0.0};
+        events.dispatch();
+        fx.update(0.5 * i, {300.0, -400.0, 150.0});
+    }
+    const OceanFrame f = frameAt({300.0, -400.0, 150.0}, 0.0, -25.0, 60.0);
+    render(renderer, registry, f);
+    const OceanStats viaRegistry = renderer.lastStats();
+    ASSERT_EQ(viaRegistry.explosions.active, 1);
+    ASSERT_EQ(viaRegistry.wakes.active, 1);
+    std::vector<float> expected, actual;
+    targets.readScene(expected);
+    // The host's own copies: nothing of the registry is read.
+    const OceanComponent ocean = registry.get<OceanComponent>(oceanEntity);
+    Explosion explosion;
+    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) { explosion = e; });
+    const Ship hull = registry.get<Ship>(ship);
+    const ShipTrail trail = registry.get<ShipTrail>(ship);
+    const OceanInstance oceans[] = {{oceanId(oceanEntity), &ocean}};
+    const WakeRef wakes[] = {{&hull, &trail}};
+    const Status s = renderer.render({oceans, {{&explosion, 1}, wakes}}, f);
+    ASSERT_TRUE(s.ok()) << s.message;
+    targets.readScene(actual);
+    EXPECT_EQ(renderer.lastStats().draws, viaRegistry.draws);
+    EXPECT_EQ(renderer.lastStats().vertices, viaRegistry.vertices);
+    ASSERT_EQ(actual.size(), expected.size());
+    EXPECT_EQ(std::memcmp(actual.data(), expected.data(), actual.size() * sizeof(float)), 0);
+}
+
+TEST_F(EffectsGl, BadScenesAreRefusedNamingTheField) {
+    const OceanComponent& ocean = registry.get<OceanComponent>(oceanEntity);
+    const OceanFrame good = frameAt({0.0, 0.0, 50.0}, 0.0, -20.0, 10.0);
+    const OceanInstance oceans[] = {{1, &ocean}};
+    ASSERT_TRUE(renderer.render({oceans, {}}, good).ok());
+    const OceanInstance nullOcean[] = {{1, nullptr}};
+    Explosion nanExplosion;
+    nanExplosion.center = {std::nan(""), 0.0};
+    const Ship ship;
+    const WakeRef noTrail[] = {{&ship, nullptr}};
+    OceanFrame nanTime = good, noPixels = good, nanCamera = good;
+    nanTime.time = std::nan("");
+    noPixels.height = 0;
+    nanCamera.camera.origin.x = std::numeric_limits<double>::infinity();
+    struct Case {
+        OceanScene scene;
+        OceanFrame frame;
+        const char* field;
+    };
+    const Case cases[] = {
+        {{oceans, {}}, nanTime, "OceanFrame.time must be finite"},
+        {{oceans, {}}, noPixels, "OceanFrame.width and .height must be > 0"},
+        {{oceans, {}}, nanCamera, "OceanFrame.camera.origin must be finite"},
+        {{nullOcean, {}}, good, "OceanScene.oceans[0].ocean is null"},
+        {{oceans, {{&nanExplosion, 1}, {}}}, good, "OceanScene.effects.explosions[0] centre and startTime"},
+        {{oceans, {{}, noTrail}}, good, "OceanScene.effects.wakes[0]: ship and trail must not be null"},
+    };
+    for (const Case& c : cases) {
+        const Status s = renderer.render(c.scene, c.frame);
+        EXPECT_EQ(s.code, ErrorCode::InvalidArgument) << c.field;
+        EXPECT_NE(s.message.find(c.field), std::string::npos) << s.message;
+        EXPECT_EQ(renderer.lastStats().draws + renderer.lastStats().passes, 0) << "no GL work: " << c.field;
+    }
+    EXPECT_TRUE(renderer.render({oceans, {}}, good).ok()) << "a good frame after the refused ones";
+    EXPECT_GT(renderer.lastStats().draws, 0);
+    // Pacifica's hosts (OceanHost.h) get the same as an exception.
+    EXPECT_THROW(render(renderer, registry, nanTime), std::invalid_argument);
+    OceanComponent unchanged;
+    OceanDesc bad;
+    bad.grid.rings = 0;
+    const Status refused = makeOcean(bad, unchanged);
+    EXPECT_EQ(refused.code, ErrorCode::InvalidArgument);
+    EXPECT_NE(refused.message.find("rings"), std::string::npos) << refused.message;
+    EXPECT_FALSE(unchanged.surface);
+    // Queries: the surface plus the effects, refused for a NaN point.
+    const glm::dvec2 points[] = {{10.0, 20.0}, {-300.0, 40.0}};
+    double heights[2] = {};
+    ASSERT_TRUE(heightsAt(ocean, {}, points, 10.0, heights).ok());
+    EXPECT_DOUBLE_EQ(heights[1], ocean.surface->heightAt(points[1], 10.0));
+    const glm::dvec2 nanPoint[] = {{0.0, std::nan("")}};
+    EXPECT_EQ(heightsAt(ocean, {}, nanPoint, 10.0, heights).code, ErrorCode::InvalidArgument);
+    EXPECT_DOUBLE_EQ(heights[1], ocean.surface->heightAt(points[1], 10.0)) << "unchanged on error";
 }
 
 } // namespace

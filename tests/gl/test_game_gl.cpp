@@ -16,6 +16,7 @@
 #include "engine/gl/Shader.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanHost.h"
 
 #include <gtest/gtest.h>
 
@@ -178,7 +179,7 @@ TEST_F(GameGl, OceanAndObjectsLeaveTheHostsStateAndPixelsAlone) {
     cam.pitchDeg = -5.0;
     const ocean::OceanFrame f = ocean::makeOceanFrame(cam, 1.0f, W, H, 12.5, targets.sceneFramebuffer().id());
     for (int frame = 0; frame < 2; ++frame) {
-        renderer.render(scene.registry, f);
+        render(renderer, scene.registry, f);
         gl::DrawnObject ship;
         ship.shape = gl::ObjectShape::Carrier;
         ship.length = 330.0;
@@ -238,9 +239,9 @@ TEST_F(GameGl, AShipsHullBelowTheWaterlineIsHiddenBySea) {
     const glm::dvec3 sun(0.3, -0.6, 0.74);
 
     f.targetFramebuffer = seaOnly.sceneFramebuffer().id();
-    renderer.render(scene.registry, f);
+    render(renderer, scene.registry, f);
     f.targetFramebuffer = withSea.sceneFramebuffer().id();
-    renderer.render(scene.registry, f);
+    render(renderer, scene.registry, f);
     ASSERT_EQ(objects.draw({ship}, f.camera, f.targetFramebuffer, W, H, sun, ocean::EARTH_RADIUS), 1);
     // The ship alone: reverse-Z depth cleared to 0 (the far plane), nothing else drawn.
     glClearNamedFramebufferfv(shipOnly.sceneFramebuffer().id(), GL_COLOR, 0, std::array<float, 4>{}.data());

@@ -15,6 +15,7 @@
 #include "ocean/Lighting.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanHost.h"
 #include "ocean/OceanShaders.h"
 
 #include <gtest/gtest.h>
@@ -77,7 +78,7 @@ public:
         mRegistry.get<ocean::OceanComponent>(mEntity).desc.lighting = lighting;
         const ocean::OceanFrame frame =
             ocean::makeOceanFrame(p, FOV_Y, W, H, 17.25, mTargets.sceneFramebuffer().id());
-        mRenderer.render(mRegistry, frame);
+        ocean::render(mRenderer, mRegistry, frame);
         std::vector<float> rgba;
         mTargets.readScene(rgba);
         if (const char* dump = std::getenv("PACIFICA_LIGHTING_DUMP"); dump && *dump)

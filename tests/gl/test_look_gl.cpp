@@ -12,6 +12,7 @@
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanHost.h"
 #include "ocean/SeaState.h"
 
 #include <gtest/gtest.h>
@@ -44,7 +45,7 @@ std::vector<float> renderInto(ocean::OceanRenderer& renderer, gl::FrameTargets& 
     f.targetFramebuffer = targets.sceneFramebuffer().id();
     f.width = targets.width();
     f.height = targets.height();
-    renderer.render(registry, f);
+    render(renderer, registry, f);
     std::vector<float> px;
     targets.readScene(px);
     return px;

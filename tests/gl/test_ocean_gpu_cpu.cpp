@@ -6,6 +6,8 @@
 #include "engine/gl/GlContext.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanDebug.h"
+#include "ocean/OceanHost.h"
 
 #include <gtest/gtest.h>
 
@@ -51,7 +53,7 @@ TEST_P(OceanGpuCpu, DisplacedHeightsMatchTheDoubleReference) {
     ocean::OceanFrame frame;
     frame.camera = makeCameraFrame(pose, 1.0f, 16.0f / 9.0f, 0.05f);
     frame.time = c.time;
-    const auto captured = renderer->displacedVertices(registry, entity, frame);
+    const auto captured = ocean::debug::displacedVertices(*renderer, registry, entity, frame);
     std::vector<glm::vec3> gpu;
     for (const auto& v : captured)
         gpu.push_back(v.position);
@@ -105,7 +107,7 @@ TEST(OceanGpuCpuErrors, EntityWithoutOceanIsRejected) {
     ocean::OceanRenderer r;
     ecs::Registry reg;
     const ecs::Entity e = reg.create();
-    EXPECT_THROW(r.displacedVertices(reg, e, {}), std::invalid_argument);
+    EXPECT_THROW(ocean::debug::displacedVertices(r, reg, e, {}), std::invalid_argument);
 }
 
 } // namespace

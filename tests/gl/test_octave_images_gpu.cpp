@@ -11,6 +11,8 @@
 #include "engine/gl/GlContext.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanDebug.h"
+#include "ocean/OceanHost.h"
 
 #include <gtest/gtest.h>
 
@@ -113,7 +115,7 @@ TEST_F(OctaveImagesGpu, GpuHeightsEqualTheCpuForLoadedMaps) {
         ocean::OceanFrame frame;
         frame.camera = makeCameraFrame(pose, 1.0f, 16.0f / 9.0f, 0.05f);
         frame.time = c.time;
-        const auto captured = renderer->displacedVertices(registry, entity, frame);
+        const auto captured = ocean::debug::displacedVertices(*renderer, registry, entity, frame);
         const auto& oc = registry.get<ocean::OceanComponent>(entity);
         const ocean::RadialGrid grid(oc.desc.grid);
         ASSERT_EQ(captured.size(), grid.vertexCount());

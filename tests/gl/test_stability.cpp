@@ -10,6 +10,8 @@
 #include "engine/gl/GlContext.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanDebug.h"
+#include "ocean/OceanHost.h"
 
 #include <epoxy/gl.h>
 
@@ -109,10 +111,10 @@ TEST_P(Stability, FiniteFrameVerticesNearReferenceNoHorizonGap) {
     frame.height = H;
     if (!std::isnan(c.previousTime)) {
         frame.time = c.previousTime;
-        renderer.render(registry, frame);
+        render(renderer, registry, frame);
     }
     frame.time = c.time;
-    renderer.render(registry, frame);
+    render(renderer, registry, frame);
 
     // 1. No NaN/Inf anywhere in the frame (scene-linear RGBA16F).
     std::vector<float> rgba;
@@ -124,7 +126,7 @@ TEST_P(Stability, FiniteFrameVerticesNearReferenceNoHorizonGap) {
 
     // 2. Displaced vertices vs the double reference. Bound 1e-3 m (the required one) plus the float spacing
     // of the camera-relative z (the camera height and the curvature drop are subtracted in float on the GPU).
-    const auto vertices = renderer.displacedVertices(registry, e, frame);
+    const auto vertices = ocean::debug::displacedVertices(renderer, registry, e, frame);
     const double rMax = ocean.desc.grid.rMax;
     double worst = 0.0;
     // The FFT reference costs 4 direct sums of N^2 waves per vertex: compare every 97th vertex there.

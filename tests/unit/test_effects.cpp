@@ -6,6 +6,7 @@
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanHost.h"
 
 #include <gtest/gtest.h>
 

@@ -7,6 +7,7 @@
 
 #include <ocean/Effects.h>
 #include <ocean/Ocean.h>
+#include <ocean/OceanHost.h>
 #include <recording/EarthFrame.h>
 #include <recording/Recording.h>
 #include <recording/SeaDrivers.h>

@@ -4,6 +4,7 @@
 #include "ocean/HeightOctaves.h"
 #include "ocean/Lighting.h"
 #include "ocean/Ocean.h"
+#include "ocean/OceanHost.h"
 #include "ocean/SeaState.h"
 
 #include <gtest/gtest.h>

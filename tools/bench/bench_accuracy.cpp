@@ -23,6 +23,8 @@
 #include "engine/gl/GpuTimer.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanDebug.h"
+#include "ocean/OceanHost.h"
 #include "ocean/RadialGrid.h"
 
 #include "BenchCli.h"
@@ -308,10 +310,10 @@ VertexError vertexError(ocean::OceanRenderer& renderer, ecs::Registry& registry,
     size_t n = 0;
     for (const View& view : views()) {
         const ocean::OceanFrame frame = makeFrame(view.pose, targets, TIME);
-        const auto verts = renderer.displacedVertices(registry, e, frame);
+        const auto verts = ocean::debug::displacedVertices(renderer, registry, e, frame);
         const glm::dvec3 cam = view.pose.position;
         const double rMax = ocean.desc.grid.rMax;
-        auto height = [&](const ocean::OceanRenderer::DisplacedVertex& v) {
+        auto height = [&](const ocean::debug::DisplacedVertex& v) {
             const double r = std::hypot(double(v.grid.x), double(v.grid.y));
             return double(v.position.z) + cam.z + ocean::curvatureDrop(r);
         };
@@ -393,7 +395,7 @@ NormalError normalError(ocean::OceanRenderer& renderer, ecs::Registry& registry,
     std::vector<double> angles;
     for (const View& view : views()) {
         const ocean::OceanFrame frame = makeFrame(view.pose, targets, TIME);
-        const auto verts = renderer.displacedVertices(registry, e, frame);
+        const auto verts = ocean::debug::displacedVertices(renderer, registry, e, frame);
         const glm::dvec3 cam = view.pose.position;
         const double rMax = ocean.desc.grid.rMax;
         auto radius = [&](uint32_t i) {
@@ -448,7 +450,7 @@ std::vector<float> renderViews(ocean::OceanRenderer& renderer, ecs::Registry& re
                                const gl::FrameTargets& targets) {
     std::vector<float> all, rgba;
     for (const View& view : views()) {
-        renderer.render(registry, makeFrame(view.pose, targets, TIME));
+        render(renderer, registry, makeFrame(view.pose, targets, TIME));
         targets.readScene(rgba);
         for (size_t i = 0; i < rgba.size(); i += 4)
             all.insert(all.end(), {rgba[i], rgba[i + 1], rgba[i + 2]});
@@ -476,12 +478,12 @@ std::pair<double, double> imageError(const std::vector<float>& a, const std::vec
 double timeRender(ocean::OceanRenderer& renderer, ecs::Registry& registry, const gl::FrameTargets& targets,
                   gl::GpuTimer& timer, int frames) {
     const Pose pose = views()[1].pose;
-    renderer.render(registry, makeFrame(pose, targets, TIME));
+    render(renderer, registry, makeFrame(pose, targets, TIME));
     glFinish();
     const size_t before = timer.samples().size();
     for (int i = 0; i < frames; ++i) {
         timer.begin();
-        renderer.render(registry, makeFrame(pose, targets, TIME + i / 60.0));
+        render(renderer, registry, makeFrame(pose, targets, TIME + i / 60.0));
         timer.end();
         glFinish();
     }

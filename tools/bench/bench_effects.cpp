@@ -19,6 +19,7 @@
 #include "engine/gl/GpuTimer.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
+#include "ocean/OceanHost.h"
 
 #include "BenchCli.h"
 #include "BenchText.h"
@@ -200,16 +201,16 @@ struct Scene {
         if (timed)
             timer.begin();
         const auto r0 = std::chrono::steady_clock::now();
-        renderer->render(registry, f);
+        render(*renderer, registry, f);
         const auto r1 = std::chrono::steady_clock::now();
         if (timed)
             timer.end();
         glFinish();
         if (!profiled) {
             profiled = std::make_unique<ocean::OceanRenderer>();
-            profiled->setPassTiming(timer.clock());
+            profiled->setPassTiming(ocean::passClock(timer.clock()));
         }
-        profiled->render(registry, f); // outside the timed span
+        render(*profiled, registry, f); // outside the timed span
         glFinish();
         if (!timed)
             return;

@@ -17,6 +17,7 @@
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GpuTimer.h"
 #include "ocean/Ocean.h"
+#include "ocean/OceanHost.h"
 #include "ocean/Presets.h"
 #include "ocean/SeaState.h"
 
@@ -268,7 +269,7 @@ struct Scene {
     Scene(Setting s, gl::GpuTimer::Clock clock) : setting(std::move(s)), timer(clock) {
         const ecs::Entity e = registry.create();
         registry.emplace<ocean::OceanComponent>(e, ocean::makeOcean(setting.desc));
-        profiled.setPassTiming(clock);
+        profiled.setPassTiming(ocean::passClock(clock));
     }
 
     ocean::OceanFrame frameAt(double t, const gl::FrameTargets& targets) const {
@@ -285,10 +286,10 @@ struct Scene {
         if (!record)
             ++warmupSpans;
         timer.begin();
-        timed.render(registry, f);
+        render(timed, registry, f);
         timer.end();
         stats = timed.lastStats();
-        profiled.render(registry, f);
+        render(profiled, registry, f);
         const ocean::OceanPassTimes& p = profiled.lastStats().passTimes;
         if (record && p.measured) {
             compute.push_back(p.computeMs);

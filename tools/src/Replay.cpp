@@ -22,6 +22,7 @@
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
+#include "ocean/OceanHost.h"
 
 #include <nlohmann/json.hpp>
 
@@ -481,7 +482,7 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
       timeline(registry, events, effects), images(writeImages),
       viewFrames(input.views.size(), nlohmann::json::array()), tty(o.progress && isatty(STDERR_FILENO)) {
     if (o.profile) { // the ocean's passes (OceanRenderer::setPassTiming) and the replay's, one clock
-        renderer.setPassTiming(gpuTimer.clock());
+        renderer.setPassTiming(ocean::passClock(gpuTimer.clock()));
         passTimer = std::make_unique<gl::PassTimer>(gpuTimer.clock(), ReplayPassCount);
     }
     if (o.objects)
@@ -531,7 +532,7 @@ int ReplayRun::drawView(size_t vi, const ocean::OceanFrame& frame, const AliveOb
             drawn.push_back(object);
     const double drawEarthRadius = oceanDesc.earthCurvature ? ocean::EARTH_RADIUS : 0.0;
     gpuTimer.begin();
-    renderer.render(registry, frame);
+    render(renderer, registry, frame);
     if (passTimer)
         passTimer->beginFrame();
     const int objectsDrawn =

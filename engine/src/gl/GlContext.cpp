@@ -48,11 +48,3 @@ void GlContext::initialiseInfo(const std::string& platform, bool debug) {
 }
 
 } // namespace pacifica::gl
-
-#ifndef PACIFICA_HAS_GLFW
-namespace pacifica::gl {
-std::unique_ptr<GlContext> createWindowContext(const ContextDesc&) {
-    throw ContextError("this build has no window support (configured with PACIFICA_WITH_GLFW=OFF)");
-}
-} // namespace pacifica::gl
-#endif

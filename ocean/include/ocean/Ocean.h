@@ -1,26 +1,34 @@
-// Ocean: the public entry point of the Pacifica ocean component.
+// Ocean: the public entry point of the Pacifica ocean component. Exception-free and ECS-free: a host built
+// with -fno-exceptions -fno-rtti, on any entity system, embeds it through this header alone.
 //
 // STEP BY STEP (a host engine embedding the ocean)
-//   1. Own a GL 4.5 core context and an ecs::Registry (engine/Ecs.h).
-//   2. auto e = registry.create();
-//      registry.emplace<pacifica::ocean::OceanComponent>(e, pacifica::ocean::makeOcean({}));
-//   3. pacifica::ocean::OceanRenderer renderer;                  // after the context is current
-//   4. each frame: build a CameraFrame (engine/Space.h) from the camera's double-precision pose, then
-//        renderer.render(registry, {camera, simTime, hostFbo, width, height});
+//   1. Own a GL 4.5 core context and make it current.
+//   2. pacifica::ocean::OceanComponent ocean;
+//      if (Status s = makeOcean({}, ocean); !s) { log(s.message); }   // names the bad field
+//   3. pacifica::ocean::OceanRenderer renderer;                     // after the context is current
+//   4. each frame: build an OceanFrame from the camera's double-precision pose (makeOceanFrame), list what
+//      to draw (OceanScene: the oceans under ids the host chooses, the explosions and ship wakes as plain
+//      spans) and call
+//        Status s = renderer.render(scene, frame);
 //      It draws sky + sea into the host's framebuffer (scene-linear HDR, e.g. RGBA16F with a depth
 //      attachment; reverse-Z: it clears depth to 0 and tests GL_GREATER) and restores the host's GL state
 //      (gl::StateGuard), except texture bindings: units 0..(model units - 1) and 12..14 (lighting) are left
 //      changed, image unit 0 when the octave combine pass runs, and units 15..18 under compute shading.
-//   5. CPU queries (physics, buoyancy, cameras): component.surface->heightAt({x, y}, simTime) matches what
+//   5. CPU queries (physics, buoyancy, cameras): heightsAt(ocean, effects, points, time, heights) matches
+//   what
 //      the GPU drew to float precision.
-// Entities without an OceanComponent cost nothing; removing the component frees its GPU resources on the
-// next render().
+//
+// ERRORS are values (Status) across this boundary: every function here is noexcept; bad input (a description
+// out of range, a frame with no pixels, a non-finite time or camera) and GPU failures (a shader the driver
+// rejects) come back as a Status naming the field or the stage, the host's GL state restored, nothing
+// aborted. OceanHost.h adds, for hosts built with exceptions and Pacifica's own ECS (ecs::Registry), a
+// registry adapter and throwing wrappers; OceanDebug.h the tests' hooks.
+//
+// An ocean id the scene no longer lists has its GPU resources freed by the next render().
 #pragma once
 
-#include "engine/Ecs.h"
 #include "engine/Space.h"
-#include "engine/gl/PassTimer.h"
-#include "ocean/Effects.h"
+#include "ocean/EffectTypes.h"
 #include "ocean/FftOcean.h"
 #include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"
@@ -29,12 +37,13 @@
 #include "ocean/RadialGrid.h"
 #include "ocean/SurfaceModel.h"
 
-#include <array>
 #include <glm/glm.hpp>
+
+#include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
-#include <unordered_map>
-#include <vector>
 
 namespace pacifica::ocean {
 
@@ -121,8 +130,27 @@ struct OceanComponent {
     std::shared_ptr<const SurfaceModel> surface;
 };
 
-/// Validates the description (std::invalid_argument naming the field) and builds the CPU surface.
-OceanComponent makeOcean(const OceanDesc& desc);
+/// What went wrong, by kind (Status::code); Status::message says where and why.
+enum class ErrorCode {
+    None,            ///< success
+    InvalidArgument, ///< a description, frame or query out of range, NaN or missing (the message names it)
+    GpuFailure,      ///< the driver refused something (a shader did not compile or link, a resource)
+    OutOfMemory,     ///< an allocation failed
+    Internal,        ///< anything else (a bug: please report the message)
+};
+
+/// The result of a call across the component boundary: success, or an error code and a message naming the
+/// field, file or stage. Converts to true on success.
+struct Status {
+    ErrorCode code = ErrorCode::None;
+    std::string message;
+    bool ok() const noexcept { return code == ErrorCode::None; }
+    explicit operator bool() const noexcept { return ok(); }
+};
+
+/// Validates the description and builds the CPU surface into `out` (left unchanged on error). The message
+/// names the field, e.g. "OceanDesc.effectGrids.wakeRings must be in [1, 1024], got 0".
+Status makeOcean(const OceanDesc& desc, OceanComponent& out) noexcept;
 
 struct OceanFrame {
     CameraFrame camera;
@@ -135,7 +163,27 @@ struct OceanFrame {
 /// of view fovYRadians and the target's aspect (width / height) with its near plane at `nearPlane` metres
 /// (makeCameraFrame, engine/Space.h), at simulation time `time`, into `framebuffer` (0 = the default).
 OceanFrame makeOceanFrame(const Pose& pose, float fovYRadians, int width, int height, double time,
-                          unsigned framebuffer, float nearPlane = 0.05f);
+                          unsigned framebuffer, float nearPlane = 0.05f) noexcept;
+
+/// One ocean of a scene: a host-chosen id, stable while the ocean lives (its GPU resources are kept under
+/// it), and its component (the host's, read during render()).
+struct OceanInstance {
+    std::uint64_t id = 0;
+    const OceanComponent* ocean = nullptr;
+};
+
+/// What render() draws: the oceans (usually one) and every effect on them, as plain spans the host owns
+/// for the duration of the call. An absent effect costs nothing: no pass, no draw, no upload.
+struct OceanScene {
+    std::span<const OceanInstance> oceans;
+    EffectsView effects;
+};
+
+/// Heights of the sea at `points` (world metres) at time t: the ocean's surface (SurfaceModel::heightAt)
+/// plus the effects' analytic field (effectsAt). `heights` must have points.size() elements. A non-finite
+/// point or time, or a size mismatch, is an InvalidArgument (heights unchanged).
+Status heightsAt(const OceanComponent& ocean, const EffectsView& effects, std::span<const glm::dvec2> points,
+                 double t, std::span<double> heights) noexcept;
 
 /// What the last render() did for one kind of effect.
 struct EffectKindStats {
@@ -183,77 +231,39 @@ struct OceanStats {
     OceanPassTimes passTimes; ///< only with OceanRenderer::setPassTiming()
 };
 
-/// The effects field's layout for a frame (Effects.h): around the camera, its finest level no finer than a
-/// pixel's footprint on the sea straight below (the pixel's angle times the camera's height).
+/// The effects field's layout for a frame (EffectTypes.h): around the camera, its finest level no finer than
+/// a pixel's footprint on the sea straight below (the pixel's angle times the camera's height).
 EffectFieldLayout effectFieldLayout(const EffectFieldDesc& desc, const OceanFrame& frame);
 
-class LightingGpu;    // implementation detail (ocean/src/gpu/LightingGpu.h)
-class EffectsGpu;     // implementation detail (ocean/src/gpu/EffectsGpu.h)
-class ComputeShading; // implementation detail (ocean/src/gpu/ComputeShading.h)
+/// The clock of per-pass timing (OceanRenderer::setPassTiming): GL_TIMESTAMP queries on hardware, or the
+/// wall clock after a glFinish between passes (llvmpipe, whose timer queries are wrong).
+enum class PassClock { TimerQuery, WallAroundFinish };
 
-/// The ocean render system: draws every OceanComponent in a registry.
+/// The ocean render system: draws the oceans of a scene into a framebuffer the host lends.
 class OceanRenderer {
 public:
-    OceanRenderer();
+    OceanRenderer() noexcept; ///< GL resources are made by the first render() (a current context needed then)
     ~OceanRenderer();
     OceanRenderer(const OceanRenderer&) = delete;
     OceanRenderer& operator=(const OceanRenderer&) = delete;
 
-    void render(ecs::Registry& registry, const OceanFrame& frame);
-
-    /// The camera-relative positions the sea's vertex shader produces for every grid vertex of `ocean`
-    /// (transform feedback, nothing drawn), in RadialGrid vertex order. For tests and accuracy reports that
-    /// compare the GPU with the CPU's double-precision queries. Throws std::invalid_argument if the entity
-    /// has no OceanComponent.
-    struct DisplacedVertex {
-        glm::vec3 position; ///< camera-relative displaced position (vRel)
-        glm::vec2 grid;     ///< camera-relative undisplaced grid point (vGrid)
-    };
-    std::vector<DisplacedVertex> displacedVertices(ecs::Registry& registry, ecs::Entity ocean,
-                                                   const OceanFrame& frame);
-    const OceanStats& lastStats() const { return mStats; }
-    /// The tiles of each kind the last tiled compute shading lit (OceanDesc::shadeTiles): edge between sea
-    /// and sky, sea only, open sky only, sky with the sea beyond the grid. Reads the GPU's counts back, so it
-    /// waits for the frame: for tests and reports. All 0 when no frame was shaded by tiles.
-    std::array<int, 4> shadeTileCounts() const;
+    /// Draws every ocean of the scene with its effects (module comment). On error the frame may be partly
+    /// drawn; the host's GL state is restored either way.
+    Status render(const OceanScene& scene, const OceanFrame& frame) noexcept;
+    const OceanStats& lastStats() const noexcept;
 
     /// Per-pass GPU timing into lastStats().passTimes (docs/PERFORMANCE.md). Off by default: then no query
-    /// is issued and nothing waits. On llvmpipe use GpuTimer::Clock::WallAroundFinish (a glFinish between
+    /// is issued and nothing waits. On llvmpipe use PassClock::WallAroundFinish (a glFinish between
     /// passes: the passes no longer overlap, so the sum can exceed an untimed frame); std::nullopt turns it
     /// off. passTimingClock(): the clock's name for reports, "" when off.
-    void setPassTiming(std::optional<gl::GpuTimer::Clock> clock);
-    const char* passTimingClock() const;
+    void setPassTiming(std::optional<PassClock> clock) noexcept;
+    const char* passTimingClock() const noexcept;
 
-    /// The displaced vertices of every drawn secondary grid of one effect kind (transform feedback, nothing
-    /// drawn), instance after instance, each instance in the grid's vertex order. Effects are gathered from
-    /// the registry at frame.time as render() does. For tests comparing the GPU with oceanHeightAt().
-    struct EffectVertex {
-        glm::vec3 position; ///< camera-relative displaced position (vRel)
-        glm::vec2 local;    ///< the displaced point relative to its grid's centre (vLocal)
-        glm::dvec2 centre;  ///< the world centre of its grid
-    };
-    std::vector<EffectVertex> effectVertices(ecs::Registry& registry, ecs::Entity ocean,
-                                             const OceanFrame& frame, EffectKind kind);
-
-    struct Gpu;      ///< implementation detail: per-ocean GPU resources
-    struct Programs; ///< implementation detail: compiled shader programs
+    struct Impl; ///< implementation detail (OceanRenderer.cpp; OceanDebug.h's hooks reach it)
+    Impl& impl() noexcept { return *mImpl; }
 
 private:
-    struct FramePasses; ///< one ocean's frame as a fixed list of passes (OceanRenderer.cpp)
-    void renderPasses(ecs::Registry& registry, const OceanFrame& frame);
-    Gpu& prepare(ecs::Entity e, const OceanComponent& ocean);
-    /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once):
-    /// lit, transform feedback (tests), or into the G-buffer (compute shading).
-    unsigned effectProgram(Gpu& gpu, bool feedback, bool geometry);
-    unsigned effectFieldProgram();
-    std::unique_ptr<Programs> mPrograms;
-    std::unique_ptr<LightingGpu> mLighting;
-    std::unique_ptr<EffectsGpu> mEffects;
-    std::unique_ptr<ComputeShading> mCompute; // OceanDesc::computeShading's G-buffer
-    std::unordered_map<ecs::Entity, std::unique_ptr<Gpu>> mGpu;
-    OceanStats mStats;
-    std::unique_ptr<gl::PassTimer> mPassTimer;
-    OceanPassTimes mPassTimes; // the newest measured frame's
+    std::unique_ptr<Impl> mImpl;
 };
 
 } // namespace pacifica::ocean

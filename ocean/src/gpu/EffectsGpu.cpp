@@ -128,14 +128,14 @@ Candidate candidate(const glm::dvec2& rel, double radius, const glm::dvec2& boxM
 }
 
 /// Every explosion under way at t, packed (GpuInterface.h).
-std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const OceanFrame& frame,
+std::vector<ExplosionGpu> packExplosions(std::span<const Explosion> explosions, const OceanFrame& frame,
                                          const ViewTest& inView, std::vector<Candidate>& out) {
     std::vector<ExplosionGpu> packed;
     const glm::dvec3 cam = frame.camera.origin;
-    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
+    for (const Explosion& e : explosions) {
         const ExplosionState s = explosionState(e, frame.time);
         if (s.radius <= 0.0)
-            return;
+            continue;
         const glm::dvec2 rel = e.center - glm::dvec2(cam);
         ExplosionGpu g;
         g.centre = glm::vec2(static_cast<float>(rel.x), static_cast<float>(rel.y));
@@ -154,7 +154,7 @@ std::vector<ExplosionGpu> packExplosions(ecs::Registry& registry, const OceanFra
         packed.push_back(g);
         out.push_back(candidate(rel, s.radius, glm::dvec2(-s.radius), glm::dvec2(s.radius), s.amplitude,
                                 frame, inView));
-    });
+    }
     return packed;
 }
 
@@ -468,7 +468,7 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
     }
 }
 
-void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, double heightBound,
+void EffectsGpu::prepare(const EffectsView& effects, const OceanFrame& frame, double heightBound,
                          const EffectGridDesc& grids, const EffectFieldDesc& field) {
     mExplosionUploads = mWakeUploads = 0;
     mExplosionCount = mWakeCount = mExplosionsDrawn = mWakesDrawn = 0;
@@ -480,22 +480,23 @@ void EffectsGpu::prepare(ecs::Registry& registry, const OceanFrame& frame, doubl
     mLayout = effectFieldLayout(field, frame);
     const ViewTest inView{frame, heightBound};
     std::vector<Candidate> candidates;
-    const std::vector<ExplosionGpu> explosions = packExplosions(registry, frame, inView, candidates);
+    const std::vector<ExplosionGpu> explosions =
+        packExplosions(effects.explosions, frame, inView, candidates);
     std::vector<WakeGpu> wakes;
     std::vector<glm::vec4> points;
     std::vector<Footprint> wakePaths;
-    registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
-        if (!trail.active)
-            return;
-        const WakeState s = wakeState(ship, trail, frame.time);
+    for (const WakeRef& wake : effects.wakes) {
+        if (!wake.trail->active)
+            continue;
+        const WakeState s = wakeState(*wake.ship, *wake.trail, frame.time);
         if (s.radius <= 0.0)
-            return;
+            continue;
         const glm::dvec2 rel = s.ship - mCamera;
         packWake(s, rel, wakes, points);
         candidates.push_back(candidate(rel, s.radius, s.boxMin, s.boxMax, s.peak, frame, inView));
         wakePaths.emplace_back();
         wakePath(s, rel, wakePaths.back().points, wakePaths.back().reach);
-    });
+    }
     mExplosionCount = static_cast<int>(explosions.size());
     mWakeCount = static_cast<int>(wakes.size());
     if (!any())

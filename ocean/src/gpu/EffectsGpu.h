@@ -6,11 +6,10 @@
 // for a scene without effects, and a kind the scene does not have compiles out.
 #pragma once
 
-#include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/gl/GlObjects.h"
 #include "gpu/GridMesh.h"
-#include "ocean/Effects.h"
+#include "ocean/EffectTypes.h"
 #include "ocean/Ocean.h"
 
 #include <string>
@@ -20,10 +19,10 @@ namespace pacifica::ocean {
 
 class EffectsGpu {
 public:
-    /// Collects the effects of `registry` at frame.time, uploads them and their tile lists, and chooses the
+    /// Collects `effects` at frame.time, uploads them and their tile lists, and chooses the
     /// grids to draw (bounding sphere of each disc, raised by `heightBound`, against the camera; the
     /// largest on screen first, EffectGridDesc's limits). Returns what this frame has.
-    void prepare(ecs::Registry& registry, const OceanFrame& frame, double heightBound,
+    void prepare(const EffectsView& effects, const OceanFrame& frame, double heightBound,
                  const EffectGridDesc& grids, const EffectFieldDesc& field);
     bool any() const { return mExplosionCount + mWakeCount > 0; }
     bool has(EffectKind kind) const { return count(kind) > 0; }
