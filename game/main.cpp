@@ -22,6 +22,7 @@
 #if PACIFICA_GAME_SCREENSHOTS
 #include <engine/capture/Capture.h>
 #endif
+#include <engine/CameraPoses.h>
 #include <engine/color/ColorPipeline.h>
 #include <engine/color/Tonemapper.h>
 #include <engine/gl/FrameTargets.h>
@@ -37,7 +38,6 @@
 #include <ocean/OceanHost.h>
 #include <ocean/Presets.h>
 #include <ocean/SeaState.h>
-#include <recording/CameraRig.h>
 
 #include <epoxy/gl.h>
 #include <nlohmann/json.hpp>
@@ -124,9 +124,9 @@ Pose cameraPose(const Sortie& s, game::CameraMode mode, double t, double orbitAz
     const game::World& w = *s.world;
     switch (mode) {
     case game::CameraMode::Cockpit:
-        return recording::cockpitPose(w.player().pose, {4.0, 0.0, 1.3});
+        return cockpitPose(w.player().pose, {4.0, 0.0, 1.3});
     case game::CameraMode::Orbit:
-        return recording::orbitPose(w.player().pose.position, 90.0, 12.0, orbitAzimuth);
+        return orbitPose(w.player().pose.position, 90.0, 12.0, orbitAzimuth);
     case game::CameraMode::Weapon: {
         // The newest weapon in flight, from behind and above; then the place it hit, from 250 m back.
         const auto& ws = w.weapons();
@@ -134,20 +134,20 @@ Pose cameraPose(const Sortie& s, game::CameraMode mode, double t, double orbitAz
             const game::Weapon& wp = ws.back();
             glm::dvec2 dir(wp.velocity);
             dir = glm::length(dir) > 1e-6 ? glm::normalize(dir) : glm::dvec2(0.0, 1.0);
-            return recording::lookAtPose(wp.position - 40.0 * glm::dvec3(dir, 0.0) + glm::dvec3(0, 0, 12.0),
-                                         wp.position);
+            return lookAtPose(wp.position - 40.0 * glm::dvec3(dir, 0.0) + glm::dvec3(0, 0, 12.0),
+                              wp.position);
         }
         if (s.lastImpact && t - s.lastImpact->time < WATCH_S) {
             const glm::dvec3 at = s.lastImpact->position;
-            return recording::lookAtPose(at - 250.0 * glm::dvec3(s.impactFrom, 0.0) + glm::dvec3(0, 0, 60.0),
-                                         at + glm::dvec3(0, 0, 10.0));
+            return lookAtPose(at - 250.0 * glm::dvec3(s.impactFrom, 0.0) + glm::dvec3(0, 0, 60.0),
+                              at + glm::dvec3(0, 0, 10.0));
         }
         break;
     }
     case game::CameraMode::Chase:
         break;
     }
-    Pose p = recording::chasePose([&](double tt) { return s.playerAt(tt); }, t, 45.0, 9.0, 0.8);
+    Pose p = chasePose([&](double tt) { return s.playerAt(tt); }, t, 45.0, 9.0, 0.8);
     // Never below the waves (the chase camera of an aircraft skimming the sea).
     const double floor = w.seaHeight(glm::dvec2(p.position)) + 1.5;
     p.position.z = std::max(p.position.z, floor);

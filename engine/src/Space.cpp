@@ -8,6 +8,11 @@
 
 namespace pacifica {
 
+double drawnZ(const glm::dvec3& world, const glm::dvec3& camera, double earthRadius) {
+    const double d = std::hypot(world.x - camera.x, world.y - camera.y);
+    return world.z - d * d / (2.0 * earthRadius);
+}
+
 glm::vec3 toCameraRelative(const glm::dvec3& world, const glm::dvec3& cameraWorld) {
     return glm::vec3(world - cameraWorld);
 }

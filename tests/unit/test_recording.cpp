@@ -478,7 +478,7 @@ TEST(EarthFrame, MatchesExactLocalEnuWithinStatedBound) {
             exact.Forward(lat, lon, 0.0, ex, ey, ez);
             // The renderer draws it at z = -d^2/2R seen from the origin: within 0.05 m at 1 km, 0.5 m at 10
             // km and 8 m at 100 km of the exact ellipsoid (sphere-vs-ellipsoid sagitta + d^3/6R^2 shrinkage).
-            const double drawn = EarthFrame::drawnZ(w, {0, 0, 0}, RENDER_EARTH_RADIUS);
+            const double drawn = pacifica::drawnZ(w, {0, 0, 0});
             const double bound = dist <= 1000 ? 0.05 : dist <= 10000 ? 0.5 : 8.0;
             EXPECT_LT(std::abs(drawn - ez), bound) << dist << " " << az;
             EXPECT_LT(std::hypot(w.x - ex, w.y - ey), bound) << dist << " " << az;
@@ -488,7 +488,7 @@ TEST(EarthFrame, MatchesExactLocalEnuWithinStatedBound) {
     // origin.
     const glm::dvec3 ship = frame.toWorld(lat0 + 0.9, lon0, 0.0);
     EXPECT_GT(ship.y, 99000.0);
-    EXPECT_DOUBLE_EQ(EarthFrame::drawnZ(ship, ship + glm::dvec3(0, 0, 500), RENDER_EARTH_RADIUS), 0.0);
+    EXPECT_DOUBLE_EQ(pacifica::drawnZ(ship, ship + glm::dvec3(0, 0, 500)), 0.0);
     // Meridian convergence at 100 km east, ~0.9 deg (NOTES-flights.md): true north is rotated in the grid.
     double lat = 0, lon = 0, alt = 0;
     frame.toGeodetic({100000.0, 0.0, 0.0}, lat, lon, alt);

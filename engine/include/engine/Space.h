@@ -18,6 +18,14 @@
 
 namespace pacifica {
 
+/// Mean Earth radius (IUGG), metres: the one the ocean drops the sea with for the horizon
+/// (ocean::EARTH_RADIUS) and the cameras aim with (lookAtPose, engine/CameraPoses.h).
+inline constexpr double EARTH_RADIUS = 6371000.0;
+
+/// Where a world point is drawn, seen from `camera`: its z lowered by the Earth's curvature over the
+/// horizontal distance d, d^2 / (2 R) (the ocean's curvature drop, OceanConstants.h curvatureDrop).
+double drawnZ(const glm::dvec3& world, const glm::dvec3& camera, double earthRadius = EARTH_RADIUS);
+
 /// world - cameraWorld, subtracted in double and only then rounded to float, so nearby points keep
 /// sub-millimetre precision however far the camera is from the origin.
 glm::vec3 toCameraRelative(const glm::dvec3& world, const glm::dvec3& cameraWorld);

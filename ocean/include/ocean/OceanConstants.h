@@ -3,6 +3,8 @@
 // exactly one source of truth.
 #pragma once
 
+#include "engine/Space.h"
+
 #include <string>
 
 namespace pacifica::ocean {
@@ -36,7 +38,7 @@ inline constexpr int OCTAVE_MIX_SET = 16;
 /// The foam layers' mixes (ocean.frag foamMixWeights) take phase sets FOAM_MIX_SET (fine) and + 1 (coarse),
 /// their shifted copies the octaves' shift.
 inline constexpr int FOAM_MIX_SET = OCTAVE_MIX_SET + MAX_OCTAVES;
-inline constexpr double EARTH_RADIUS = 6371000.0; ///< m, mean radius (IUGG) for the curvature drop
+inline constexpr double EARTH_RADIUS = ::pacifica::EARTH_RADIUS; ///< m (engine/Space.h): the curvature drop
 
 // Shading (ocean.frag, sky.glsl; docs/ARCHITECTURE.md "Shading").
 inline constexpr double WATER_IOR = 1.33; ///< refractive index of sea water (Snell's law for the view ray)

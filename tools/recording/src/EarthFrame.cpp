@@ -52,11 +52,6 @@ Pose EarthFrame::toWorldPose(const ObjectSample& s) const {
     return p;
 }
 
-double EarthFrame::drawnZ(const glm::dvec3& world, const glm::dvec3& camera, double earthRadius) {
-    const double d = std::hypot(world.x - camera.x, world.y - camera.y);
-    return world.z - d * d / (2.0 * earthRadius);
-}
-
 EarthFrame chooseFrame(const Recording& rec, const RecordedObject* focus, double t) {
     if (focus && !focus->track.empty()) {
         const ObjectSample s = focus->sampleAt(t);

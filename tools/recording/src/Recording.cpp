@@ -2,6 +2,8 @@
 // from a track. The ACMI text parser is Acmi.cpp, the IGC parser Igc.cpp.
 #include "recording/Recording.h"
 
+#include "engine/Space.h"
+
 #include <isa-l/igzip_lib.h>
 #include <zip.h>
 
@@ -20,8 +22,9 @@ namespace pacifica::recording {
 namespace {
 
 constexpr double DEG = std::numbers::pi / 180.0;
-constexpr double G = 9.80665;             // m/s^2, standard gravity (coordinated-turn bank)
-constexpr double MEAN_RADIUS = 6371000.0; // m, only for the small local steps of deriveAttitude()
+constexpr double G = 9.80665; // m/s^2, standard gravity (coordinated-turn bank)
+constexpr double MEAN_RADIUS =
+    EARTH_RADIUS; // m (engine/Space.h), only for the small local steps of deriveAttitude()
 constexpr size_t CHUNK = 1 << 20;
 
 double wrapDeg(double a) {

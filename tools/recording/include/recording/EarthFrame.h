@@ -39,12 +39,6 @@ public:
     /// An object's sample as a world pose (position, grid heading, pitch, roll).
     Pose toWorldPose(const ObjectSample& s) const;
 
-    /// The z at which the renderer draws a world point seen from a camera at cameraWorld: its altitude minus
-    /// the ocean's Earth-curvature drop over the horizontal distance (OceanConstants.h curvatureDrop, whose
-    /// radius is passed in so this library does not depend on the ocean). A point at altitude 0 is drawn
-    /// exactly on the (undisplaced) rendered sea.
-    static double drawnZ(const glm::dvec3& world, const glm::dvec3& cameraWorld, double earthRadius);
-
 private:
     double mLat0, mLon0;
 };
