@@ -23,7 +23,7 @@ foreach(component IN LISTS PACIFICA_COMPONENTS)
         COMPONENT ${component})
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/ ${PROJECT_SOURCE_DIR}/ocean/include/
-                  ${PROJECT_SOURCE_DIR}/tools/recording/include/
+                  ${PROJECT_SOURCE_DIR}/engine/recording/include/
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/PacificaConfig.cmake.in

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""End-to-end tests of `pacifica replay` on recorded flights (tools/recording): the real DCS recording of an
+"""End-to-end tests of `pacifica replay` on recorded flights (engine/recording): the real DCS recording of an
 F-14B over the Black Sea (../shared/data/flights, Tacview ACMI 2.2 text) and files this script makes from it
 (a zip of it) or writes itself (an IGC glider flight, malformed recordings).
 

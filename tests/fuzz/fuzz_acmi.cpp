@@ -1,4 +1,4 @@
-// libFuzzer target: the streaming Tacview ACMI parser (tools/recording/src/Acmi.cpp). The input is fed in
+// libFuzzer target: the streaming Tacview ACMI parser (engine/recording/src/Acmi.cpp). The input is fed in
 // chunks whose size comes from the first byte, so line, BOM and continuation boundaries fall anywhere.
 // Any input must end in a Recording or a RecordingError: no crash, leak, hang or other exception.
 #include <recording/Recording.h>

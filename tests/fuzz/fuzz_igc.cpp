@@ -1,4 +1,4 @@
-// libFuzzer target: the IGC parser and the attitude it derives from the track (tools/recording/src/Igc.cpp).
+// libFuzzer target: the IGC parser and the attitude it derives from the track (engine/recording/src/Igc.cpp).
 #include <recording/Recording.h>
 
 #include <cstddef>

@@ -12,11 +12,11 @@ CXX=${PACIFICA_FUZZ_CXX:-clang++-14}
 command -v "$CXX" >/dev/null || { echo "run_fuzzers: $CXX not found (apt-get install clang-14 libclang-rt-14-dev)"; exit 1; }
 mkdir -p "$WORK"
 FLAGS="-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
--I$SRC/tools/recording/include -I$SRC/tools/src -I$SRC/engine/include"
-LIB="$SRC/tools/recording/src/Recording.cpp $SRC/tools/recording/src/Acmi.cpp $SRC/tools/recording/src/Igc.cpp \
+-I$SRC/engine/recording/include -I$SRC/tools/src -I$SRC/engine/include"
+LIB="$SRC/engine/recording/src/Recording.cpp $SRC/engine/recording/src/Acmi.cpp $SRC/engine/recording/src/Igc.cpp \
 $SRC/tools/src/FlightPath.cpp $SRC/engine/src/Pose.cpp"
 for t in acmi igc csv; do
-    if [ ! -x "$WORK/fuzz_$t" ] || [ -n "$(find "$SRC/tools/recording" "$SRC/tools/src/FlightPath.cpp" \
+    if [ ! -x "$WORK/fuzz_$t" ] || [ -n "$(find "$SRC/engine/recording" "$SRC/tools/src/FlightPath.cpp" \
         "$SRC/tests/fuzz" -newer "$WORK/fuzz_$t" -type f 2>/dev/null | head -1)" ]; then
         echo "building fuzz_$t"
         # shellcheck disable=SC2086
