@@ -24,7 +24,8 @@ foreach(component IN LISTS PACIFICA_COMPONENTS)
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/include/ ${PROJECT_SOURCE_DIR}/ocean/include/
                   ${PROJECT_SOURCE_DIR}/engine/recording/include/
-    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+    PATTERN ObjectRenderer.h EXCLUDE) # the demo hosts' objects (pacifica_objects) are not installed
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/PacificaConfig.cmake.in
     ${PROJECT_BINARY_DIR}/PacificaConfig.cmake INSTALL_DESTINATION ${PACIFICA_CMAKE_DIR})
