@@ -2,14 +2,15 @@
 #   find_package(Pacifica CONFIG REQUIRED)                     # every component
 #   find_package(Pacifica CONFIG REQUIRED COMPONENTS ocean)    # the ocean and the engine core only
 #   target_link_libraries(app PRIVATE Pacifica::ocean)   # and/or Pacifica::engine, Pacifica::color,
-#                                                        # Pacifica::window, Pacifica::capture,
+#                                                        # Pacifica::window, Pacifica::png,
+#                                                        # Pacifica::capture,
 #                                                        # Pacifica::recording
 # Each target is its own install component and export set, and the config looks for a component's
 # dependencies only when it is asked for (cmake/PacificaConfig.cmake.in): an ocean-only host needs neither
 # OpenColorIO nor netCDF.
 include(CMakePackageConfigHelpers)
 
-set(PACIFICA_COMPONENTS engine color window ocean recording)
+set(PACIFICA_COMPONENTS engine color window png ocean recording) # in dependency order
 if(PACIFICA_WITH_OIIO)
     list(APPEND PACIFICA_COMPONENTS capture)
 endif()

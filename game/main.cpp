@@ -14,15 +14,13 @@
 #include "Options.h"
 
 #include <engine/AtomicFile.h>
+#include <engine/CameraPoses.h>
 #include <engine/Ecs.h>
 #include <engine/Log.h>
 #include <engine/Space.h>
 #include <engine/Stats.h>
 #include <engine/Time.h>
-#if PACIFICA_GAME_SCREENSHOTS
-#include <engine/capture/Capture.h>
-#endif
-#include <engine/CameraPoses.h>
+#include <engine/capture/Png.h>
 #include <engine/color/ColorPipeline.h>
 #include <engine/color/Tonemapper.h>
 #include <engine/gl/FrameTargets.h>
@@ -539,11 +537,7 @@ void Session::takeScreenshots(const gl::Framebuffer& display, const glm::ivec2& 
     const double time = sortie->world->time();
     while (!screenshots.empty() && time >= screenshots.front().first - 1e-9) {
         const std::vector<float> px = readPixels(display.id(), !opt.headless, size.x, size.y);
-#if PACIFICA_GAME_SCREENSHOTS
         capture::writePng8(screenshots.front().second, size.x, size.y, 4, px.data());
-#else
-        throw std::runtime_error("--screenshot: this build has no image writing (PACIFICA_WITH_OIIO=OFF)");
-#endif
         shots.push_back({{"file", screenshots.front().second}, {"time_s", time}, {"frame", frames}});
         screenshots.erase(screenshots.begin());
     }

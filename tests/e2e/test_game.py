@@ -233,5 +233,12 @@ elif args.case == "bad-input":
             f"exit {r.returncode}: {r.stderr[-300:]}")
     r = game("--help", xvfb=False)
     c.check(r.returncode == 0 and "--autopilot" in r.stdout, "--help lists the options", r.stdout[-300:])
+    # Screenshots go through libpng: OpenImageIO (and the GDAL, OpenVDB, ffmpeg and OpenCV behind it, ~340 MB
+    # of shared libraries) stays out of the game's process.
+    r = subprocess.run(["ldd", args.game], capture_output=True, text=True, timeout=60)
+    libs = [line.split()[0] for line in r.stdout.splitlines() if line.strip()]
+    c.check(r.returncode == 0 and "libpng16.so.16" in libs and not any("OpenImageIO" in lib for lib in libs)
+            and len(libs) < 60, "the game links libpng, not OpenImageIO (fewer than 60 shared libraries)",
+            " ".join(libs))
 
 sys.exit(c.finish(f"game {args.case}", started, tmp))

@@ -115,9 +115,6 @@ std::string shortestText(T value) {
 
 } // namespace
 
-CaptureError::CaptureError(const std::filesystem::path& file, const std::string& message)
-    : std::runtime_error(file.string() + ": " + message), mFile(file) {}
-
 uint64_t hashHalfPixels(const uint16_t* halfBits, size_t count) {
     return XXH64(halfBits, count * sizeof(uint16_t), 0);
 }
@@ -152,50 +149,6 @@ uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, 
     const std::vector<uint16_t> halves = toHalf(pixelsTopDown, count);
     writeAtomically(path, "openexr", spec, halves.data());
     return hashHalfPixels(halves.data(), halves.size());
-}
-
-namespace {
-
-/// Code values in [0, 1] (clamped, NaN -> 0) quantised as round(v * max) into T: the PNG writers' sample
-/// step.
-template <typename T>
-std::vector<T> quantise(const float* values, size_t count) {
-    constexpr float MAX = static_cast<float>(std::numeric_limits<T>::max());
-    std::vector<T> out(count);
-    for (size_t i = 0; i < count; ++i) {
-        const float v = values[i];
-        const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-        out[i] = static_cast<T>(std::lround(clamped * MAX));
-    }
-    return out;
-}
-
-size_t sampleCount(int width, int height, int channels) {
-    return static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
-}
-
-} // namespace
-
-void writePng8(const std::filesystem::path& path, int width, int height, int channels,
-               const float* displayTopDown, Compression compression) {
-    checkArguments(path, "writePng8()", width, height, channels, 1, 4, displayTopDown);
-    const std::vector<uint8_t> bytes =
-        quantise<uint8_t>(displayTopDown, sampleCount(width, height, channels));
-    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    // zlib level 6 (OIIO's default) or 1 (Compression::Fast: 13 vs 45 ms and 1.26x the bytes, 640x360).
-    if (compression == Compression::Fast)
-        spec.attribute("png:compressionLevel", 1);
-    writeAtomically(path, "png", spec, bytes.data());
-}
-
-void writePng16(const std::filesystem::path& path, int width, int height, int channels,
-                const float* codeTopDown) {
-    checkArguments(path, "writePng16()", width, height, channels, 1, 4, codeTopDown);
-    const std::vector<uint16_t> values =
-        quantise<uint16_t>(codeTopDown, sampleCount(width, height, channels));
-    OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT16);
-    writeAtomically(path, "png", spec, values.data());
 }
 
 Image readImage(const std::filesystem::path& path) {

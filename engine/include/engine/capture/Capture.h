@@ -1,9 +1,9 @@
 // Capture: writes rendered frames to disk — linear half-float OpenEXR for analysis and golden images, 8-bit
-// sRGB PNG for people — and reads images back for tests and tools. It is the only engine code that links
-// OpenImageIO (which costs every linked process ~0.2 s at start-up), so this header exposes no OIIO types.
-// Writes are atomic (temp file in the same directory, then rename), so a crash or a full disk never leaves
-// a half-written frame under the final name, and every EXR write returns a hash of the exact half bits
-// written, so determinism checks compare one number instead of two files.
+// sRGB PNG for people (engine/capture/Png.h, through libpng) — and reads images back for tests and tools. It
+// is the only engine code that links OpenImageIO (which costs every linked process ~0.2 s at start-up), so
+// this header exposes no OIIO types. Writes are atomic (temp file in the same directory, then rename), so a
+// crash or a full disk never leaves a half-written frame under the final name, and every EXR write returns a
+// hash of the exact half bits written, so determinism checks compare one number instead of two files.
 //
 // Usage:
 //   1. Read back the frame (RGBA float, top row first) and fill a Metadata with what produced it:
@@ -16,6 +16,8 @@
 //        pacifica::capture::writePng8("out/frame_0001.png", w, h, 4, displayPixels.data());
 //   4. In tests: pacifica::capture::Image img = pacifica::capture::readImage("out/frame_0001.exr");
 #pragma once
+
+#include "engine/capture/Png.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -34,29 +36,12 @@ struct Metadata {
     std::vector<std::pair<std::string, double>> numbers;      ///< written as double attributes
 };
 
-/// An image could not be written or read. what() is "<path>: <what failed>[: <OpenImageIO's reason>]".
-class CaptureError : public std::runtime_error {
-public:
-    CaptureError(const std::filesystem::path& file, const std::string& message);
-
-    /// The file the error is about (the final path for writes, not the temp file).
-    const std::filesystem::path& file() const { return mFile; }
-
-private:
-    std::filesystem::path mFile;
-};
-
 /// XXH64 (seed 0) of the half values' raw bits, in memory order (little-endian on every supported host).
 uint64_t hashHalfPixels(const uint16_t* halfBits, size_t count);
 
 /// Converts floats to IEEE 754 binary16 bits, rounding to nearest, ties to even; out-of-range values become
 /// +-infinity, NaN stays NaN.
 std::vector<uint16_t> toHalf(const float* data, size_t count);
-
-/// How hard the lossless writers compress: zlib's default level 6 (Small) or level 1 (Fast: a 640x360
-/// RGBA frame's EXR in 22 instead of 35 ms and 1.11x the bytes, its PNG in 13 instead of 45 ms and 1.26x;
-/// docs/PERFORMANCE.md). Pixels are identical either way.
-enum class Compression { Small, Fast };
 
 /// Writes a half-float OpenEXR (ZIP compression) of width x height pixels with 3 (RGB) or 4 (RGBA)
 /// interleaved channels, top row first. Metadata becomes header attributes named "pacifica:<name>".
@@ -65,18 +50,6 @@ enum class Compression { Small, Fast };
 uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, int channels,
                       const float* pixelsTopDown, const Metadata& metadata,
                       Compression compression = Compression::Small);
-
-/// Writes an 8-bit PNG from display-encoded (already sRGB) values with 1 to 4 interleaved channels, top row
-/// first: each value is clamped to [0, 1] (NaN becomes 0) and quantised as round(v * 255); no transfer
-/// function is applied here. The file is tagged sRGB. Atomic like writeExrHalf(); throws CaptureError.
-void writePng8(const std::filesystem::path& path, int width, int height, int channels,
-               const float* displayTopDown, Compression compression = Compression::Small);
-
-/// Writes a 16-bit PNG of code values in [0, 1] (clamped, NaN -> 0, round(v * 65535)), 1 to 4 channels, top
-/// row first, untagged (e.g. Rec.2100 PQ codes for an HDR display). Atomic like writeExrHalf(); throws
-/// CaptureError.
-void writePng16(const std::filesystem::path& path, int width, int height, int channels,
-                const float* codeTopDown);
 
 /// An image read back from disk.
 struct Image {
