@@ -1,4 +1,4 @@
-# Third-party dependencies, all from Debian 12 packages. See ../shared/NOTES-platform.md for the quirks
+# Third-party dependencies, all from Debian 12 packages. See docs/PLATFORM.md for the quirks
 # worked around here (OCIO and epoxy through pkg-config, OIIO's stale opencv include path).
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)

@@ -407,7 +407,7 @@ def case_replay(c, exe, source_dir, tmp):
 
 def case_studio_ocio(c, exe, source_dir, tmp):
     flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
-    shared = os.environ.get("PACIFICA_SHARED_DIR") or os.path.join(source_dir, "..", "shared")
+    shared = os.environ.get("PACIFICA_SHARED_DIR", "")  # set by ctest (tests/README.md)
     config = os.path.normpath(os.path.join(shared, STUDIO_CONFIG))
     c.require(os.path.isfile(config), f"studio config present at {config}")
     with open(config, encoding="utf-8") as f:

@@ -12,7 +12,7 @@ glitter breaks into glints as many as the reference's scores like it.
 
 The reference frames are renders of the demo of Bruneton, Neyret & Holzschuch, "Real-time Realistic Ocean
 Lighting using Seamless Transitions from Geometry to BRDF" (Eurographics 2010), at 640x360, looked for as
-look-reference/bruneton_{2m,50m}.png in the shared data directory ($PACIFICA_SHARED_DIR, else SOURCE_DIR/../shared);
+look-reference/bruneton_{2m,50m}.png in the shared data directory ($PACIFICA_SHARED_DIR, set by ctest);
 without them the test is skipped (exit 77) with a message.
 
 Usage: test_look_reference.py PACIFICA_EXE SOURCE_DIR     (python3 standard library + oiiotool)
@@ -61,7 +61,7 @@ def main():
         print(__doc__)
         return 2
     exe, source = sys.argv[1], os.path.abspath(sys.argv[2])
-    shared = os.environ.get("PACIFICA_SHARED_DIR") or os.path.join(source, "..", "shared")
+    shared = os.environ.get("PACIFICA_SHARED_DIR", "")  # set by ctest (tests/README.md)
     refs = {v: os.path.join(shared, "look-reference", f"bruneton_{v}.png") for v in VIEWS}
     missing = [p for p in refs.values() if not os.path.isfile(p)]
     if missing:

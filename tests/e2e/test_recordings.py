@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """End-to-end tests of `pacifica replay` on recorded flights (engine/recording): the real DCS recording of an
-F-14B over the Black Sea (../shared/data/flights, Tacview ACMI 2.2 text) and files this script makes from it
+F-14B over the Black Sea (data/flights in the shared data directory, $PACIFICA_SHARED_DIR; Tacview ACMI 2.2 text) and files this script makes from it
 (a zip of it) or writes itself (an IGC glider flight, malformed recordings).
 
 Cases (chosen with --case, one ctest test each):
@@ -43,7 +43,7 @@ SMALL = ["--size", "160x90", "--no-progress"]
 
 
 def shared_dir(source_dir):
-    return os.environ.get("PACIFICA_SHARED_DIR", os.path.join(source_dir, "..", "shared"))
+    return os.environ.get("PACIFICA_SHARED_DIR", "")  # set by ctest (tests/README.md)
 
 
 def recording(source_dir):

@@ -2,7 +2,7 @@
 """End-to-end tests of `pacifica tonemap compare` (tools/src/TonemapCompare.cpp, tools/tonemap).
 
 Cases (chosen with --case, one ctest test each):
-  hdr          ../shared/data/hdr/*.exr with the ACES studio config: the report (HTML self-contained, Markdown,
+  hdr          the shared data directory's data/hdr/*.exr with the ACES studio config: the report (HTML self-contained, Markdown,
                JSON), a labelled contact sheet per input, NaN/Inf of BrightRingsNanInf counted and every output
                finite, the shipped clamp equal to the configs' un-tone-mapped view, 1D LUTs within 1e-4 of their
                closed forms and PBR Neutral's cube error falling with its size, non-sRGB displays listed.
@@ -32,7 +32,7 @@ RUN_TIMEOUT_S = 240
 
 
 def shared(source_dir, *parts):
-    return os.path.join(os.environ.get("PACIFICA_SHARED_DIR", os.path.join(source_dir, "..", "shared")), *parts)
+    return os.path.join(os.environ.get("PACIFICA_SHARED_DIR", ""), *parts)  # set by ctest (tests/README.md)
 
 
 def run(exe, args):

@@ -25,8 +25,11 @@ for t in acmi igc csv; do
 done
 # Seed corpora.
 mkdir -p "$WORK/corpus_acmi" "$WORK/corpus_igc" "$WORK/corpus_csv"
-SHARED=${PACIFICA_SHARED_DIR:-$SRC/../shared}
-head -c 6000 "$SHARED/data/flights/dcs-blacksea-f14b.txt.acmi" | sed '1s/^/\x07/' > "$WORK/corpus_acmi/dcs_head"
+# The real DCS recording's first 6000 bytes, when the shared data directory ($PACIFICA_SHARED_DIR) has it.
+DCS="${PACIFICA_SHARED_DIR:-}/data/flights/dcs-blacksea-f14b.txt.acmi"
+if [ -n "${PACIFICA_SHARED_DIR:-}" ] && [ -f "$DCS" ]; then
+    head -c 6000 "$DCS" | sed '1s/^/\x07/' > "$WORK/corpus_acmi/dcs_head"
+fi
 printf '\001FileType=text/acmi/tacview\r\nFileVersion=2.1\r\n0,Comments=a\\\r\n-b\\\r\n#c\r\n1f,T=1|2|3|4|5|6,Name=A\\, B\r\n#1\r\n1f,T=||9\r\n0,Event=Destroyed|1f|x\r\n-1f\r\n' \
     > "$WORK/corpus_acmi/edge"
 printf 'AXXX\r\nHFDTEDATE:150717,01\r\nHFPLTPILOTINCHARGE:A\r\nB2359584600000N00700000EA0100001000\r\nB0000024600100N00700100EA0100501050\r\nB0000064600200N00700300EV-001000000\r\n' \

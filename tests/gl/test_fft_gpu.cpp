@@ -352,7 +352,7 @@ TEST(FftGpuTime, LoopPeriodGivesTheSameMapsAndRepeatsAreSkipped) {
     }
 }
 
-// Wall-clock time of update() around glFinish (GL timer queries are wrong on llvmpipe, NOTES-platform.md).
+// Wall-clock time of update() around glFinish (GL timer queries are wrong on llvmpipe, docs/PLATFORM.md).
 // Measured, not asserted: printed and recorded as test properties.
 TEST(FftGpuTime, MeasureUpdateTime) {
     ASSERT_TRUE(context());

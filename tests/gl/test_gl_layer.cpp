@@ -680,7 +680,7 @@ TEST_F(GpuTimerTest, MisuseThrowsLogicError) {
 
 TEST_F(GpuTimerTest, ContextChoosesWallClockOnSoftwareRenderers) {
     gl::GpuTimer timer(info());
-    // NOTES-platform.md: GL_TIME_ELAPSED is wrong on llvmpipe, right on hardware drivers.
+    // docs/PLATFORM.md: GL_TIME_ELAPSED is wrong on llvmpipe, right on hardware drivers.
     if (info().software)
         EXPECT_EQ(timer.clock(), gl::GpuTimer::Clock::WallAroundFinish) << info().renderer;
     else
@@ -700,7 +700,7 @@ TEST_F(GpuTimerTest, TimerQueryRingSurvivesMoreSpansThanSlots) {
     glFinish();
     (void)timer.poll();
     // Spans 5 and 6 had to wait for spans 1 and 2; after glFinish the other four are available (llvmpipe's
-    // values are wrong, NOTES-platform.md, so only their sanity is checked).
+    // values are wrong, docs/PLATFORM.md, so only their sanity is checked).
     ASSERT_GE(timer.samples().size(), 1u);
     EXPECT_EQ(timer.samples().size(), 6u);
     for (double ms : timer.samples()) {
@@ -782,7 +782,7 @@ TEST_F(PassTimerTest, TimestampRingSurvivesMoreFramesThanSlots) {
     const auto last = timer.poll();
     ASSERT_TRUE(last.has_value()) << "drain() leaves the newest frame for poll()";
     ASSERT_EQ(last->size(), 2u);
-    for (double ms : *last) { // llvmpipe's timestamps are not meaningful (NOTES-platform.md): sanity only
+    for (double ms : *last) { // llvmpipe's timestamps are not meaningful (docs/PLATFORM.md): sanity only
         EXPECT_TRUE(std::isfinite(ms)) << ms;
         EXPECT_GE(ms, 0.0);
     }

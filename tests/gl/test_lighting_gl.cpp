@@ -5,6 +5,7 @@
 // falloff fog lets the sea show from 15 km while a fog of the same sea-level density without falloff hides
 // it, and at 0.5 m the horizon is the fog colour; foam brightens the sea; each lighting texture is uploaded
 // once and counted. Set PACIFICA_LIGHTING_DUMP=DIR to write every rendered frame as a scene-linear EXR.
+#include "SharedData.h"
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/capture/Capture.h"
@@ -37,11 +38,7 @@ constexpr int W = 192;
 constexpr int H = 108;
 constexpr float FOV_Y = static_cast<float>(std::numbers::pi / 3.0); // 60 degrees
 
-std::filesystem::path sharedDir() {
-    if (const char* env = std::getenv("PACIFICA_SHARED_DIR"); env && *env)
-        return env;
-    return std::filesystem::path(__FILE__).parent_path() / "../../../shared";
-}
+using pacifica::testdata::sharedDir;
 
 /// The Kerner lat-long map (1024 x 512, RGBA half) as an EnvironmentMap, read once.
 std::shared_ptr<const ocean::EnvironmentMap> kerner() {

@@ -286,7 +286,7 @@ std::vector<glm::vec2> radialGridPoints(int rings, int segments) {
 /// Cost of each path: GPU time of a vertex-only transform-feedback draw of the default 256 x 512 radial
 /// grid's displaced vertices (and, on hardware, of an 8x denser one: 131k vertices sit at the H100's
 /// per-draw floor), and of the combine pass (update()) where there is one. gl::GpuTimer: GL timer queries
-/// on hardware, wall clock around glFinish on llvmpipe (whose timer queries are wrong, NOTES-platform.md).
+/// on hardware, wall clock around glFinish on llvmpipe (whose timer queries are wrong, docs/PLATFORM.md).
 /// Minimum and median of 10 runs (the minimum is the least disturbed by other processes on a shared
 /// machine); printed, not asserted.
 TEST(OctaveFilterCost, VertexAndCombinePassTimePerPath) {

@@ -2,6 +2,7 @@
 // processor (ColorPipeline::applyCpu, the reference) on an HDR ramp that spans 1e-4 .. 1e4, negatives and
 // mixed values, for both views of the embedded config, the ACES studio config, and a small config of our
 // own that makes OCIO use every LUT texture kind (1D, 1D folded into 2D, 3D) and a dynamic uniform.
+#include "SharedData.h"
 #include <epoxy/gl.h>
 
 #include "engine/color/ColorPipeline.h"
@@ -32,11 +33,7 @@ constexpr int WIDTH = 64;
 constexpr int HEIGHT = 4;
 constexpr int PIXELS = WIDTH * HEIGHT;
 
-std::filesystem::path sharedDir() {
-    if (const char* env = std::getenv("PACIFICA_SHARED_DIR"); env && *env)
-        return env;
-    return std::filesystem::path(__FILE__).parent_path() / "../../../shared";
-}
+using pacifica::testdata::sharedDir;
 
 // The HDR test ramp, packed RGBA: R log-spaced 1e-4 .. 1e4 (8 decades over 256 pixels), G negative
 // log-spaced -1e-3 .. -10, B cycling through mid grey, R's value, a small negative and zero, A = 1.
@@ -141,7 +138,7 @@ protected:
 
 std::unique_ptr<gl::GlContext> TonemapTest::sContext;
 
-// NOTES-platform.md measured 3.4e-6 (analytic transforms) between OCIO's GPU and CPU processors on
+// docs/PLATFORM.md measured 3.4e-6 (analytic transforms) between OCIO's GPU and CPU processors on
 // llvmpipe; 1e-4 leaves room for other drivers' pow/exp2 while still catching a wrong transform, a wrong
 // texel, or a lost channel (display values here are 0 .. ~50 for un-tone-mapped, 0 .. ~1.04 for ACES).
 constexpr float ANALYTIC_TOLERANCE = 1e-4f;

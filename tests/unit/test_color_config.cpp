@@ -1,6 +1,7 @@
 // Unit tests for pacifica::color::ColorPipeline on the CPU (no GL): the embedded ACES config (validates,
 // its display and views, reference values of both views), error messages for unknown names and bad files,
 // the shipped ACES studio config, and the CLI > $OCIO > embedded precedence of fromEnvironmentOr().
+#include "SharedData.h"
 #include "engine/color/ColorPipeline.h"
 
 #include <gtest/gtest.h>
@@ -23,11 +24,7 @@ using pacifica::color::ColorPipeline;
 
 constexpr const char* STUDIO_CONFIG = "studio-config-v1.0.0_aces-v1.3_ocio-v2.1.ocio";
 
-std::filesystem::path sharedDir() {
-    if (const char* env = std::getenv("PACIFICA_SHARED_DIR"); env && *env)
-        return env;
-    return std::filesystem::path(__FILE__).parent_path() / "../../../shared";
-}
+using pacifica::testdata::sharedDir;
 
 std::filesystem::path studioConfig() {
     return sharedDir() / "data" / "ocio" / STUDIO_CONFIG;
@@ -108,7 +105,7 @@ TEST(ColorConfig, AcesSdrViewReferenceValues) {
     // and the sRGB encoding of that is 1.055 * 0.10406^(1/2.4) - 0.055 = 0.35595.
     EXPECT_NEAR(applyGrey(p, 0.18f), 0.356f, 0.01f);
     EXPECT_NEAR(applyGrey(p, 0.f), 0.f, 1e-4f);
-    // The SDR output transform saturates: 1e6 lands at ~1.0404 (measured; 64 -> 1.0168, NOTES-platform.md).
+    // The SDR output transform saturates: 1e6 lands at ~1.0404 (measured; 64 -> 1.0168, docs/PLATFORM.md).
     const float huge = applyGrey(p, 1e6f);
     EXPECT_TRUE(std::isfinite(huge));
     EXPECT_LE(huge, 1.1f);

@@ -2,8 +2,8 @@
 // events, BOM, CRLF, zip, malformed lines naming file:line and field), the IGC reader (both HFDTE spellings,
 // midnight rollover, derived attitude), format detection, the WGS84 world frame against GeographicLib's exact
 // local ENU, camera rigs and object selection, and which recorded objects drive the sea. The real DCS
-// recording in
-// ../shared/data/flights is read too.
+// recording in the shared data directory ($PACIFICA_SHARED_DIR) is read too, when it is there.
+#include "SharedData.h"
 #include <recording/AcmiWriter.h>
 #include <recording/CameraRig.h>
 #include <recording/EarthFrame.h>
@@ -489,7 +489,7 @@ TEST(EarthFrame, MatchesExactLocalEnuWithinStatedBound) {
     const glm::dvec3 ship = frame.toWorld(lat0 + 0.9, lon0, 0.0);
     EXPECT_GT(ship.y, 99000.0);
     EXPECT_DOUBLE_EQ(pacifica::drawnZ(ship, ship + glm::dvec3(0, 0, 500)), 0.0);
-    // Meridian convergence at 100 km east, ~0.9 deg (NOTES-flights.md): true north is rotated in the grid.
+    // Meridian convergence at 100 km east, ~0.9 deg (recording/EarthFrame.h): true north is rotated in the grid.
     double lat = 0, lon = 0, alt = 0;
     frame.toGeodetic({100000.0, 0.0, 0.0}, lat, lon, alt);
     const double conv = frame.gridHeading(lat, lon, 0.0);
@@ -735,8 +735,7 @@ TEST(AcmiWriter, RoundTripsEscapesEventsRemovalsAndPositionOnlyTracks) {
 }
 
 TEST(RealRecording, DcsBlackSeaF14) {
-    const char* shared = std::getenv("PACIFICA_SHARED_DIR");
-    const fs::path file = fs::path(shared ? shared : "../shared") / "data/flights/dcs-blacksea-f14b.txt.acmi";
+    const fs::path file = pacifica::testdata::sharedDir() / "data/flights/dcs-blacksea-f14b.txt.acmi";
     ASSERT_TRUE(fs::exists(file)) << file;
     const Recording r = readRecording(file);
     EXPECT_EQ(r.format, "acmi-text");

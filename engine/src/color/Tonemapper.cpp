@@ -1,6 +1,6 @@
 // Tonemapper implementation: builds the fullscreen-triangle program around OCIO's GLSL, uploads the LUT
 // textures OCIO describes (1D as GL_TEXTURE_1D, folded 1D as GL_TEXTURE_2D, 3D as RGB32F GL_TEXTURE_3D;
-// NOTES-platform.md "OpenColorIO 2.1.2"), binds their samplers to texture units 1..N with
+// docs/PLATFORM.md "OpenColorIO 2.1.2"), binds their samplers to texture units 1..N with
 // glProgramUniform1i (OCIO declares them without a binding), and refreshes OCIO's dynamic uniforms each run.
 #include <epoxy/gl.h>
 

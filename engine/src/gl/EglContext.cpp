@@ -1,6 +1,6 @@
 // Headless OpenGL 4.5 core contexts through EGL. Order: a hardware EGL device (EGL_EXT_platform_device,
 // skipping Mesa's software device), then Mesa's surfaceless platform (llvmpipe). No default framebuffer:
-// everything renders into FBOs. See NOTES-platform.md for the verified behaviour on llvmpipe and NVIDIA.
+// everything renders into FBOs. See docs/PLATFORM.md for the verified behaviour on llvmpipe and NVIDIA.
 #include "engine/gl/GlContext.h"
 
 #include "engine/Log.h"

@@ -2,7 +2,7 @@
 #include "engine/gl/GlContext.h"
 
 #include <epoxy/gl.h>
-// epoxy must come before GLFW (NOTES-platform.md).
+// epoxy must come before GLFW (docs/PLATFORM.md).
 #include <GLFW/glfw3.h>
 
 #include <string>

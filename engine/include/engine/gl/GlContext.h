@@ -22,7 +22,7 @@ public:
 };
 
 /// True when a GL_RENDERER string names a software rasteriser (Mesa's llvmpipe or softpipe): timer
-/// queries are wrong there (NOTES-platform.md), and it runs both sides of every shader branch.
+/// queries are wrong there (docs/PLATFORM.md), and it runs both sides of every shader branch.
 bool isSoftwareRenderer(std::string_view renderer);
 
 struct ContextInfo {
@@ -30,7 +30,7 @@ struct ContextInfo {
     std::string renderer;
     std::string version;
     std::string platform;  ///< "egl-device", "egl-surfaceless" or "glfw"
-    bool software = false; ///< llvmpipe/softpipe: GL timer queries are wrong there (NOTES-platform.md)
+    bool software = false; ///< llvmpipe/softpipe: GL timer queries are wrong there (docs/PLATFORM.md)
 };
 
 struct ContextDesc {

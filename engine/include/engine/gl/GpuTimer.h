@@ -1,6 +1,6 @@
 // GpuTimer: measures GPU time of a span of GL commands without stalling the pipeline — a ring of
 // GL_TIME_ELAPSED queries read back a few frames later. On software rasterisers (llvmpipe) timer queries
-// return wrong values (NOTES-platform.md), so there it times with std::chrono::steady_clock around
+// return wrong values (docs/PLATFORM.md), so there it times with std::chrono::steady_clock around
 // glFinish instead. Every figure must be reported with clockName().
 #pragma once
 

@@ -3,7 +3,7 @@
 // a frame of sky, sea and effects costs four timestamps whatever the number of passes. On hardware the
 // marks are GL_TIMESTAMP queries (glQueryCounter: allowed inside a GpuTimer's GL_TIME_ELAPSED span, so the
 // two nest), read back a few frames later from a ring; on software rasterisers (llvmpipe), whose timer
-// queries are wrong (NOTES-platform.md), each mark is steady_clock after glFinish. Every figure must be
+// queries are wrong (docs/PLATFORM.md), each mark is steady_clock after glFinish. Every figure must be
 // reported with clockName().
 #pragma once
 
