@@ -3,6 +3,7 @@
 // hash) with GL_RENDERER and timings. Used by `pacifica replay` and `./pacifica demo`.
 #pragma once
 
+#include "Usage.h"
 #include "engine/capture/Capture.h"
 #include "ocean/Ocean.h"
 
@@ -14,12 +15,6 @@
 #include <vector>
 
 namespace pacifica::tools {
-
-/// Bad command-line input (not a file's content): message names the option.
-class UsageError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
 
 struct ReplayOptions {
     std::filesystem::path flight;
@@ -65,9 +60,6 @@ struct ReplayOptions {
     /// Draw the recording's aircraft, ships and weapons (ObjectRenderer.h); false: --no-objects.
     bool objects = true;
 };
-
-/// Parses "WxH" (e.g. "640x360"); throws UsageError naming --size.
-void parseSize(const std::string& text, int& width, int& height);
 
 /// What a replay run renders with, for benchmarks that time its frames.
 struct ReplayRunInfo {

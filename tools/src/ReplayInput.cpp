@@ -1,7 +1,7 @@
 // ReplayInput: flight file -> views, ships, explosions (ReplayInput.h).
 #include "ReplayInput.h"
 
-#include "Replay.h"
+#include "Usage.h"
 
 #include <engine/Log.h>
 

@@ -1,0 +1,19 @@
+// Usage: what the CLI's option parsing shares -- the error for bad command-line input and the "WxH" size --
+// used by the replay's options (Replay.h) and its view specs (ReplayInput.h) alike.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace pacifica::tools {
+
+/// Bad command-line input (not a file's content): message names the option.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Parses "WxH" (e.g. "640x360", 16 <= W, H <= 8192); throws UsageError naming --size.
+void parseSize(const std::string& text, int& width, int& height);
+
+} // namespace pacifica::tools
