@@ -152,9 +152,9 @@ inline double curvatureDrop(double d) {
     return d * d / (2.0 * EARTH_RADIUS);
 }
 
-/// GLSL #define lines for the constants above (plus MAX_OCTAVES), prepended to every ocean shader.
+/// GLSL `#define` lines for the constants above (plus MAX_OCTAVES), prepended to every ocean shader.
 std::string shaderConstantDefines();
-/// GLSL #define lines for the effects' constants (Effects.h), prepended to the programs with effects.
+/// GLSL `#define` lines for the effects' constants (Effects.h), prepended to the programs with effects.
 std::string effectConstantDefines();
 
 } // namespace pacifica::ocean

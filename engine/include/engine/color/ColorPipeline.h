@@ -38,7 +38,7 @@ public:
 class ColorPipeline {
 public:
     /// The OCIO GPU shader of the selected processor, ready for a GLSL 4.x fragment shader.
-    /// The text holds no #version line; its samplers have no binding (set the units with glUniform1i).
+    /// The text holds no `#version` line; its samplers have no binding (set the units with glUniform1i).
     struct GpuShader {
         /// One LUT texture the shader samples. dims 1: GL_TEXTURE_1D (width x 1); dims 2: GL_TEXTURE_2D
         /// (OCIO folds long 1D LUTs into rows of at most 4096 texels); dims 3: GL_TEXTURE_3D RGB with

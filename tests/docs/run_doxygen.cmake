@@ -1,0 +1,30 @@
+# ctest driver of docs_api: the API reference builds from the public headers with no Doxygen warning (a
+# broken \ref, a bad command in a /// comment), and documents the component's entry points.
+# Args: SOURCE_DIR, WORK_DIR.
+find_program(DOXYGEN doxygen)
+if(NOT DOXYGEN)
+    message(FATAL_ERROR "doxygen not found: ./pacifica deps installs it (Debian package doxygen)")
+endif()
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+file(READ ${SOURCE_DIR}/docs/Doxyfile config)
+file(WRITE ${WORK_DIR}/Doxyfile "${config}\nWARN_AS_ERROR = FAIL_ON_WARNINGS\n")
+set(ENV{PACIFICA_DOCS_OUT} ${WORK_DIR})
+set(ENV{PACIFICA_SOURCE_DIR} ${SOURCE_DIR})
+execute_process(COMMAND ${DOXYGEN} ${WORK_DIR}/Doxyfile RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "doxygen failed (${rc}):\n${out}\n${err}")
+endif()
+foreach(page classpacifica_1_1ocean_1_1OceanRenderer.html structpacifica_1_1ocean_1_1OceanScene.html
+             structpacifica_1_1ocean_1_1Status.html)
+    if(NOT EXISTS ${WORK_DIR}/html/${page})
+        message(FATAL_ERROR "the API reference has no ${page}")
+    endif()
+endforeach()
+file(READ ${WORK_DIR}/html/classpacifica_1_1ocean_1_1OceanRenderer.html renderer)
+if(NOT renderer MATCHES "Draws every ocean of the scene")
+    message(FATAL_ERROR "OceanRenderer's page lacks render()'s /// comment")
+endif()
+file(REMOVE_RECURSE ${WORK_DIR})
+message(STATUS "API reference built without warnings")
