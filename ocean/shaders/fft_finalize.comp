@@ -11,8 +11,8 @@
 layout(local_size_x = TILE_GROUP, local_size_y = TILE_GROUP) in;
 
 layout(std430, binding = FFT_PLANES_BINDING) readonly buffer Planes { vec2 planes[]; };
-layout(rgba32f, binding = 0) writeonly uniform image2DArray uDisplacementImage;
-layout(rgba32f, binding = 1) writeonly uniform image2DArray uSlopeImage;
+layout(rgba32f, binding = FFT_DISPLACEMENT_IMAGE_UNIT) writeonly uniform image2DArray uDisplacementImage;
+layout(rgba32f, binding = FFT_SLOPE_IMAGE_UNIT) writeonly uniform image2DArray uSlopeImage;
 
 uniform float uChoppiness; // lambda (eq. 30)
 

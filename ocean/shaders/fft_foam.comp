@@ -13,7 +13,7 @@ layout(local_size_x = TILE_GROUP, local_size_y = TILE_GROUP) in;
 
 #ifdef FFT_FOAM_SAMPLE
 layout(std430, binding = FFT_PLANES_BINDING) readonly buffer Planes { vec2 planes[]; };
-layout(rg32f, binding = 2) writeonly uniform image2DArray uSamples;
+layout(rg32f, binding = FFT_FOAM_SAMPLES_IMAGE_UNIT) writeonly uniform image2DArray uSamples;
 uniform int uSlot;
 
 void main() {
@@ -24,8 +24,8 @@ void main() {
                vec4(max(h, 0.0), max(-h, 0.0), 0.0, 0.0));
 }
 #else
-layout(rg32f, binding = 2) readonly uniform image2DArray uSamples;
-layout(rg32f, binding = 3) writeonly uniform image2DArray uMemory;
+layout(rg32f, binding = FFT_FOAM_SAMPLES_IMAGE_UNIT) readonly uniform image2DArray uSamples;
+layout(rg32f, binding = FFT_FOAM_MEMORY_IMAGE_UNIT) writeonly uniform image2DArray uMemory;
 uniform int uNewest;                       // ring slot of sample j
 uniform float uWeight[FOAM_MEMORY_WINDOW];    // e^(-k step / tau)
 

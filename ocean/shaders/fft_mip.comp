@@ -7,8 +7,8 @@
 
 layout(local_size_x = TILE_GROUP, local_size_y = TILE_GROUP) in;
 
-layout(rgba32f, binding = 0) readonly uniform image2DArray uSource;     // level l
-layout(rgba32f, binding = 1) writeonly uniform image2DArray uDestination; // level l + 1
+layout(rgba32f, binding = FFT_MIP_SOURCE_IMAGE_UNIT) readonly uniform image2DArray uSource;     // level l
+layout(rgba32f, binding = FFT_MIP_DESTINATION_IMAGE_UNIT) writeonly uniform image2DArray uDestination; // level l + 1
 
 uniform int uSize; // level l + 1's width (= height)
 

@@ -6,7 +6,7 @@
 // derivatives of the grid point (below). With SHADE_TILES it lights one kind of tile only, from its list
 // (OceanDesc::shadeTiles, ocean_shade_tiles.comp).
 layout(local_size_x = SHADE_TILE_SIZE, local_size_y = SHADE_TILE_SIZE) in;
-layout(binding = 1, SHADE_OUTPUT_FORMAT) uniform writeonly image2D uShadeOutput;
+layout(binding = SHADE_OUTPUT_IMAGE_UNIT, SHADE_OUTPUT_FORMAT) uniform writeonly image2D uShadeOutput;
 uniform sampler2D uGeometry; // (dFdx, dFdy of the grid point)
 #ifdef GBUFFER_DISPLACED
 uniform sampler2D uOffset; // grid point - surface point (.xy)

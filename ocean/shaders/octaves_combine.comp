@@ -7,7 +7,7 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-layout(r32f, binding = 0) writeonly uniform image2DArray uCombinedImage;
+layout(r32f, binding = OCTAVE_COMBINE_IMAGE_UNIT) writeonly uniform image2DArray uCombinedImage;
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);

@@ -8,7 +8,7 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 
-layout(rgba16f, binding = 0) writeonly uniform image2DArray uLightNowImage;
+layout(rgba16f, binding = OCTAVE_LIGHT_IMAGE_UNIT) writeonly uniform image2DArray uLightNowImage;
 uniform sampler2DArray uLightMaps; // the slices, mipmapped
 uniform int uLevel;
 uniform int uFrames;

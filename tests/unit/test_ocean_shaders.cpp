@@ -77,18 +77,20 @@ TEST(OceanShaders, ConstantDefinesHoldEachConstantOnce) {
     expectLine("#define FFT_MAX_CASCADES " + std::to_string(FFT_MAX_CASCADES));
     expectLine("#define FFT_MIX_AMPLITUDE 1.5");
     expectLine("#define EFFECT_EXPLOSIONS_BINDING 4");
+    expectLine("#define SHADE_OUTPUT_IMAGE_UNIT 1");
+    expectLine("#define FFT_FOAM_MEMORY_IMAGE_UNIT 3");
     expectLine("#define ERF_AS_A float[5](0.254829592, -0.284496736, 1.42141374, -1.45315203, 1.06140543)");
     // The aperiodic mix's angle, written out for FFT_MIX_TERMS terms (4).
     expectLine("#define APERIODIC_MIX_THETA(m, first, rel) (FFT_MIX_AMPLITUDE * (sin(m[(first) + 0].z + "
                "dot(m[(first) + 0].xy, rel)) + sin(m[(first) + 1].z + dot(m[(first) + 1].xy, rel)) + "
                "sin(m[(first) + 2].z + dot(m[(first) + 2].xy, rel)) + sin(m[(first) + 3].z + "
                "dot(m[(first) + 3].xy, rel))))");
-    // Every line is a define; 46 constants (3 of them arrays), the mix's macro, 11 binding slots and an
-    // image unit.
+    // Every line is a define; 46 constants (3 of them arrays), the mix's macro, 11 binding slots and 10
+    // image units.
     size_t lines = 0;
     for (size_t at = 0; (at = d.find('\n', at)) != std::string::npos; ++at)
         ++lines;
-    EXPECT_EQ(lines, 59u);
+    EXPECT_EQ(lines, 68u);
     EXPECT_EQ(d.rfind("#define ", 0), 0u);
     EXPECT_EQ(d.back(), '\n');
 }

@@ -31,8 +31,9 @@ namespace pacifica::ocean {
 
 class ComputeShading {
 public:
-    static constexpr int DEPTH_UNIT = 15, GEOMETRY_UNIT = 16, OFFSET_UNIT = 17, OUTPUT_IMAGE_UNIT = 1,
-                         TILE_BINDING = SHADE_TILE_BINDING, TILE_SIZE = 8;
+    static constexpr int DEPTH_UNIT = 15, GEOMETRY_UNIT = 16, OFFSET_UNIT = 17,
+                         OUTPUT_IMAGE_UNIT = SHADE_OUTPUT_IMAGE_UNIT, TILE_BINDING = SHADE_TILE_BINDING,
+                         TILE_SIZE = 8;
     /// Kinds of tile (shade_pixels.glsl): an edge between sea and sky (the whole program), sea only, open sky
     /// only, sky with the sea beyond the grid.
     enum TileKind { TILE_MIXED, TILE_SEA, TILE_SKY, TILE_BEYOND, TILE_KINDS };

@@ -240,7 +240,8 @@ int FftGpu::updateFoamMemory(double time) {
         return static_cast<int>(((step % FOAM_MEMORY_WINDOW) + FOAM_MEMORY_WINDOW) % FOAM_MEMORY_WINDOW);
     };
     int passes = 0;
-    glBindImageTexture(2, mFoamSamples.id(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RG32F);
+    glBindImageTexture(FFT_FOAM_SAMPLES_IMAGE_UNIT, mFoamSamples.id(), 0, GL_TRUE, 0, GL_READ_WRITE,
+                       GL_RG32F);
     for (int64_t step = first; step <= j; ++step) {
         transform(g0, draws, timeWord(foamStepTime(step), c0.draws.front()->desc().loopPeriod), 1,
                   1); // h: plane 1 of each draw
@@ -256,7 +257,7 @@ int FftGpu::updateFoamMemory(double time) {
         weights[k] = static_cast<float>(std::exp(-k * FOAM_MEMORY_STEP / FOAM_DECAY_TIME));
     glUniform1fv(location(mFoamMemoryProgram.id(), "uWeight"), FOAM_MEMORY_WINDOW, weights);
     glUniform1i(location(mFoamMemoryProgram.id(), "uNewest"), slotOf(j));
-    glBindImageTexture(3, mFoamMemory.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
+    glBindImageTexture(FFT_FOAM_MEMORY_IMAGE_UNIT, mFoamMemory.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
     glDispatchCompute(groups2d, groups2d, static_cast<GLuint>(draws));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     mHaveFoam = true;
@@ -291,8 +292,9 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
         // 4. Unpack every layer into its layer of the maps (dispatch z).
         glUseProgram(g.finalize.id());
         glUniform1f(location(g.finalize.id(), "uChoppiness"), static_cast<float>(desc.choppiness));
-        glBindImageTexture(0, g.displacement.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glBindImageTexture(1, g.slope.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(FFT_DISPLACEMENT_IMAGE_UNIT, g.displacement.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                           GL_RGBA32F);
+        glBindImageTexture(FFT_SLOPE_IMAGE_UNIT, g.slope.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         const GLuint groups2d = static_cast<GLuint>(g.size) / TILE_GROUP;
         glDispatchCompute(groups2d, groups2d, static_cast<GLuint>(g.layers));
         // The scratch planes are rewritten by the next group's spectrum pass.
@@ -304,8 +306,10 @@ SurfaceGpuStats FftGpu::update(double time, const glm::dvec3& /*cameraWorld*/) {
         glUseProgram(g.mip.id());
         const int sizeLoc = location(g.mip.id(), "uSize");
         for (int level = 1, size = g.size / 2; size >= 1; ++level, size /= 2) {
-            glBindImageTexture(0, g.slope.id(), level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA32F);
-            glBindImageTexture(1, g.slope.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            glBindImageTexture(FFT_MIP_SOURCE_IMAGE_UNIT, g.slope.id(), level - 1, GL_TRUE, 0, GL_READ_ONLY,
+                               GL_RGBA32F);
+            glBindImageTexture(FFT_MIP_DESTINATION_IMAGE_UNIT, g.slope.id(), level, GL_TRUE, 0, GL_WRITE_ONLY,
+                               GL_RGBA32F);
             glUniform1i(sizeLoc, size);
             const GLuint groups = static_cast<GLuint>((size + TILE_GROUP - 1) / TILE_GROUP);
             glDispatchCompute(groups, groups, static_cast<GLuint>(g.layers));

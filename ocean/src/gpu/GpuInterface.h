@@ -27,9 +27,20 @@ enum StorageBinding : int {
     EFFECT_GRIDS_BINDING = 9, ///< effects_sample.glsl: vec4 (centre - camera, radius, 0) per drawn grid
 };
 
-/// Image units. The effects field is written by its own compute pass (effects_field.comp).
+/// Image units, given to the shaders as #defines like the storage bindings. The compute passes that use
+/// them run apart, so their units may coincide; the octave combine's unit 0 and the shading pass's unit 1 are
+/// the ones left changed for the host (Ocean.h).
 enum ImageUnit : int {
-    EFFECT_FIELD_IMAGE_UNIT = 2, ///< effects_field.comp: the field's texture array, written
+    OCTAVE_COMBINE_IMAGE_UNIT = 0,      ///< octaves_combine.comp: the combined height layers, written
+    OCTAVE_LIGHT_IMAGE_UNIT = 0,        ///< octaves_light_mix.comp: this frame's lighting maps, written
+    SHADE_OUTPUT_IMAGE_UNIT = 1,        ///< ocean_shade.comp: the host's colour texture, written
+    FFT_DISPLACEMENT_IMAGE_UNIT = 0,    ///< fft_finalize.comp: displacement, written
+    FFT_SLOPE_IMAGE_UNIT = 1,           ///< fft_finalize.comp: slopes, written
+    FFT_MIP_SOURCE_IMAGE_UNIT = 0,      ///< fft_mip.comp: slope level l, read
+    FFT_MIP_DESTINATION_IMAGE_UNIT = 1, ///< fft_mip.comp: slope level l + 1, written
+    FFT_FOAM_SAMPLES_IMAGE_UNIT = 2,    ///< fft_foam.comp: crest samples, written then read
+    FFT_FOAM_MEMORY_IMAGE_UNIT = 3,     ///< fft_foam.comp: the decayed crest memory, written
+    EFFECT_FIELD_IMAGE_UNIT = 2,        ///< effects_field.comp: the field's texture array, written
 };
 
 /// Clip distances the grids' vertex stages write to cut the secondary grids' holes (effects_sample.glsl

@@ -2,6 +2,8 @@
 // octave uniforms (GPU Gems 2 §18.2.1, §18.2.4, §18.2.5; see the header).
 #include "gpu/OctavesGpu.h"
 
+#include "gpu/GpuInterface.h"
+
 #include <epoxy/gl.h>
 
 #include "engine/Time.h"
@@ -197,12 +199,13 @@ SurfaceGpuStats OctavesGpu::update(double time, const glm::dvec3& cameraWorld) {
         for (int level = 0; level < mLightLevels; ++level) {
             const int size = std::max(1, mLightSize >> level);
             glProgramUniform1i(prog, location(prog, "uLevel"), level);
-            glBindImageTexture(0, mLightNow.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+            glBindImageTexture(OCTAVE_LIGHT_IMAGE_UNIT, mLightNow.id(), level, GL_TRUE, 0, GL_WRITE_ONLY,
+                               GL_RGBA16F);
             const GLuint groups = static_cast<GLuint>((size + 7) / 8);
             glDispatchCompute(groups, groups, static_cast<GLuint>(n));
         }
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(OCTAVE_LIGHT_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         s.computePasses += 1;
     }
     if (!mCombined)
@@ -212,12 +215,12 @@ SurfaceGpuStats OctavesGpu::update(double time, const glm::dvec3& cameraWorld) {
     const GLuint prog = mCombineProgram.id();
     glUseProgram(prog);
     bindOctaves(prog, 0, time, cameraWorld, true);
-    glBindImageTexture(0, mCombined.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(OCTAVE_COMBINE_IMAGE_UNIT, mCombined.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
     const GLuint groups =
         static_cast<GLuint>((mSurface->desc().combinedSize + COMBINE_GROUP - 1) / COMBINE_GROUP);
     glDispatchCompute(groups, groups, static_cast<GLuint>(mSurface->combinedLevels()));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(OCTAVE_COMBINE_IMAGE_UNIT, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     s.computePasses += 1;
     return s;
 }
