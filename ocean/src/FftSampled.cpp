@@ -5,13 +5,18 @@
 
 #include <kiss_fftnd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <complex>
 #include <cstdlib>
+#include <exception>
+#include <iterator>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace pacifica::ocean {
 
@@ -95,14 +100,44 @@ FftSampledSea::Tile FftSampledSea::sampleTile(const FftOcean& sea, double t) {
     return tile;
 }
 
-FftSampledSea::FftSampledSea(const FftCascades& sea, double t, Interpolation interpolation)
+FftSampledSea::FftSampledSea(const FftCascades& sea, double t, Interpolation interpolation, unsigned threads)
     : mSea(sea), mTime(t), mInterpolation(interpolation) {
     if (!std::isfinite(t))
         throw std::invalid_argument("FftSampledSea: time must be finite, got " + std::to_string(t));
+    std::vector<const FftOcean*> tiles;
     for (const auto& tile : sea.cascades())
-        mFirst.push_back(sampleTile(*tile, t));
+        tiles.push_back(tile.get());
     for (const auto& tile : sea.secondDraws())
-        mSecond.push_back(sampleTile(*tile, t));
+        tiles.push_back(tile.get());
+    std::vector<Tile> sampled(tiles.size());
+    std::vector<std::exception_ptr> errors(tiles.size());
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t i = next++; i < tiles.size(); i = next++) {
+            try {
+                sampled[i] = sampleTile(*tiles[i], t);
+            } catch (...) {
+                errors[i] = std::current_exception();
+            }
+        }
+    };
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const size_t helpers = std::min<size_t>(threads == 0 ? hardware : threads, tiles.size());
+    std::vector<std::thread> pool;
+    for (size_t i = 1; i < helpers; ++i)
+        pool.emplace_back(work);
+    work();
+    for (std::thread& th : pool)
+        th.join();
+    for (const std::exception_ptr& e : errors)
+        if (e)
+            std::rethrow_exception(e);
+    mFirst.assign(
+        std::make_move_iterator(sampled.begin()),
+        std::make_move_iterator(sampled.begin() + static_cast<std::ptrdiff_t>(sea.cascades().size())));
+    mSecond.assign(
+        std::make_move_iterator(sampled.begin() + static_cast<std::ptrdiff_t>(sea.cascades().size())),
+        std::make_move_iterator(sampled.end()));
 }
 
 glm::dvec3 FftSampledSea::sample(const Tile& tile, const glm::dvec2& xy, glm::dvec3* ddx,

@@ -5,6 +5,7 @@
 // - between them the error is bounded per interpolation (stated below, with the measured values), bicubic
 //   under bilinear; the Eulerian height likewise;
 // - far from the origin (10^7 m) and late (t = 10^6 s) the error is the same (both wrap in double);
+// - the thread count that samples the tiles changes no bit;
 // - a NaN time and mismatched spans are refused.
 #include "ocean/FftSampled.h"
 
@@ -108,6 +109,20 @@ TEST(FftSampled, FarFromTheOriginAndLateTheErrorIsTheSame) {
     std::printf("[fft sampled] at 1e7 m, t = 1e6 s: bicubic RMS %.4g max %.4g m\n", far.rms, far.max);
     EXPECT_LT(far.rms, 0.002 * hs);
     EXPECT_LT(far.max, 0.01 * hs);
+}
+
+TEST(FftSampled, TheThreadCountChangesNoBit) {
+    const FftCascades sea{FftDesc{}};
+    const FftSampledSea one(sea, 7.0, FftSampledSea::Interpolation::Bicubic, 1);
+    const FftSampledSea three(sea, 7.0, FftSampledSea::Interpolation::Bicubic, 3);
+    for (const glm::dvec2 p :
+         {glm::dvec2(0.0, 0.0), glm::dvec2(123.4, -987.6), glm::dvec2(-4000.5, 2500.25)}) {
+        const glm::dvec3 a = one.displacementAt(p), b = three.displacementAt(p);
+        EXPECT_EQ(a.x, b.x);
+        EXPECT_EQ(a.y, b.y);
+        EXPECT_EQ(a.z, b.z);
+        EXPECT_EQ(one.heightAt(p), three.heightAt(p));
+    }
 }
 
 TEST(FftSampled, BadInputIsRefused) {

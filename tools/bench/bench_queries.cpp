@@ -72,8 +72,9 @@ void BM_FftSampledHeight(benchmark::State& state) {
 
 void BM_FftSampleTiles(benchmark::State& state) {
     double t = T;
+    const auto threads = static_cast<unsigned>(state.range(0));
     for (auto _ : state) {
-        FftSampledSea sampled(fftSea(), t);
+        FftSampledSea sampled(fftSea(), t, FftSampledSea::Interpolation::Bicubic, threads);
         benchmark::DoNotOptimize(sampled.displacementAt({0.0, 0.0}));
         t += 1.0 / 60.0;
     }
@@ -85,5 +86,10 @@ BENCHMARK(BM_OctavesHeight);
 BENCHMARK(BM_GerstnerHeight);
 BENCHMARK(BM_FftDirectSumHeight);
 BENCHMARK(BM_FftSampledHeight)->Arg(0)->Arg(1)->ArgName("interpolation");
-BENCHMARK(BM_FftSampleTiles)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FftSampleTiles)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_MAIN();

@@ -29,8 +29,11 @@ public:
     enum class Interpolation { Bilinear, Bicubic };
 
     /// Samples every tile of `sea` (both draws of every cascade) at time t (finite; std::invalid_argument
-    /// otherwise). Keeps a reference to `sea`, which must outlive it.
-    FftSampledSea(const FftCascades& sea, double t, Interpolation interpolation = Interpolation::Bicubic);
+    /// otherwise) on `threads` threads (0: one per hardware thread; 1: the calling thread only). The tiles
+    /// are independent, so the result does not depend on the thread count. Keeps a reference to `sea`, which
+    /// must outlive it.
+    FftSampledSea(const FftCascades& sea, double t, Interpolation interpolation = Interpolation::Bicubic,
+                  unsigned threads = 0);
 
     double time() const { return mTime; }
     Interpolation interpolation() const { return mInterpolation; }
