@@ -489,7 +489,8 @@ TEST(EarthFrame, MatchesExactLocalEnuWithinStatedBound) {
     const glm::dvec3 ship = frame.toWorld(lat0 + 0.9, lon0, 0.0);
     EXPECT_GT(ship.y, 99000.0);
     EXPECT_DOUBLE_EQ(pacifica::drawnZ(ship, ship + glm::dvec3(0, 0, 500)), 0.0);
-    // Meridian convergence at 100 km east, ~0.9 deg (recording/EarthFrame.h): true north is rotated in the grid.
+    // Meridian convergence at 100 km east, ~0.9 deg (recording/EarthFrame.h): true north is rotated in the
+    // grid.
     double lat = 0, lon = 0, alt = 0;
     frame.toGeodetic({100000.0, 0.0, 0.0}, lat, lon, alt);
     const double conv = frame.gridHeading(lat, lon, 0.0);
