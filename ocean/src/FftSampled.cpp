@@ -24,18 +24,27 @@ namespace {
 
 constexpr double TWO_PI = 2.0 * std::numbers::pi;
 
-/// The inverse transform of a plane of N x N lattice coefficients, in place: out(b, a) = sum_{m, i} in(m, i)
+/// Inverse transforms of N x N planes of lattice coefficients, in place: out(b, a) = sum_{m, i} in(m, i)
 /// e^{+2 pi i (m b + i a) / N} (kiss_fftnd with inverse = 1 is unnormalised, as the sum needs).
-void inverseTransform(int n, std::vector<kiss_fft_cpx>& plane) {
-    const int dims[2] = {n, n};
-    const std::unique_ptr<void, void (*)(void*)> cfg(kiss_fftnd_alloc(dims, 2, 1, nullptr, nullptr),
-                                                     [](void* p) { kiss_fft_free(p); });
-    if (!cfg)
-        throw std::bad_alloc();
-    std::vector<kiss_fft_cpx> out(plane.size());
-    kiss_fftnd(static_cast<kiss_fftnd_cfg>(cfg.get()), plane.data(), out.data());
-    plane.swap(out);
-}
+class InverseTransform {
+public:
+    explicit InverseTransform(int n) : mConfig(alloc(n), [](void* p) { kiss_fft_free(p); }) {
+        if (!mConfig)
+            throw std::bad_alloc();
+    }
+    void operator()(std::vector<kiss_fft_cpx>& plane) const {
+        std::vector<kiss_fft_cpx> out(plane.size());
+        kiss_fftnd(static_cast<kiss_fftnd_cfg>(mConfig.get()), plane.data(), out.data());
+        plane.swap(out);
+    }
+
+private:
+    static void* alloc(int n) {
+        const int dims[2] = {n, n};
+        return kiss_fftnd_alloc(dims, 2, 1, nullptr, nullptr);
+    }
+    std::unique_ptr<void, void (*)(void*)> mConfig;
+};
 
 /// Keys' cubic convolution weights (a = -0.5, the Catmull-Rom spline) of the samples at -1, 0, 1, 2 for a
 /// point f in [0, 1) past sample 0 (Keys 1981, eq. 15).
@@ -85,8 +94,9 @@ FftSampledSea::Tile FftSampledSea::sampleTile(const FftOcean& sea, double t) {
             sideways[idx] = {static_cast<float>(both.real()), static_cast<float>(both.imag())};
         }
     }
-    inverseTransform(n, heights);
-    inverseTransform(n, sideways);
+    const InverseTransform inverse(n);
+    inverse(heights);
+    inverse(sideways);
     // Lattice index i stands for the wave number i - N/2: at x = a L / N its e^{i k x} is the transform's
     // e^{2 pi i i a / N} times e^{-i pi a} = (-1)^a (and (-1)^b along y).
     Tile tile{n, d.tileSize, std::vector<glm::vec3>(count)};
@@ -217,9 +227,9 @@ glm::dvec3 FftSampledSea::displacementAt(const glm::dvec2& xy) const {
 }
 
 double FftSampledSea::heightAt(const glm::dvec2& xy) const {
-    // Solve F(x0) = x0 + d_xy(x0) - xy = 0 as SurfaceModel::heightAt does (Newton, step halving, |F| < 1e-9
-    // m), with the Jacobian I + grad d_xy from the interpolant's own slopes: one evaluation per step instead
-    // of five (the same root; the Jacobian only steers the steps).
+    // SurfaceModel::heightAt's solve of F(x0) = x0 + d_xy(x0) - xy = 0 (Newton, step halving, |F| < 1e-9 m),
+    // with the Jacobian I + grad d_xy from the interpolant's own slopes instead of central differences: one
+    // evaluation per step instead of five (the same root; the Jacobian only steers the steps).
     glm::dvec3 gx, gy;
     glm::dvec2 x0 = xy;
     glm::dvec3 d = displacementAndSlopes(x0, &gx, &gy);

@@ -171,11 +171,11 @@ Status heightsAt(const OceanComponent& ocean, const EffectsView& effects, std::s
         for (size_t i = 0; i < points.size(); ++i)
             requireFinite(std::isfinite(points[i].x) && std::isfinite(points[i].y),
                           "heightsAt(): points[" + std::to_string(i) + "]");
-        std::vector<double> base;
-        ocean.surface->heightsAt(std::vector<glm::dvec2>(points.begin(), points.end()), t, base);
+        std::vector<double> out(points.size()); // `heights` stays as it was if a query throws
         for (size_t i = 0; i < points.size(); ++i)
-            base[i] += effects.empty() ? 0.0 : effectsAt(effects, points[i], t).x;
-        std::copy(base.begin(), base.end(), heights.begin());
+            out[i] = ocean.surface->heightAt(points[i], t) +
+                     (effects.empty() ? 0.0 : effectsAt(effects, points[i], t).x);
+        std::copy(out.begin(), out.end(), heights.begin());
     });
 }
 
@@ -923,6 +923,15 @@ std::array<int, 4> shadeTileCounts(OceanRenderer& renderer) {
 
 namespace {
 
+/// The 1x1 target the transform-feedback captures draw into (a draw needs a complete framebuffer).
+void ensureFeedbackTarget(Programs& programs) {
+    if (programs.feedbackFbo)
+        return;
+    programs.feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
+    programs.feedbackFbo = gl::Framebuffer::create();
+    programs.feedbackFbo.attachColor(0, programs.feedbackColor);
+}
+
 const OceanComponent& oceanOf(ecs::Registry& registry, ecs::Entity entity, const char* where) {
     const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);
     if (!ocean || !ocean->surface)
@@ -936,23 +945,19 @@ const OceanComponent& oceanOf(ecs::Registry& registry, ecs::Entity entity, const
 std::vector<DisplacedVertex> displacedVertices(OceanRenderer& renderer, ecs::Registry& registry,
                                                ecs::Entity entity, const OceanFrame& frame) {
     OceanRenderer::Impl& r = renderer.impl();
-    Programs* const mPrograms = r.mPrograms.get();
+    Programs& programs = *r.mPrograms;
     const OceanComponent* ocean = &oceanOf(registry, entity, "debug::displacedVertices()");
     OceanGpu& gpu = r.prepare(oceanId(entity), *ocean);
     const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
-    gl::Program& program = mPrograms->seaFeedback[gpu.programKey + vert];
+    gl::Program& program = programs.seaFeedback[gpu.programKey + vert];
     if (!program)
         program =
             gl::buildProgram({{gl::ShaderStage::Vertex, sources(concat(gpu.model->glslFiles(), {vert}))}},
                              "ocean sea feedback (" + gpu.programKey + ")", {"vRel", "vGrid"});
-    if (!mPrograms->feedbackFbo) {
-        mPrograms->feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
-        mPrograms->feedbackFbo = gl::Framebuffer::create();
-        mPrograms->feedbackFbo.attachColor(0, mPrograms->feedbackColor);
-    }
+    ensureFeedbackTarget(programs);
     gl::StateGuard guard;
     gpu.model->update(frame.time, frame.camera.origin);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, programs.feedbackFbo.id());
     const GLuint prog = program.id();
     glUseProgram(prog);
     (void)setSeaUniforms(prog, *ocean, gpu, frame);
@@ -976,29 +981,25 @@ std::vector<DisplacedVertex> displacedVertices(OceanRenderer& renderer, ecs::Reg
 std::vector<EffectVertex> effectVertices(OceanRenderer& renderer, ecs::Registry& registry, ecs::Entity entity,
                                          const OceanFrame& frame, EffectKind kind) {
     OceanRenderer::Impl& r = renderer.impl();
-    Programs* const mPrograms = r.mPrograms.get();
-    EffectsGpu* const mEffects = r.mEffects.get();
+    Programs& programs = *r.mPrograms;
+    EffectsGpu& fx = *r.mEffects;
     const OceanComponent* ocean = &oceanOf(registry, entity, "debug::effectVertices()");
     OceanGpu& gpu = r.prepare(oceanId(entity), *ocean);
     const RegistryEffects effects(registry);
-    mEffects->prepare(effects.view(), frame, effectHeightBound(*ocean), ocean->desc.effectGrids,
-                      ocean->desc.effectField);
-    if (mEffects->drawn(kind) == 0)
+    fx.prepare(effects.view(), frame, effectHeightBound(*ocean), ocean->desc.effectGrids,
+               ocean->desc.effectField);
+    if (fx.drawn(kind) == 0)
         return {};
-    if (!mPrograms->feedbackFbo) {
-        mPrograms->feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
-        mPrograms->feedbackFbo = gl::Framebuffer::create();
-        mPrograms->feedbackFbo.attachColor(0, mPrograms->feedbackColor);
-    }
+    ensureFeedbackTarget(programs);
     gl::StateGuard guard;
     gpu.model->update(frame.time, frame.camera.origin);
-    mEffects->computeField(r.effectFieldProgram());
+    fx.computeField(r.effectFieldProgram());
     const GLuint prog = r.effectProgram(gpu, true, false);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, mPrograms->feedbackFbo.id());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, programs.feedbackFbo.id());
     glUseProgram(prog);
     setSurfaceUniforms(prog, *ocean, gpu, frame);
-    mEffects->bindField(prog);
-    const size_t count = static_cast<size_t>(mEffects->gridVertices(kind) * mEffects->drawn(kind));
+    fx.bindField(prog);
+    const size_t count = static_cast<size_t>(fx.gridVertices(kind) * fx.drawn(kind));
     struct Captured {
         glm::vec3 position;
         glm::vec2 local;
@@ -1008,18 +1009,18 @@ std::vector<EffectVertex> effectVertices(OceanRenderer& renderer, ecs::Registry&
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.id());
     glEnable(GL_RASTERIZER_DISCARD);
     glBeginTransformFeedback(GL_POINTS);
-    mEffects->draw(prog, kind, GL_POINTS);
+    fx.draw(prog, kind, GL_POINTS);
     glEndTransformFeedback();
     glDisable(GL_RASTERIZER_DISCARD);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
     std::vector<Captured> raw(count);
     glGetNamedBufferSubData(captured.id(), 0, static_cast<GLsizeiptr>(count * sizeof(Captured)), raw.data());
-    const size_t perInstance = static_cast<size_t>(mEffects->gridVertices(kind));
+    const size_t perInstance = static_cast<size_t>(fx.gridVertices(kind));
     const size_t firstGrid =
-        kind == EffectKind::Explosion ? 0 : static_cast<size_t>(mEffects->drawn(EffectKind::Explosion));
+        kind == EffectKind::Explosion ? 0 : static_cast<size_t>(fx.drawn(EffectKind::Explosion));
     std::vector<EffectVertex> out(count);
     for (size_t i = 0; i < count; ++i)
-        out[i] = {raw[i].position, raw[i].local, mEffects->gridCentres()[firstGrid + i / perInstance]};
+        out[i] = {raw[i].position, raw[i].local, fx.gridCentres()[firstGrid + i / perInstance]};
     return out;
 }
 

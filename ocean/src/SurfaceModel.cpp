@@ -3,8 +3,6 @@
 
 #include "ocean/OceanConstants.h"
 
-#include "Eulerian.h"
-
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -53,7 +51,37 @@ glm::dvec2 aperiodicMixWeights(double tile, int set, const glm::dvec2& xy) {
 }
 
 double SurfaceModel::heightAt(const glm::dvec2& xy, double t) const {
-    return eulerianHeight([&](const glm::dvec2& p) { return displacementAt(p, t); }, xy);
+    // Solve F(x0) = x0 + d_xy(x0) - xy = 0 for the grid point whose image lies above xy. Newton's method with
+    // a central-difference Jacobian (h = 1 mm) and step halving: the plain fixed point x0 <- xy - d_xy(x0)
+    // contracts only by |grad d_xy|, which tends to 1 at the steepness limit (Gerstner Q k A -> 1, sharp
+    // crests), where it would need thousands of iterations. Stops at |F| < 1e-9 m.
+    auto residual = [&](const glm::dvec2& x0) {
+        const glm::dvec3 d = displacementAt(x0, t);
+        return x0 + glm::dvec2(d.x, d.y) - xy;
+    };
+    glm::dvec2 x0 = xy;
+    glm::dvec2 f = residual(x0);
+    for (int i = 0; i < 32 && glm::length(f) > 1e-9; ++i) {
+        constexpr double h = 1e-3;
+        const glm::dvec2 fx =
+            (residual(x0 + glm::dvec2(h, 0.0)) - residual(x0 - glm::dvec2(h, 0.0))) / (2.0 * h);
+        const glm::dvec2 fy =
+            (residual(x0 + glm::dvec2(0.0, h)) - residual(x0 - glm::dvec2(0.0, h))) / (2.0 * h);
+        const double det = fx.x * fy.y - fy.x * fx.y;
+        glm::dvec2 step = -f; // fixed-point step where the Jacobian is singular (a fold)
+        if (std::abs(det) > 1e-12)
+            step = -glm::dvec2(fy.y * f.x - fy.x * f.y, -fx.y * f.x + fx.x * f.y) / det;
+        double scale = 1.0;
+        glm::dvec2 next = x0 + step, fn = residual(next);
+        while (glm::length(fn) >= glm::length(f) && scale > 1e-4) { // step halving keeps |F| decreasing
+            scale *= 0.5;
+            next = x0 + step * scale;
+            fn = residual(next);
+        }
+        x0 = next;
+        f = fn;
+    }
+    return displacementAt(x0, t).z;
 }
 
 void SurfaceModel::heightsAt(const std::vector<glm::dvec2>& points, double t,
