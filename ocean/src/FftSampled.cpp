@@ -24,27 +24,17 @@ namespace {
 
 constexpr double TWO_PI = 2.0 * std::numbers::pi;
 
-/// Inverse transforms of N x N planes of lattice coefficients, in place: out(b, a) = sum_{m, i} in(m, i)
-/// e^{+2 pi i (m b + i a) / N} (kiss_fftnd with inverse = 1 is unnormalised, as the sum needs).
-class InverseTransform {
-public:
-    explicit InverseTransform(int n) : mConfig(alloc(n), [](void* p) { kiss_fft_free(p); }) {
-        if (!mConfig)
-            throw std::bad_alloc();
-    }
-    void operator()(std::vector<kiss_fft_cpx>& plane) const {
-        std::vector<kiss_fft_cpx> out(plane.size());
-        kiss_fftnd(static_cast<kiss_fftnd_cfg>(mConfig.get()), plane.data(), out.data());
-        plane.swap(out);
-    }
+/// kiss_fftnd's configuration for inverse N x N transforms: out(b, a) = sum_{m, i} in(m, i) e^{+2 pi i (m b +
+/// i a) / N} (inverse = 1 is unnormalised, as the sum needs).
+using FftConfig = std::unique_ptr<void, void (*)(void*)>;
 
-private:
-    static void* alloc(int n) {
-        const int dims[2] = {n, n};
-        return kiss_fftnd_alloc(dims, 2, 1, nullptr, nullptr);
-    }
-    std::unique_ptr<void, void (*)(void*)> mConfig;
-};
+FftConfig inverseConfig(int n) {
+    const int dims[2] = {n, n};
+    FftConfig config(kiss_fftnd_alloc(dims, 2, 1, nullptr, nullptr), [](void* p) { kiss_fft_free(p); });
+    if (!config)
+        throw std::bad_alloc();
+    return config;
+}
 
 /// Keys' cubic convolution weights (a = -0.5, the Catmull-Rom spline) of the samples at -1, 0, 1, 2 for a
 /// point f in [0, 1) past sample 0 (Keys 1981, eq. 15).
@@ -62,96 +52,153 @@ glm::dvec4 cubicSlopes(double f) {
 
 } // namespace
 
-FftSampledSea::Tile FftSampledSea::sampleTile(const FftOcean& sea, double t) {
+struct FftSampledSea::Tile {
+    int n = 0;
+    double size = 0.0;
+    std::vector<glm::vec3> values;   // (lambda Dx, lambda Dy, h) at x = (a, b) L / N, row b, column a
+    std::vector<glm::vec3> velocity; // d/dt of the same (empty unless asked for)
+    // The transform's planes: h, Dx + i Dy (both fields are real), their time derivatives, and the output.
+    std::vector<kiss_fft_cpx> heights, sideways, heightRates, sidewaysRates, out;
+    FftConfig config{nullptr, [](void*) {}};
+
+    Tile(int size_, double metres, bool withVelocity) : n(size_), size(metres), config(inverseConfig(size_)) {
+        const size_t count = static_cast<size_t>(n) * static_cast<size_t>(n);
+        values.resize(count);
+        heights.resize(count);
+        sideways.resize(count);
+        out.resize(count);
+        if (withVelocity) {
+            velocity.resize(count);
+            heightRates.resize(count);
+            sidewaysRates.resize(count);
+        }
+    }
+    /// Inverse-transforms `plane` and stores it in place.
+    void inverse(std::vector<kiss_fft_cpx>& plane) {
+        kiss_fftnd(static_cast<kiss_fftnd_cfg>(config.get()), plane.data(), out.data());
+        plane.swap(out);
+    }
+};
+
+void FftSampledSea::sampleTile(const FftOcean& sea, double t, Tile& tile) {
     const FftDesc& d = sea.desc();
     const int n = d.size;
-    const size_t count = static_cast<size_t>(n) * static_cast<size_t>(n);
+    const bool rates = !tile.velocity.empty();
     // The time phase of every component as FftOcean::sumAt takes it: e^{i w t} = e^{i 2 pi q s}, s = wrap(t,
     // T) / T (Tessendorf 2001, "looping in time"), turns reduced mod 1 in double.
     const double s = wrapPhase(t, d.loopPeriod) / d.loopPeriod;
-    const double dk = TWO_PI / d.tileSize;
-    std::vector<kiss_fft_cpx> heights(count), sideways(count); // h; Dx + i Dy (both fields are real)
+    const double dk = TWO_PI / d.tileSize, w0 = TWO_PI / d.loopPeriod;
     const std::vector<std::complex<double>>& h0 = sea.h0();
     const std::vector<uint32_t>& q = sea.omegaMultiple();
-    for (int m = 1; m < n; ++m) { // the Nyquist row and column (index 0) hold nothing (FftOcean.h)
-        for (int i = 1; i < n; ++i) {
+    const kiss_fft_cpx zero{0.0f, 0.0f};
+    auto store = [](const std::complex<double>& c) {
+        return kiss_fft_cpx{static_cast<float>(c.real()), static_cast<float>(c.imag())};
+    };
+    for (int m = 0; m < n; ++m) {
+        for (int i = 0; i < n; ++i) {
             const size_t idx = static_cast<size_t>(m) * n + i;
-            if (q[idx] == 0)
-                continue;                                                // k = 0
+            // The Nyquist row and column (index 0) hold nothing (FftOcean.h), nor does k = 0.
+            if (m == 0 || i == 0 || q[idx] == 0) {
+                tile.heights[idx] = tile.sideways[idx] = zero;
+                if (rates)
+                    tile.heightRates[idx] = tile.sidewaysRates[idx] = zero;
+                continue;
+            }
             const size_t neg = static_cast<size_t>(n - m) * n + (n - i); // the lattice index of -k
             const double turns = q[idx] * s;
             const double r = turns - std::round(turns);
             const std::complex<double> e(std::cos(TWO_PI * r), std::sin(TWO_PI * r));
             // Tessendorf 2001 eq. 26: htilde = h0(k) e^{i w t} + conj(h0(-k)) e^{-i w t}.
-            const std::complex<double> ht = h0[idx] * e + std::conj(h0[neg]) * std::conj(e);
+            const std::complex<double> up = h0[idx] * e, down = std::conj(h0[neg]) * std::conj(e);
+            const std::complex<double> ht = up + down;
             const double kx = dk * (i - n / 2), ky = dk * (m - n / 2);
             const double k = std::sqrt(kx * kx + ky * ky);
-            // Eq. 29: D = -i (k / |k|) htilde per axis; Dx + i Dy carries both real fields in one transform.
-            const std::complex<double> dx = std::complex<double>(0.0, -kx / k) * ht;
-            const std::complex<double> dy = std::complex<double>(0.0, -ky / k) * ht;
-            const std::complex<double> both = dx + std::complex<double>(0.0, 1.0) * dy;
-            heights[idx] = {static_cast<float>(ht.real()), static_cast<float>(ht.imag())};
-            sideways[idx] = {static_cast<float>(both.real()), static_cast<float>(both.imag())};
+            // Eq. 29: D = -i (k / |k|) htilde per axis; Dx + i Dy carries both real fields in one transform:
+            // -i (kx + i ky) / |k| htilde.
+            const std::complex<double> chop(ky / k, -kx / k);
+            tile.heights[idx] = store(ht);
+            tile.sideways[idx] = store(chop * ht);
+            if (rates) { // d/dt htilde = i w (h0 e^{i w t} - conj(h0(-k)) e^{-i w t})
+                const std::complex<double> rate = std::complex<double>(0.0, q[idx] * w0) * (up - down);
+                tile.heightRates[idx] = store(rate);
+                tile.sidewaysRates[idx] = store(chop * rate);
+            }
         }
     }
-    const InverseTransform inverse(n);
-    inverse(heights);
-    inverse(sideways);
+    tile.inverse(tile.heights);
+    tile.inverse(tile.sideways);
+    if (rates) {
+        tile.inverse(tile.heightRates);
+        tile.inverse(tile.sidewaysRates);
+    }
     // Lattice index i stands for the wave number i - N/2: at x = a L / N its e^{i k x} is the transform's
     // e^{2 pi i i a / N} times e^{-i pi a} = (-1)^a (and (-1)^b along y).
-    Tile tile{n, d.tileSize, std::vector<glm::vec3>(count)};
     const float l = static_cast<float>(d.choppiness);
     for (int b = 0; b < n; ++b)
         for (int a = 0; a < n; ++a) {
             const size_t j = static_cast<size_t>(b) * n + a;
             const float sign = (a + b) % 2 == 0 ? 1.0f : -1.0f;
-            tile.values[j] = sign * glm::vec3(l * sideways[j].r, l * sideways[j].i, heights[j].r);
+            tile.values[j] =
+                sign * glm::vec3(l * tile.sideways[j].r, l * tile.sideways[j].i, tile.heights[j].r);
+            if (rates)
+                tile.velocity[j] = sign * glm::vec3(l * tile.sidewaysRates[j].r, l * tile.sidewaysRates[j].i,
+                                                    tile.heightRates[j].r);
         }
-    return tile;
+}
+
+FftSampledSea::FftSampledSea(const FftCascades& sea, Interpolation interpolation, bool velocity)
+    : mSea(sea), mVelocity(velocity), mInterpolation(interpolation), mCascades(sea.cascades().size()) {
+    for (const auto& tile : sea.cascades())
+        mSources.push_back(tile.get());
+    for (const auto& tile : sea.secondDraws())
+        mSources.push_back(tile.get());
+    for (const FftOcean* source : mSources)
+        mTiles.push_back(std::make_unique<Tile>(source->desc().size, source->desc().tileSize, velocity));
 }
 
 FftSampledSea::FftSampledSea(const FftCascades& sea, double t, Interpolation interpolation, unsigned threads)
-    : mSea(sea), mTime(t), mInterpolation(interpolation) {
-    if (!std::isfinite(t))
-        throw std::invalid_argument("FftSampledSea: time must be finite, got " + std::to_string(t));
-    std::vector<const FftOcean*> tiles;
-    for (const auto& tile : sea.cascades())
-        tiles.push_back(tile.get());
-    for (const auto& tile : sea.secondDraws())
-        tiles.push_back(tile.get());
-    std::vector<Tile> sampled(tiles.size());
-    std::vector<std::exception_ptr> errors(tiles.size());
-    std::atomic<size_t> next{0};
-    auto work = [&] {
-        for (size_t i = next++; i < tiles.size(); i = next++) {
-            try {
-                sampled[i] = sampleTile(*tiles[i], t);
-            } catch (...) {
-                errors[i] = std::current_exception();
-            }
-        }
-    };
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const size_t helpers = std::min<size_t>(threads == 0 ? hardware : threads, tiles.size());
-    std::vector<std::thread> pool;
-    for (size_t i = 1; i < helpers; ++i)
-        pool.emplace_back(work);
-    work();
-    for (std::thread& th : pool)
-        th.join();
-    for (const std::exception_ptr& e : errors)
-        if (e)
-            std::rethrow_exception(e);
-    mFirst.assign(
-        std::make_move_iterator(sampled.begin()),
-        std::make_move_iterator(sampled.begin() + static_cast<std::ptrdiff_t>(sea.cascades().size())));
-    mSecond.assign(
-        std::make_move_iterator(sampled.begin() + static_cast<std::ptrdiff_t>(sea.cascades().size())),
-        std::make_move_iterator(sampled.end()));
+    : FftSampledSea(sea, interpolation, false) {
+    ThreadPool pool(threads == 0 ? 0 : std::min<unsigned>(threads, static_cast<unsigned>(mTiles.size())));
+    resample(t, pool.jobs());
 }
 
-glm::dvec3 FftSampledSea::sample(const Tile& tile, const glm::dvec2& xy, glm::dvec3* ddx,
-                                 glm::dvec3* ddy) const {
+FftSampledSea::~FftSampledSea() = default;
+FftSampledSea::FftSampledSea(FftSampledSea&&) noexcept = default;
+
+void FftSampledSea::resample(double t, const JobSystem& jobs) {
+    if (!std::isfinite(t))
+        throw std::invalid_argument("FftSampledSea: time must be finite, got " + std::to_string(t));
+    struct Work {
+        FftSampledSea* self;
+        double t;
+        std::atomic<bool> failed{false};
+    } work{this, t};
+    jobs.run(
+        mTiles.size(),
+        [](void* context, size_t i) {
+            auto* w = static_cast<Work*>(context);
+            try { // a job must not throw (Jobs.h): sampling allocates nothing, so nothing is expected here
+                sampleTile(*w->self->mSources[i], w->t, *w->self->mTiles[i]);
+            } catch (...) {
+                w->failed = true;
+            }
+        },
+        &work);
+    if (work.failed) {
+        mSampled = false;
+        throw std::runtime_error("FftSampledSea::resample(): sampling a tile failed");
+    }
+    mTime = t;
+    mSampled = true;
+}
+
+void FftSampledSea::requireSampled(const char* what) const {
+    if (!mSampled)
+        throw std::logic_error(std::string("FftSampledSea::") + what + "(): resample() first");
+}
+
+glm::dvec3 FftSampledSea::sample(const Tile& tile, const std::vector<glm::vec3>& values, const glm::dvec2& xy,
+                                 glm::dvec3* ddx, glm::dvec3* ddy) const {
     const int n = tile.n;
     const double perMetre = n / tile.size;
     // The grid coordinate of xy, wrapped to the tile in double first (the tile repeats with period L).
@@ -159,7 +206,7 @@ glm::dvec3 FftSampledSea::sample(const Tile& tile, const glm::dvec2& xy, glm::dv
     const int a0 = static_cast<int>(std::floor(u.x)), b0 = static_cast<int>(std::floor(u.y));
     const glm::dvec2 f = u - glm::dvec2(a0, b0);
     auto wrap = [n](int i) { return ((i % n) + n) % n; };
-    auto at = [&](int a, int b) { return glm::dvec3(tile.values[static_cast<size_t>(b) * n + a]); };
+    auto at = [&](int a, int b) { return glm::dvec3(values[static_cast<size_t>(b) * n + a]); };
     if (mInterpolation == Interpolation::Bilinear) {
         const int a00 = wrap(a0), b00 = wrap(b0), a1 = wrap(a0 + 1), b1 = wrap(b0 + 1);
         const glm::dvec3 v00 = at(a00, b00), v10 = at(a1, b00), v01 = at(a00, b1), v11 = at(a1, b1);
@@ -197,18 +244,21 @@ glm::dvec3 FftSampledSea::sample(const Tile& tile, const glm::dvec2& xy, glm::dv
 glm::dvec3 FftSampledSea::displacementAndSlopes(const glm::dvec2& xy, glm::dvec3* ddx,
                                                 glm::dvec3* ddy) const {
     // As FftCascades::displacementAt: each cascade's two draws mixed by (cos theta_c, sin theta_c). The
-    // slopes hold the weights (theta's own gradient, ~6 / L_c rad/m, left out: they steer Newton's steps
-    // only).
+    // slopes hold the weights (theta's own gradient, ~6 / L_c rad/m, left out, as FftCascades::normalAt
+    // does).
     glm::dvec3 d(0.0), gx(0.0), gy(0.0), tx, ty;
-    for (size_t c = 0; c < mFirst.size(); ++c) {
+    const bool second = mTiles.size() > mCascades;
+    for (size_t c = 0; c < mCascades; ++c) {
         const glm::dvec2 w = mSea.mixWeights(static_cast<int>(c), xy);
-        d += w.x * sample(mFirst[c], xy, ddx ? &tx : nullptr, &ty);
+        const Tile& first = *mTiles[c];
+        d += w.x * sample(first, first.values, xy, ddx ? &tx : nullptr, &ty);
         if (ddx) {
             gx += w.x * tx;
             gy += w.x * ty;
         }
-        if (!mSecond.empty()) {
-            d += w.y * sample(mSecond[c], xy, ddx ? &tx : nullptr, &ty);
+        if (second) {
+            const Tile& other = *mTiles[mCascades + c];
+            d += w.y * sample(other, other.values, xy, ddx ? &tx : nullptr, &ty);
             if (ddx) {
                 gx += w.y * tx;
                 gy += w.y * ty;
@@ -223,13 +273,15 @@ glm::dvec3 FftSampledSea::displacementAndSlopes(const glm::dvec2& xy, glm::dvec3
 }
 
 glm::dvec3 FftSampledSea::displacementAt(const glm::dvec2& xy) const {
+    requireSampled("displacementAt");
     return displacementAndSlopes(xy, nullptr, nullptr);
 }
 
-double FftSampledSea::heightAt(const glm::dvec2& xy) const {
-    // SurfaceModel::heightAt's solve of F(x0) = x0 + d_xy(x0) - xy = 0 (Newton, step halving, |F| < 1e-9 m),
-    // with the Jacobian I + grad d_xy from the interpolant's own slopes instead of central differences: one
-    // evaluation per step instead of five (the same root; the Jacobian only steers the steps).
+glm::dvec2 FftSampledSea::lagrangianPointAt(const glm::dvec2& xy, glm::dvec3* displacement) const {
+    // SurfaceModel::lagrangianPointAt's solve of F(x0) = x0 + d_xy(x0) - xy = 0 (Newton, step halving, |F| <
+    // 1e-9 m), with the Jacobian I + grad d_xy from the interpolant's own slopes instead of central
+    // differences: one evaluation per step instead of five (the same root; the Jacobian only steers).
+    requireSampled("lagrangianPointAt");
     glm::dvec3 gx, gy;
     glm::dvec2 x0 = xy;
     glm::dvec3 d = displacementAndSlopes(x0, &gx, &gy);
@@ -254,7 +306,38 @@ double FftSampledSea::heightAt(const glm::dvec2& xy) const {
         d = dn;
         f = fn;
     }
+    if (displacement)
+        *displacement = d;
+    return x0;
+}
+
+double FftSampledSea::heightAt(const glm::dvec2& xy) const {
+    glm::dvec3 d;
+    lagrangianPointAt(xy, &d);
     return d.z;
+}
+
+glm::dvec3 FftSampledSea::normalAt(const glm::dvec2& xy) const {
+    requireSampled("normalAt");
+    glm::dvec3 gx, gy;
+    displacementAndSlopes(xy, &gx, &gy);
+    // P(x0) = x0 + (dx, dy, h) (Tessendorf 2001 eq. 30): the normal is dP/dx x dP/dy.
+    return glm::normalize(glm::cross(glm::dvec3(1.0 + gx.x, gx.y, gx.z), glm::dvec3(gy.x, 1.0 + gy.y, gy.z)));
+}
+
+glm::dvec3 FftSampledSea::velocityAt(const glm::dvec2& xy) const {
+    requireSampled("velocityAt");
+    if (!mVelocity)
+        throw std::logic_error("FftSampledSea::velocityAt(): made without velocity");
+    glm::dvec3 v(0.0);
+    const bool second = mTiles.size() > mCascades;
+    for (size_t c = 0; c < mCascades; ++c) {
+        const glm::dvec2 w = mSea.mixWeights(static_cast<int>(c), xy);
+        v += w.x * sample(*mTiles[c], mTiles[c]->velocity, xy, nullptr, nullptr);
+        if (second)
+            v += w.y * sample(*mTiles[mCascades + c], mTiles[mCascades + c]->velocity, xy, nullptr, nullptr);
+    }
+    return v;
 }
 
 void FftSampledSea::heightsAt(std::span<const glm::dvec2> points, std::span<double> heights) const {

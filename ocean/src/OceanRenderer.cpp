@@ -6,6 +6,7 @@
 #include "ocean/OceanDebug.h"
 #include "ocean/OceanHost.h"
 
+#include "Guarded.h"
 #include "engine/Log.h"
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GlObjects.h"
@@ -86,28 +87,6 @@ void validateEffectGrids(const EffectGridDesc& g) {
 } // namespace
 
 namespace {
-
-/// Runs `body`, turning what it throws into a Status (ErrorCode by the exception's type; the message as
-/// thrown, naming the field or the program): the component boundary's one catch.
-template <class Body>
-Status guarded(Body&& body) noexcept {
-    try {
-        body();
-        return {};
-    } catch (const std::invalid_argument& e) {
-        return {ErrorCode::InvalidArgument, e.what()};
-    } catch (const std::out_of_range& e) {
-        return {ErrorCode::InvalidArgument, e.what()};
-    } catch (const gl::ShaderError& e) {
-        return {ErrorCode::GpuFailure, e.what()};
-    } catch (const std::bad_alloc&) {
-        return {ErrorCode::OutOfMemory, "out of memory"};
-    } catch (const std::exception& e) {
-        return {ErrorCode::Internal, e.what()};
-    } catch (...) {
-        return {ErrorCode::Internal, "unknown exception"};
-    }
-}
 
 OceanComponent buildOcean(const OceanDesc& desc) {
     validateLighting(desc.lighting); // names the field (ocean/include/ocean/Lighting.h)

@@ -50,17 +50,24 @@ glm::dvec2 aperiodicMixWeights(double tile, int set, const glm::dvec2& xy) {
     return {std::cos(theta), std::sin(theta)};
 }
 
-double SurfaceModel::heightAt(const glm::dvec2& xy, double t) const {
+glm::dvec2 SurfaceModel::lagrangianPointAt(const glm::dvec2& xy, double t, glm::dvec3* displacement) const {
     // Solve F(x0) = x0 + d_xy(x0) - xy = 0 for the grid point whose image lies above xy. Newton's method with
     // a central-difference Jacobian (h = 1 mm) and step halving: the plain fixed point x0 <- xy - d_xy(x0)
     // contracts only by |grad d_xy|, which tends to 1 at the steepness limit (Gerstner Q k A -> 1, sharp
     // crests), where it would need thousands of iterations. Stops at |F| < 1e-9 m.
+    if (kind() == SurfaceKind::Octaves) { // no horizontal displacement
+        if (displacement)
+            *displacement = displacementAt(xy, t);
+        return xy;
+    }
+    glm::dvec3 last(0.0); // displacementAt() of the last residual() taken
     auto residual = [&](const glm::dvec2& x0) {
-        const glm::dvec3 d = displacementAt(x0, t);
-        return x0 + glm::dvec2(d.x, d.y) - xy;
+        last = displacementAt(x0, t);
+        return x0 + glm::dvec2(last.x, last.y) - xy;
     };
     glm::dvec2 x0 = xy;
     glm::dvec2 f = residual(x0);
+    glm::dvec3 atX0 = last;
     for (int i = 0; i < 32 && glm::length(f) > 1e-9; ++i) {
         constexpr double h = 1e-3;
         const glm::dvec2 fx =
@@ -80,8 +87,24 @@ double SurfaceModel::heightAt(const glm::dvec2& xy, double t) const {
         }
         x0 = next;
         f = fn;
+        atX0 = last;
     }
-    return displacementAt(x0, t).z;
+    if (displacement)
+        *displacement = atX0;
+    return x0;
+}
+
+double SurfaceModel::heightAt(const glm::dvec2& xy, double t) const {
+    glm::dvec3 d;
+    lagrangianPointAt(xy, t, &d);
+    return d.z;
+}
+
+glm::dvec3 SurfaceModel::velocityAt(const glm::dvec2& xy, double t) const {
+    // Central difference in time at the fixed grid point; t +- h is exact enough in double at any t the
+    // models take (their phases are wrapped after the sum).
+    return (displacementAt(xy, t + VELOCITY_STEP) - displacementAt(xy, t - VELOCITY_STEP)) /
+           (2.0 * VELOCITY_STEP);
 }
 
 void SurfaceModel::heightsAt(const std::vector<glm::dvec2>& points, double t,

@@ -16,9 +16,11 @@
 #pragma once
 
 #include "ocean/FftOcean.h"
+#include "ocean/Jobs.h"
 
 #include <glm/glm.hpp>
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -34,33 +36,55 @@ public:
     /// must outlive it.
     FftSampledSea(const FftCascades& sea, double t, Interpolation interpolation = Interpolation::Bicubic,
                   unsigned threads = 0);
+    /// Not sampled yet (resample() before any query): allocates every buffer now, once. `velocity`: sample
+    /// the time derivative too (velocityAt; two more transforms per tile).
+    FftSampledSea(const FftCascades& sea, Interpolation interpolation, bool velocity);
+    ~FftSampledSea();
+    FftSampledSea(FftSampledSea&&) noexcept;
+    FftSampledSea& operator=(FftSampledSea&&) = delete;
+
+    /// Samples every tile at time t (finite; std::invalid_argument otherwise), one job per tile on `jobs`,
+    /// into the buffers it has: allocates nothing.
+    void resample(double t, const JobSystem& jobs = {});
 
     double time() const { return mTime; }
+    bool sampled() const { return mSampled; }
+    bool hasVelocity() const { return mVelocity; }
     Interpolation interpolation() const { return mInterpolation; }
     /// (dx, dy, h) at grid point xy, as FftCascades::displacementAt(xy, time()).
     glm::dvec3 displacementAt(const glm::dvec2& xy) const;
+    /// The grid point whose image lies above world point xy (as SurfaceModel::lagrangianPointAt);
+    /// `displacement`, if given, receives displacementAt() there.
+    glm::dvec2 lagrangianPointAt(const glm::dvec2& xy, glm::dvec3* displacement = nullptr) const;
     /// The Eulerian height above xy, as FftCascades::heightAt(xy, time()).
     double heightAt(const glm::dvec2& xy) const;
+    /// Unit normal of the displaced surface at the image of grid point xy, as FftCascades::normalAt (the
+    /// interpolant's own slopes).
+    glm::dvec3 normalAt(const glm::dvec2& xy) const;
+    /// d/dt (dx, dy, h) at grid point xy (SurfaceModel::velocityAt), from the sampled time derivative of
+    /// every component: d/dt htilde = i w (h0 e^{i w t} - conj(h0(-k)) e^{-i w t}). std::logic_error
+    /// without hasVelocity().
+    glm::dvec3 velocityAt(const glm::dvec2& xy) const;
     /// heightAt of every point; `heights` must be as long as `points` (std::invalid_argument otherwise).
     void heightsAt(std::span<const glm::dvec2> points, std::span<double> heights) const;
 
 private:
-    /// One tile's (lambda Dx, lambda Dy, h) at x = (a, b) L / N, row b, column a.
-    struct Tile {
-        int n = 0;
-        double size = 0.0;
-        std::vector<glm::vec3> values;
-    };
-    static Tile sampleTile(const FftOcean& tile, double t);
-    /// The tile's interpolant at xy and, when ddx is given, its x and y derivatives (per metre) into ddx,
-    /// ddy.
-    glm::dvec3 sample(const Tile& tile, const glm::dvec2& xy, glm::dvec3* ddx, glm::dvec3* ddy) const;
+    struct Tile; // one tile's lattice values and its transform's buffers (FftSampled.cpp)
+    static void sampleTile(const FftOcean& sea, double t, Tile& tile);
+    /// The tile's interpolant of `values` at xy and, when ddx is given, its x and y derivatives (per metre).
+    glm::dvec3 sample(const Tile& tile, const std::vector<glm::vec3>& values, const glm::dvec2& xy,
+                      glm::dvec3* ddx, glm::dvec3* ddy) const;
     glm::dvec3 displacementAndSlopes(const glm::dvec2& xy, glm::dvec3* ddx, glm::dvec3* ddy) const;
+    void requireSampled(const char* what) const;
 
     const FftCascades& mSea;
     double mTime = 0.0;
+    bool mSampled = false;
+    bool mVelocity = false;
     Interpolation mInterpolation = Interpolation::Bicubic;
-    std::vector<Tile> mFirst, mSecond; // draws A and B of every cascade
+    std::vector<const FftOcean*> mSources;     // draws A of every cascade, then draws B
+    std::vector<std::unique_ptr<Tile>> mTiles; // the same order
+    size_t mCascades = 0;
 };
 
 } // namespace pacifica::ocean

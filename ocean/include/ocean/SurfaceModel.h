@@ -70,9 +70,19 @@ public:
             out.push_back(foamHeightAt(xy, t));
         return out;
     }
-    /// Height of the surface above world point (x, y) (Eulerian): solves x0 + d_xy(x0) = (x, y) by
-    /// fixed-point iteration (converges while the surface does not fold), then returns dz(x0).
+    /// The grid point x0 whose image lies above world point (x, y) (Eulerian to Lagrangian): solves x0 +
+    /// d_xy(x0) = (x, y) by Newton's method (below); (x, y) itself for a model without horizontal
+    /// displacement. Where the surface folds, one of the images. `displacement`, if given, receives
+    /// displacementAt(x0, t) (computed by the solve anyway).
+    glm::dvec2 lagrangianPointAt(const glm::dvec2& xy, double t, glm::dvec3* displacement = nullptr) const;
+    /// Height of the surface above world point (x, y) (Eulerian): dz(lagrangianPointAt(xy, t)).
     virtual double heightAt(const glm::dvec2& xy, double t) const;
+    /// Velocity of the water at the surface point displaced from grid point (x, y): d/dt of (x + dx, y + dy,
+    /// dz) at fixed (x, y), m/s -- the orbital velocity a floating body follows. By default the central
+    /// difference over +-VELOCITY_STEP seconds (its error, (w h)^2 / 6 of the velocity, is below 1e-7 for
+    /// the shortest waves drawn).
+    virtual glm::dvec3 velocityAt(const glm::dvec2& xy, double t) const;
+    static constexpr double VELOCITY_STEP = 1e-3;
     /// Batched heightAt.
     void heightsAt(const std::vector<glm::dvec2>& points, double t, std::vector<double>& out) const;
 };
