@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace pacifica::game {
 
@@ -122,6 +123,11 @@ double Route::headingDegAt(double t) const {
 World::World(ecs::Registry& registry, ecs::EventQueue& events, ecs::Entity ocean, const WorldDesc& desc)
     : mRegistry(registry), mEvents(events), mOcean(ocean), mDesc(desc), mBombs(desc.bombs),
       mRockets(desc.rockets) {
+    const auto* sea = registry.tryGet<ocean::OceanComponent>(ocean);
+    if (!sea)
+        throw std::invalid_argument("World: entity " + ecs::toString(ocean) + " has no OceanComponent");
+    if (const ocean::Status s = mSea.init(*sea, {.fields = ocean::SeaField::Height}); !s)
+        throw std::invalid_argument("World: " + s.message);
     const glm::dvec2 o(desc.origin);
     const glm::dvec2 ahead = compass(desc.carrierHeadingDeg);
     const glm::dvec2 right(ahead.y, -ahead.x);
@@ -154,7 +160,8 @@ World::World(ecs::Registry& registry, ecs::EventQueue& events, ecs::Entity ocean
     const ShipState& carrier = mShips[0];
     mPlayer.pose.headingDeg = carrier.pose.headingDeg;
     const glm::dvec2 start = glm::dvec2(carrier.pose.position) - 0.35 * carrier.spec.length * ahead;
-    mPlayer.pose.position = glm::dvec3(start, hullTop(carrier.spec) + desc.aircraft.gearHeight);
+    mPlayer.pose.position =
+        glm::dvec3(start, carrier.pose.position.z + hullTop(carrier.spec) + desc.aircraft.gearHeight);
     mPlayer.velocity = glm::dvec3(carrier.velocity, 0.0);
     mPlayer.onDeck = true;
 }
@@ -165,6 +172,7 @@ void World::placeShips(double t) {
         const glm::dvec2 p = s.spec.route.positionAt(tt);
         s.pose.position = glm::dvec3(p, 0.0);
         s.pose.headingDeg = s.spec.route.headingDegAt(tt);
+        s.pose.pitchDeg = s.pose.rollDeg = 0.0;
         s.velocity = s.sunkAt ? glm::dvec2(0.0) : s.spec.route.speed * compass(s.pose.headingDeg);
         if (s.sunkAt) { // settles by a tenth of its length, listing, then is gone
             const double f = std::clamp((t - *s.sunkAt) / SINK_S, 0.0, 1.0);
@@ -172,6 +180,44 @@ void World::placeShips(double t) {
             s.pose.rollDeg = 18.0 * f;
         }
         mRegistry.get<ocean::Ship>(s.entity).position = p;
+    }
+    floatShips(t);
+}
+
+void World::floatShips(double t) {
+    // Every afloat hull's points in one batched query, on the sea and its explosions: the wakes are the
+    // ships' own waves (part of a hull's trim, not a sea that pitches it), and the costliest field to sample.
+    constexpr double ALONG[3] = {-0.4, 0.0, 0.4}, ACROSS[3] = {-0.8, 0.0, 0.8};
+    mPoints.clear();
+    for (const ShipState& s : mShips) {
+        if (s.sunkAt)
+            continue;
+        const glm::dvec2 f = compass(s.pose.headingDeg), right(f.y, -f.x);
+        for (double a : ALONG)
+            for (double c : ACROSS)
+                mPoints.push_back(glm::dvec2(s.pose.position) + a * s.spec.length * f +
+                                  c * halfBeam(s.spec) * right);
+    }
+    mHeights.resize(mPoints.size());
+    seaHeightsAt(t, mPoints, mHeights, false);
+    // The least-squares plane h = z + b along + c across through the symmetric 3 x 3 grid: z is the mean,
+    // b = sum h along / sum along^2 and likewise c (the grid's moments separate).
+    size_t k = 0;
+    for (ShipState& s : mShips) {
+        if (s.sunkAt)
+            continue;
+        const double along = 0.4 * s.spec.length, across = 0.8 * halfBeam(s.spec);
+        double mean = 0.0, b = 0.0, c = 0.0;
+        for (double a : ALONG)
+            for (double x : ACROSS) {
+                const double h = mHeights[k++];
+                mean += h / HULL_POINTS;
+                b += h * a * s.spec.length / (6.0 * along * along);
+                c += h * x * halfBeam(s.spec) / (6.0 * across * across);
+            }
+        s.pose.position.z = mean;
+        s.pose.pitchDeg = std::atan(b) / DEG; // bow up where the sea is higher ahead
+        s.pose.rollDeg = -std::atan(c) / DEG; // right side down (positive roll) where it is lower
     }
 }
 
@@ -187,8 +233,30 @@ Deck World::deck() const {
     return d;
 }
 
+void World::seaHeightsAt(double t, std::span<const glm::dvec2> points, std::span<double> heights,
+                         bool wakes) const {
+    // The effects as the registry holds them now (a fresh view each call: their storage moves when effects
+    // come and go); the FFT sea is sampled again only when t changes.
+    const ocean::RegistryEffects effects(mRegistry);
+    ocean::EffectsView view = effects.view();
+    if (!wakes)
+        view.wakes = {};
+    ocean::Status s = mSea.update(t, view);
+    if (s)
+        s = mSea.heights(points, heights);
+    // A non-finite point's height is NaN (reported, not fatal: a host game is never aborted over bad data).
+    if (!s && s.code != ocean::ErrorCode::InvalidArgument)
+        throw std::runtime_error("World: sea query failed: " + s.message);
+}
+
 double World::seaHeight(const glm::dvec2& xy) const {
-    return ocean::oceanHeightAt(mRegistry, mOcean, xy, mTime);
+    double h = 0.0;
+    seaHeightsAt(mTime, {&xy, 1}, {&h, 1});
+    return h;
+}
+
+void World::seaHeights(std::span<const glm::dvec2> points, std::span<double> heights) const {
+    seaHeightsAt(mTime, points, heights);
 }
 
 double World::altitudeAboveWaves() const {
@@ -232,7 +300,7 @@ int World::shipHitBy(const glm::dvec3& p, double reach, double topMargin) const 
         const glm::dvec2 f = compass(s.pose.headingDeg);
         const double along = glm::dot(d, f), across = glm::dot(d, glm::dvec2(f.y, -f.x));
         if (std::abs(along) <= 0.5 * s.spec.length + reach && std::abs(across) <= halfBeam(s.spec) + reach &&
-            p.z <= hullTop(s.spec) + reach - topMargin)
+            p.z <= s.pose.position.z + hullTop(s.spec) + reach - topMargin)
             return static_cast<int>(i);
     }
     return -1;
@@ -314,10 +382,19 @@ void World::step(const FlightControls& controls, double dt) {
             emit({GameEvent::Kind::Ditched, mTime, at, 0, WeaponKind::Bomb, crashed, AIRCRAFT_STRENGTH});
         }
     }
+    // Every weapon's sea height in one batched query, then the hits in order (a ship sunk by one weapon is
+    // not hit by the next).
+    mPoints.clear();
     for (Weapon& w : mWeapons) {
         stepWeapon(w, mTime, dt);
+        mPoints.push_back(glm::dvec2(w.position));
+    }
+    mHeights.resize(mPoints.size());
+    seaHeights(mPoints, mHeights);
+    for (size_t i = 0; i < mWeapons.size(); ++i) {
+        Weapon& w = mWeapons[i];
         const int ship = shipHitBy(w.position, 0.0);
-        if (ship >= 0 || w.position.z <= seaHeight(glm::dvec2(w.position))) {
+        if (ship >= 0 || w.position.z <= mHeights[i]) {
             impact(w, ship);
             w.id = 0; // spent
         } else if (mTime - w.launchTime > WEAPON_MAX_LIFE_S) {

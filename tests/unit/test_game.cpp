@@ -14,10 +14,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <numbers>
 
 using namespace pacifica;
 using namespace pacifica::game;
@@ -370,4 +373,46 @@ TEST(Autopilot, SinksAllThreeTargetsAndCompletesTheMissionWithATimeBonus) {
     EXPECT_EQ(r.score, SCORE_HIT * r.hits + SCORE_SUNK * 3 +
                            SCORE_PER_SECOND_UNDER_PAR *
                                static_cast<int>(std::max(0.0, std::floor(MISSION_PAR_S - done->time))));
+}
+
+TEST(World, ShipsFloatOnTheSeaTheySail) {
+    // Heave, pitch and roll are the least-squares plane through the sea's heights under each hull's 3 x 3
+    // points (World::placeShips), checked here against the surface model's own heights, and they move.
+    Scene s;
+    const ocean::SurfaceModel& sea = *s.registry.get<ocean::OceanComponent>(s.ocean).surface;
+    std::vector<double> heave, pitch;
+    s.fly(12.0, [&](const World& w) {
+        heave.push_back(w.ships()[1].pose.position.z);
+        pitch.push_back(w.ships()[1].pose.pitchDeg);
+        return FlightControls{};
+    });
+    const World& w = *s.world;
+    for (const ShipState& ship : w.ships()) {
+        SCOPED_TRACE(ship.spec.name);
+        const double deg = std::numbers::pi / 180.0;
+        const glm::dvec2 f(std::sin(ship.pose.headingDeg * deg), std::cos(ship.pose.headingDeg * deg));
+        const glm::dvec2 right(f.y, -f.x);
+        const double beam = (ship.spec.carrier ? 0.1 : 0.07) * ship.spec.length;
+        double mean = 0.0, along = 0.0, across = 0.0;
+        for (double a : {-0.4, 0.0, 0.4})
+            for (double c : {-0.8, 0.0, 0.8}) {
+                const glm::dvec2 p =
+                    glm::dvec2(ship.pose.position) + a * ship.spec.length * f + c * beam * right;
+                const double h = sea.heightAt(p, w.time()); // no explosion yet: the sea alone
+                mean += h / 9.0;
+                along += h * a / (6.0 * 0.16 * ship.spec.length);
+                across += h * c / (6.0 * 0.64 * beam);
+            }
+        EXPECT_NEAR(ship.pose.position.z, mean, 1e-9);
+        EXPECT_NEAR(ship.pose.pitchDeg, std::atan(along) / deg, 1e-9);
+        EXPECT_NEAR(ship.pose.rollDeg, -std::atan(across) / deg, 1e-9);
+    }
+    // The frigate (130 m) heaves and pitches on the default sea: measured ranges 2.2 m, 0.7 deg.
+    const auto [hLo, hHi] = std::minmax_element(heave.begin(), heave.end());
+    const auto [pLo, pHi] = std::minmax_element(pitch.begin(), pitch.end());
+    std::printf("frigate over 12 s: heave %.3f .. %.3f m, pitch %.3f .. %.3f deg\n", *hLo, *hHi, *pLo, *pHi);
+    EXPECT_GT(*hHi - *hLo, 0.2);
+    EXPECT_GT(*pHi - *pLo, 0.1);
+    // The player sits on the carrier's heaving deck.
+    EXPECT_NEAR(w.altitudeAboveWaves(), 0.0, 0.06);
 }

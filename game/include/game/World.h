@@ -1,7 +1,7 @@
 // World: the game's simulation -- the player's aircraft, the carrier it takes off from, target ships sailing
 // their routes, bombs and rockets on ballistic paths -- driving the ocean through its public ECS API only:
 // ships are entities with ocean::Ship components and trails (AttachShipTrail), impacts are SpawnExplosion
-// events, and heights come from ocean::oceanHeightAt() (the CPU query that matches what the GPU draws).
+// events, and heights come from ocean::SeaQuery (the batched CPU queries that match what the GPU draws).
 // Fixed steps in double precision: the same inputs give the same sortie, bit for bit.
 //
 // The mission: take off from the carrier, sink the target ships (one bomb within BOMB_LETHAL_M of a hull
@@ -12,11 +12,13 @@
 
 #include <engine/Ecs.h>
 #include <engine/Pose.h>
+#include <ocean/SeaQuery.h>
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -75,6 +77,8 @@ struct ShipSpec {
 };
 
 inline constexpr double SINK_S = 25.0; ///< a sunk ship is drawn settling for this long
+/// A hull's buoyancy points: a 3 x 3 grid at 0 and +-0.4 of its length, 0 and +-0.8 of its half beam.
+inline constexpr int HULL_POINTS = 9;
 
 struct ShipState {
     ShipSpec spec;
@@ -119,7 +123,10 @@ public:
     /// enqueues their trails.
     World(ecs::Registry& registry, ecs::EventQueue& events, ecs::Entity ocean, const WorldDesc& desc = {});
 
-    /// Puts the ships where their routes have them at time t (before the first step: the wake's history).
+    /// Puts the ships where their routes have them at time t (before the first step: the wake's history)
+    /// and floats them on the sea at t: heave, pitch and roll of the plane fitted through the sea's heights
+    /// under HULL_POINTS points of each hull (quasi-static: no inertia, the hull's length and beam average
+    /// the short waves out).
     void placeShips(double t);
     /// One fixed step of dt seconds with the player's controls. Does nothing once ditched.
     void step(const FlightControls& controls, double dt);
@@ -139,8 +146,10 @@ public:
     int score() const;
     /// The carrier's deck now (for the flight model).
     Deck deck() const;
-    /// Sea height under a point at the current time (ocean + effects), metres.
+    /// Sea height under a point at the current time (ocean + effects), metres; NaN for a non-finite point.
     double seaHeight(const glm::dvec2& xy) const;
+    /// seaHeight() of every point in one batched query (heights as long as points).
+    void seaHeights(std::span<const glm::dvec2> points, std::span<double> heights) const;
     /// Height of the player's wheels above the waves (or the deck) under it.
     double altitudeAboveWaves() const;
     /// Events since the last call.
@@ -150,6 +159,9 @@ public:
 
 private:
     void emit(GameEvent e);
+    void floatShips(double t);
+    void seaHeightsAt(double t, std::span<const glm::dvec2> points, std::span<double> heights,
+                      bool wakes = true) const;
     void impact(Weapon& w, int shipHit);
     int shipHitBy(const glm::dvec3& p, double reach, double topMargin = 0.0) const;
     ecs::Registry& mRegistry;
@@ -161,6 +173,11 @@ private:
     AircraftState mPlayer;
     std::vector<ShipState> mShips;
     std::vector<Weapon> mWeapons;
+    /// The sea's batched queries (ocean/SeaQuery.h), moved to the time asked for: the FFT sea samples its
+    /// tiles once per time. Mutable: a query keeps counters and the sampled time, not the world's state.
+    mutable ocean::SeaQuery mSea;
+    mutable std::vector<glm::dvec2> mPoints; // the hull points and weapon positions of a step (reused)
+    mutable std::vector<double> mHeights;
     int mBombs = 0, mRockets = 0;
     double mLastRelease = -1e9;
     uint64_t mNextWeaponId = 0x1000;
