@@ -413,6 +413,9 @@ FftCascades::FftCascades(const FftDesc& desc) : mDesc(desc) {
         var += hs * hs / 16.0;
     }
     mHs = 4.0 * std::sqrt(var);
+    for (size_t c = 0; c < mCascades.size(); ++c)
+        for (int j = 0; j < FFT_MIX_TERMS; ++j)
+            mMixTerms.push_back(aperiodicMixTerm(mCascades[c]->desc().tileSize, static_cast<int>(c), j));
 }
 
 glm::dvec3 FftCascades::mixTerm(int c, int j) const {
@@ -422,7 +425,13 @@ glm::dvec3 FftCascades::mixTerm(int c, int j) const {
 glm::dvec2 FftCascades::mixWeights(int c, const glm::dvec2& xy) const {
     if (!mDesc.aperiodic)
         return {1.0, 0.0};
-    return aperiodicMixWeights(mCascades.at(static_cast<size_t>(c))->desc().tileSize, c, xy);
+    // aperiodicMixWeights(L_c, c, xy) with the terms made once (the same sums, so the same bits).
+    const glm::dvec3* m = &mMixTerms.at(static_cast<size_t>(c) * FFT_MIX_TERMS);
+    double theta = 0.0;
+    for (int j = 0; j < FFT_MIX_TERMS; ++j)
+        theta += std::sin(m[j].x * xy.x + m[j].y * xy.y + m[j].z);
+    theta *= FFT_MIX_AMPLITUDE;
+    return {std::cos(theta), std::sin(theta)};
 }
 
 glm::dvec3 FftCascades::displacementAt(const glm::dvec2& xy, double t) const {

@@ -171,6 +171,30 @@ void GerstnerWaves::jacobianTerms(const glm::dvec2& xy, double t, const double* 
     }
 }
 
+bool GerstnerWaves::displacementAndGradient(const glm::dvec2& xy, double t, glm::dvec3& d,
+                                            glm::dmat2& grad) const {
+    // displacement(xy, t, nullptr) (the same sums in the same order, so the same bits) and the horizontal
+    // block of jacobianTerms(): d/dx [Q A D cos theta] = -Q A k sin theta D D^T.
+    d = glm::dvec3(0.0);
+    glm::dvec3 s(0.0);
+    for (const Terms& w : mTerms) {
+        const double a = w.amplitude;
+        if (a == 0.0)
+            continue;
+        const double theta = w.k * glm::dot(w.dir, xy) - w.omega * t + w.phase;
+        const double c = std::cos(theta), sn = std::sin(theta);
+        d.x += w.q * a * c * w.dir.x;
+        d.y += w.q * a * c * w.dir.y;
+        d.z += a * sn;
+        const double qaks = w.q * a * w.k * sn;
+        s.x += qaks * w.dir.x * w.dir.x;
+        s.y += qaks * w.dir.x * w.dir.y;
+        s.z += qaks * w.dir.y * w.dir.y;
+    }
+    grad = glm::dmat2(-s.x, -s.y, -s.y, -s.z); // columns d/dx, d/dy of (dx, dy)
+    return true;
+}
+
 glm::dvec3 GerstnerWaves::displacementAt(const glm::dvec2& xy, double t) const {
     return displacement(xy, t, nullptr);
 }

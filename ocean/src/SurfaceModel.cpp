@@ -52,28 +52,39 @@ glm::dvec2 aperiodicMixWeights(double tile, int set, const glm::dvec2& xy) {
 
 glm::dvec2 SurfaceModel::lagrangianPointAt(const glm::dvec2& xy, double t, glm::dvec3* displacement) const {
     // Solve F(x0) = x0 + d_xy(x0) - xy = 0 for the grid point whose image lies above xy. Newton's method with
-    // a central-difference Jacobian (h = 1 mm) and step halving: the plain fixed point x0 <- xy - d_xy(x0)
-    // contracts only by |grad d_xy|, which tends to 1 at the steepness limit (Gerstner Q k A -> 1, sharp
-    // crests), where it would need thousands of iterations. Stops at |F| < 1e-9 m.
+    // the model's analytic Jacobian I + grad d_xy (displacementAndGradient) or, without one, central
+    // differences (h = 1 mm), and step halving: the plain fixed point x0 <- xy - d_xy(x0) contracts only by
+    // |grad d_xy|, which tends to 1 at the steepness limit (Gerstner Q k A -> 1, sharp crests), where it
+    // would need thousands of iterations. Stops at |F| < 1e-9 m.
     if (kind() == SurfaceKind::Octaves) { // no horizontal displacement
         if (displacement)
             *displacement = displacementAt(xy, t);
         return xy;
     }
     glm::dvec3 last(0.0); // displacementAt() of the last residual() taken
+    glm::dmat2 lastGrad(0.0);
+    const bool analytic = displacementAndGradient(xy, t, last, lastGrad); // x0 = xy's evaluation when true
     auto residual = [&](const glm::dvec2& x0) {
-        last = displacementAt(x0, t);
+        if (analytic)
+            displacementAndGradient(x0, t, last, lastGrad);
+        else
+            last = displacementAt(x0, t);
         return x0 + glm::dvec2(last.x, last.y) - xy;
     };
     glm::dvec2 x0 = xy;
-    glm::dvec2 f = residual(x0);
+    glm::dvec2 f = analytic ? glm::dvec2(last.x, last.y) : residual(x0);
     glm::dvec3 atX0 = last;
+    glm::dmat2 gradX0 = lastGrad;
     for (int i = 0; i < 32 && glm::length(f) > 1e-9; ++i) {
-        constexpr double h = 1e-3;
-        const glm::dvec2 fx =
-            (residual(x0 + glm::dvec2(h, 0.0)) - residual(x0 - glm::dvec2(h, 0.0))) / (2.0 * h);
-        const glm::dvec2 fy =
-            (residual(x0 + glm::dvec2(0.0, h)) - residual(x0 - glm::dvec2(0.0, h))) / (2.0 * h);
+        glm::dvec2 fx, fy; // dF/dx, dF/dy
+        if (analytic) {
+            fx = glm::dvec2(1.0, 0.0) + gradX0[0];
+            fy = glm::dvec2(0.0, 1.0) + gradX0[1];
+        } else {
+            constexpr double h = 1e-3;
+            fx = (residual(x0 + glm::dvec2(h, 0.0)) - residual(x0 - glm::dvec2(h, 0.0))) / (2.0 * h);
+            fy = (residual(x0 + glm::dvec2(0.0, h)) - residual(x0 - glm::dvec2(0.0, h))) / (2.0 * h);
+        }
         const double det = fx.x * fy.y - fy.x * fx.y;
         glm::dvec2 step = -f; // fixed-point step where the Jacobian is singular (a fold)
         if (std::abs(det) > 1e-12)
@@ -88,6 +99,7 @@ glm::dvec2 SurfaceModel::lagrangianPointAt(const glm::dvec2& xy, double t, glm::
         x0 = next;
         f = fn;
         atX0 = last;
+        gradX0 = lastGrad;
     }
     if (displacement)
         *displacement = atX0;

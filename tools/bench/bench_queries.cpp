@@ -1,16 +1,20 @@
-// pacifica-bench-queries: what the sea's CPU height queries cost, with Google Benchmark -- points per second
-// (items_per_second) of the Eulerian height for the octaves, Gerstner and FFT models, the FFT by its direct
-// sum (the reference) and by the sampled tiles (FftSampled.h, bilinear and bicubic), and the FFT's sampling
-// of every tile at one time. The error of each FFT variant is in docs/ACCURACY.md ("The FFT sea's CPU
-// queries"). One thread, 4096 random points over +-5 km. `./pacifica bench queries [--benchmark_* options]`.
+// pacifica-bench-queries: what the sea's CPU queries cost, with Google Benchmark -- points per second
+// (items_per_second) of the Eulerian height for the octaves, Gerstner and FFT models point by point (the FFT
+// by its direct sum, the reference, and by the sampled tiles, FftSampled.h, bilinear and bicubic), the FFT's
+// sampling of every tile at one time, and the batched queries (SeaQuery.h) per model: heights alone or every
+// field (height, normal, displacement, velocity), on 1 or 2 threads, without and with 8 explosions. The
+// error of each path is in docs/ACCURACY.md ("The sea's CPU queries"). 4096 random points over +-5 km.
+// `./pacifica bench queries [--benchmark_* options]`.
 #include "ocean/FftSampled.h"
 #include "ocean/GerstnerWaves.h"
 #include "ocean/HeightOctaves.h"
+#include "ocean/SeaQuery.h"
 
 #include <benchmark/benchmark.h>
 
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -80,6 +84,52 @@ void BM_FftSampleTiles(benchmark::State& state) {
     }
 }
 
+/// SeaQuery over 4096 points a call. Arguments: model (0 octaves, 1 Gerstner, 2 FFT sampled bicubic), all
+/// fields (0: heights alone), threads, explosions (0 or 8, within the points' square).
+void BM_SeaQuery(benchmark::State& state) {
+    const auto model = static_cast<SurfaceKind>(state.range(0));
+    const bool all = state.range(1) != 0;
+    const auto threads = static_cast<unsigned>(state.range(2));
+    OceanDesc desc;
+    desc.model = model;
+    OceanComponent ocean;
+    if (Status s = makeOcean(desc, ocean); !s) {
+        state.SkipWithError(s.message.c_str());
+        return;
+    }
+    std::vector<Explosion> explosions;
+    for (int i = 0; i < state.range(3); ++i) {
+        Explosion e;
+        e.center = {-4000.0 + 1000.0 * i, 500.0 * (i % 3)};
+        e.startTime = T - 5.0;
+        e.params = explosionParams(1.0);
+        explosions.push_back(e);
+    }
+    const unsigned fields = all ? SeaField::All : SeaField::Height;
+    SeaQuery query;
+    if (Status s = query.init(ocean, {.fields = fields, .threads = threads}); !s) {
+        state.SkipWithError(s.message.c_str());
+        return;
+    }
+    if (Status s = query.update(T, {explosions, {}}); !s) {
+        state.SkipWithError(s.message.c_str());
+        return;
+    }
+    const std::vector<glm::dvec2> p = points(4096);
+    std::vector<SeaSample> out(p.size());
+    std::vector<double> h(p.size());
+    for (auto _ : state) {
+        const Status s = all ? query.sample(p, out, fields) : query.heights(p, h);
+        if (!s)
+            state.SkipWithError(s.message.c_str());
+        benchmark::ClobberMemory();
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(p.size()));
+    state.SetLabel(std::string(toString(model)) + (all ? " all fields" : " heights") + ", " +
+                   std::to_string(threads) + " thread(s), " + std::to_string(explosions.size()) +
+                   " explosions");
+}
+
 } // namespace
 
 BENCHMARK(BM_OctavesHeight);
@@ -91,5 +141,9 @@ BENCHMARK(BM_FftSampleTiles)
     ->Arg(2)
     ->ArgName("threads")
     ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(BM_SeaQuery)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2}, {0, 8}})
+    ->ArgNames({"model", "all", "threads", "explosions"})
     ->UseRealTime();
 BENCHMARK_MAIN();

@@ -230,6 +230,7 @@ public:
 private:
     FftDesc mDesc;
     std::vector<std::shared_ptr<const FftOcean>> mCascades, mSecond;
+    std::vector<glm::dvec3> mMixTerms; // mixTerm(c, j) at [c * FFT_MIX_TERMS + j] (the weights' every call)
     double mHs = 0.0;
 };
 

@@ -139,6 +139,14 @@ private:
     void jacobianTerms(const glm::dvec2& xy, double t, const double* fades, glm::dvec3& s,
                        glm::dvec2& gradZ) const;
     glm::dvec3 displacement(const glm::dvec2& xy, double t, const double* fades) const;
+
+protected:
+    /// displacement() and the horizontal part of jacobianTerms() in one pass over the waves (one sine and
+    /// cosine each): the Eulerian solve's Jacobian without central differences.
+    bool displacementAndGradient(const glm::dvec2& xy, double t, glm::dvec3& d,
+                                 glm::dmat2& grad) const override;
+
+private:
     /// foamHeightAt's formula with amplitudes A_i * fades[i] (fades null: 1).
     double rememberedHeight(const glm::dvec2& xy, double t, const double* fades) const;
 

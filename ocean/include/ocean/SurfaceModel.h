@@ -85,6 +85,15 @@ public:
     static constexpr double VELOCITY_STEP = 1e-3;
     /// Batched heightAt.
     void heightsAt(const std::vector<glm::dvec2>& points, double t, std::vector<double>& out) const;
+
+protected:
+    /// For lagrangianPointAt's solve: a model with analytic derivatives sets d = displacementAt(xy, t) and
+    /// grad = the Jacobian of (dx, dy) with respect to the grid point (columns d/dx, d/dy) in one pass and
+    /// returns true; the default returns false (the solve then takes central differences).
+    virtual bool displacementAndGradient(const glm::dvec2& /*xy*/, double /*t*/, glm::dvec3& /*d*/,
+                                         glm::dmat2& /*grad*/) const {
+        return false;
+    }
 };
 
 } // namespace pacifica::ocean
