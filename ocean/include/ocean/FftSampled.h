@@ -10,7 +10,7 @@
 //
 // The transform is KissFFT's (Debian's libkissfft-dev, BSD-3-Clause, in single precision), not FFTW: FFTW is
 // GPL-2, which a game embedding this library could not ship without a commercial licence. The interpolation
-// is the knob (docs/ACCURACY.md "The FFT sea's CPU queries"): bilinear, or Keys' cubic convolution (the
+// is the knob (docs/ACCURACY.md "The sea's CPU queries"): bilinear, or Keys' cubic convolution (the
 // Catmull-Rom spline; R. Keys, "Cubic convolution interpolation for digital image processing", IEEE Trans.
 // ASSP 29(6), 1981), whose error falls with the fourth power of the grid spacing over the wavelength.
 #pragma once
