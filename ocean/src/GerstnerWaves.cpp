@@ -134,20 +134,45 @@ double GerstnerWaves::fade(double distance, double fadeEnd) {
     return s * s * (3.0 - 2.0 * s);
 }
 
+namespace {
+
+/// Calls f(wave, A_i (faded), theta_i) for every wave with a non-zero amplitude at grid point xy, time t:
+/// theta_i = k_i D_i . xy - w_i t + phi_i (GPU Gems 1 ch.1 eq. 9's phase).
+template <class Terms, class F>
+void forEachWave(const Terms& terms, const glm::dvec2& xy, double t, const double* fades, F&& f) {
+    for (size_t i = 0; i < terms.size(); ++i) {
+        const auto& w = terms[i];
+        const double a = fades ? w.amplitude * fades[i] : w.amplitude;
+        if (a != 0.0)
+            f(w, a, w.k * glm::dot(w.dir, xy) - w.omega * t + w.phase);
+    }
+}
+
+/// Wave w's term of eq. 9 (amplitude a, cos and sin of its phase) added to d.
+template <class Wave>
+void addDisplacement(const Wave& w, double a, double c, double sn, glm::dvec3& d) {
+    d.x += w.q * a * c * w.dir.x;
+    d.y += w.q * a * c * w.dir.y;
+    d.z += a * sn;
+}
+
+/// Wave w's term of -grad (dx, dy) = sum Q A k sin theta D D^T added to s = (sxx, sxy, syy).
+template <class Wave>
+void addHorizontalJacobian(const Wave& w, double a, double sn, glm::dvec3& s) {
+    const double qaks = w.q * a * w.k * sn;
+    s.x += qaks * w.dir.x * w.dir.x;
+    s.y += qaks * w.dir.x * w.dir.y;
+    s.z += qaks * w.dir.y * w.dir.y;
+}
+
+} // namespace
+
 glm::dvec3 GerstnerWaves::displacement(const glm::dvec2& xy, double t, const double* fades) const {
     // GPU Gems 1 ch.1 eq. 9: (sum Q_i A_i D_i cos theta_i, sum A_i sin theta_i).
     glm::dvec3 d(0.0);
-    for (size_t i = 0; i < mTerms.size(); ++i) {
-        const Terms& w = mTerms[i];
-        const double a = fades ? w.amplitude * fades[i] : w.amplitude;
-        if (a == 0.0)
-            continue;
-        const double theta = w.k * glm::dot(w.dir, xy) - w.omega * t + w.phase;
-        const double c = std::cos(theta), s = std::sin(theta);
-        d.x += w.q * a * c * w.dir.x;
-        d.y += w.q * a * c * w.dir.y;
-        d.z += a * s;
-    }
+    forEachWave(mTerms, xy, t, fades, [&](const Terms& w, double a, double theta) {
+        addDisplacement(w, a, std::cos(theta), std::sin(theta), d);
+    });
     return d;
 }
 
@@ -157,18 +182,10 @@ void GerstnerWaves::jacobianTerms(const glm::dvec2& xy, double t, const double* 
     // and d/dx [A sin theta] = A k cos theta D (GPU Gems 1 ch.1 eq. 10-11 are the columns of this).
     s = glm::dvec3(0.0);
     gradZ = glm::dvec2(0.0);
-    for (size_t i = 0; i < mTerms.size(); ++i) {
-        const Terms& w = mTerms[i];
-        const double a = fades ? w.amplitude * fades[i] : w.amplitude;
-        if (a == 0.0)
-            continue;
-        const double theta = w.k * glm::dot(w.dir, xy) - w.omega * t + w.phase;
-        const double qaks = w.q * a * w.k * std::sin(theta);
-        s.x += qaks * w.dir.x * w.dir.x;
-        s.y += qaks * w.dir.x * w.dir.y;
-        s.z += qaks * w.dir.y * w.dir.y;
+    forEachWave(mTerms, xy, t, fades, [&](const Terms& w, double a, double theta) {
+        addHorizontalJacobian(w, a, std::sin(theta), s);
         gradZ += (a * w.k * std::cos(theta)) * w.dir;
-    }
+    });
 }
 
 bool GerstnerWaves::displacementAndGradient(const glm::dvec2& xy, double t, glm::dvec3& d,
@@ -177,20 +194,11 @@ bool GerstnerWaves::displacementAndGradient(const glm::dvec2& xy, double t, glm:
     // block of jacobianTerms(): d/dx [Q A D cos theta] = -Q A k sin theta D D^T.
     d = glm::dvec3(0.0);
     glm::dvec3 s(0.0);
-    for (const Terms& w : mTerms) {
-        const double a = w.amplitude;
-        if (a == 0.0)
-            continue;
-        const double theta = w.k * glm::dot(w.dir, xy) - w.omega * t + w.phase;
-        const double c = std::cos(theta), sn = std::sin(theta);
-        d.x += w.q * a * c * w.dir.x;
-        d.y += w.q * a * c * w.dir.y;
-        d.z += a * sn;
-        const double qaks = w.q * a * w.k * sn;
-        s.x += qaks * w.dir.x * w.dir.x;
-        s.y += qaks * w.dir.x * w.dir.y;
-        s.z += qaks * w.dir.y * w.dir.y;
-    }
+    forEachWave(mTerms, xy, t, nullptr, [&](const Terms& w, double a, double theta) {
+        const double sn = std::sin(theta);
+        addDisplacement(w, a, std::cos(theta), sn, d);
+        addHorizontalJacobian(w, a, sn, s);
+    });
     grad = glm::dmat2(-s.x, -s.y, -s.y, -s.z); // columns d/dx, d/dy of (dx, dy)
     return true;
 }
