@@ -14,6 +14,7 @@
 #include "engine/gl/Shader.h"
 #include "gpu/ComputeShading.h"
 #include "gpu/EffectsGpu.h"
+#include "gpu/GpuQueries.h"
 #include "gpu/GridMesh.h"
 #include "gpu/LightingGpu.h"
 #include "gpu/SurfaceGpuFactory.h"
@@ -169,9 +170,10 @@ struct Programs {
     std::map<std::string, gl::Program> seaGeometry; // compute shading: the grids into the G-buffer
     std::map<std::string, gl::Program> effectsGeometry;
     std::map<std::string, gl::Program> shade; // compute shading: per model, effects, output format, tile kind
-    gl::Program shadeTileSort;                // compute shading's tile sorting (ocean_shade_tiles.comp)
-    int softwareRenderer = -1;                // GL_RENDERER names a software rasteriser (1), not (0), unknown
-    gl::Program sky;                          // built on first use
+    std::map<std::string, gl::Program> seaQuery; // the GPU height queries: per model, with effects or not
+    gl::Program shadeTileSort;                   // compute shading's tile sorting (ocean_shade_tiles.comp)
+    int softwareRenderer = -1; // GL_RENDERER names a software rasteriser (1), not (0), unknown
+    gl::Program sky;           // built on first use
     gl::VertexArray emptyVao;  // the sky's fullscreen triangle needs a bound VAO in core profile
     gl::Texture feedbackColor; // a 1x1 target: drawing needs a complete framebuffer even with discard
     gl::Framebuffer feedbackFbo;
@@ -208,6 +210,7 @@ struct OceanRenderer::Impl {
         std::make_unique<ComputeShading>();                            // computeShading's G-buffer
     std::unordered_map<std::uint64_t, std::unique_ptr<OceanGpu>> mGpu; // by OceanInstance::id
     OceanStats mStats;
+    GpuQueries mQueries; // the asynchronous GPU height queries (queueHeights)
     std::unique_ptr<gl::PassTimer> mPassTimer;
     OceanPassTimes mPassTimes; // the newest measured frame's
 
@@ -224,6 +227,20 @@ namespace {
 
 /// Texture units: the surface model binds from 0, the lighting (environment map, foam) from here.
 constexpr int LIGHTING_FIRST_UNIT = 12;
+
+/// The 1x1 target the transform-feedback captures draw into (a draw needs a complete framebuffer).
+void ensureFeedbackTarget(Programs& programs) {
+    if (programs.feedbackFbo)
+        return;
+    programs.feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
+    programs.feedbackFbo = gl::Framebuffer::create();
+    programs.feedbackFbo.attachColor(0, programs.feedbackColor);
+}
+
+/// Fixed-point steps of sea_query.vert's solve for the grid point under a query point: each cuts the error
+/// by the surface's horizontal strain |grad d_xy| (<= ~0.5 for the default seas), 16 steps to < 1e-4 of the
+/// horizontal displacement.
+constexpr int SEA_QUERY_ITERATIONS = 16;
 
 /// The shader sources: constants, then the variant's #defines (feature set), then the files.
 std::vector<gl::ShaderSource> sources(const std::vector<std::string>& names,
@@ -523,6 +540,20 @@ Status OceanRenderer::render(const OceanScene& scene, const OceanFrame& frame) n
     return guarded([&] { mImpl->render(scene, frame); });
 }
 
+Status OceanRenderer::queueHeights(std::uint64_t oceanId, std::span<const glm::dvec2> points,
+                                   std::uint64_t& ticket) noexcept {
+    return guarded([&] { ticket = mImpl->mQueries.queue(oceanId, points); });
+}
+
+Status OceanRenderer::takeHeights(std::uint64_t ticket, std::span<double> heights, bool& ready) noexcept {
+    ready = false;
+    return guarded([&] { ready = mImpl->mQueries.take(ticket, heights); });
+}
+
+const GpuQueryCounters& OceanRenderer::gpuQueryCounters() const noexcept {
+    return mImpl->mQueries.counters();
+}
+
 void OceanRenderer::Impl::render(const OceanScene& scene, const OceanFrame& frame) {
     mStats = {};
     validateScene(scene, frame);
@@ -593,6 +624,8 @@ struct FramePasses {
     void shade();
     /// The frame's last pass: shade under compute shading, else the sky.
     void last() { deferred ? shade() : sky(); }
+    /// The asynchronous GPU height queries queued for this ocean (queueHeights): one transform-feedback pass.
+    void queries(std::uint64_t oceanId);
 
 private:
     GLuint shadeProgram(int kind);
@@ -641,6 +674,33 @@ void FramePasses::compute() {
             (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::On ||
              (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::Auto && r.mPrograms->softwareRenderer == 1));
     r.mStats.shadeTiled = tiled;
+}
+
+void FramePasses::queries(std::uint64_t oceanId) {
+    Programs& programs = *r.mPrograms;
+    const bool sideways = ocean.surface->kind() != SurfaceKind::Octaves;
+    gl::Program& program = programs.seaQuery[gpu.programKey + (effects ? "+effects" : "")];
+    if (!program) {
+        ++r.mStats.programsBuilt;
+        std::vector<std::string> files = gpu.model->glslFiles();
+        if (effects)
+            files.push_back("effects_sample.glsl");
+        files.push_back("sea_query.vert");
+        const std::string defines = "#define SEA_QUERY_ITERATIONS " +
+                                    std::to_string(sideways ? SEA_QUERY_ITERATIONS : 0) + "\n" +
+                                    (effects ? "#define EFFECT_FIELD\n" : "");
+        program = gl::buildProgram({{gl::ShaderStage::Vertex, sources(files, defines)}},
+                                   "ocean GPU height queries (" + gpu.programKey + ")", {"vHeight"});
+    }
+    ensureFeedbackTarget(programs);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, programs.feedbackFbo.id());
+    const GLuint prog = program.id();
+    glUseProgram(prog);
+    setSurfaceUniforms(prog, ocean, gpu, frame);
+    if (effects)
+        r.mEffects->bindField(prog);
+    r.mStats.passes += r.mQueries.evaluate(oceanId, frame.camera.origin) > 0 ? 1 : 0;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frame.targetFramebuffer);
 }
 
 /// The sky after the sea and its effects (no overdraw): its fullscreen triangle lies at depth 0 (infinitely
@@ -886,6 +946,8 @@ void OceanRenderer::Impl::renderPasses(const OceanScene& scene, const OceanFrame
         if (passes.sea() && passes.holes)
             passes.grids();
         passes.last(); // no sea in view: the sky (or the shading pass) alone
+        if (mQueries.waiting(instance.id))
+            passes.queries(instance.id);
     }
     mStats.uploads += mLighting->uploadsSinceLastCall(); // environment, foam, fog noise: once each
 }
@@ -901,15 +963,6 @@ std::array<int, 4> shadeTileCounts(OceanRenderer& renderer) {
 }
 
 namespace {
-
-/// The 1x1 target the transform-feedback captures draw into (a draw needs a complete framebuffer).
-void ensureFeedbackTarget(Programs& programs) {
-    if (programs.feedbackFbo)
-        return;
-    programs.feedbackColor = gl::Texture::create2D(GL_RGBA8, 1, 1);
-    programs.feedbackFbo = gl::Framebuffer::create();
-    programs.feedbackFbo.attachColor(0, programs.feedbackColor);
-}
 
 const OceanComponent& oceanOf(ecs::Registry& registry, ecs::Entity entity, const char* where) {
     const OceanComponent* ocean = registry.tryGet<OceanComponent>(entity);

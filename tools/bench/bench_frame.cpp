@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -39,6 +40,7 @@
 #include <numbers>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -77,6 +79,9 @@ struct Setting {
     // The view: the benchmark's standard view, unless a row names another.
     glm::dvec3 camera = CAMERA;
     double headingDeg = HEADING_DEG, pitchDeg = PITCH_DEG;
+    /// Asynchronous GPU height queries queued before every timed frame (OceanRenderer::queueHeights), the
+    /// previous frames' answers taken after it: the cost of the query pass.
+    size_t gpuQueries = 0;
 };
 
 /// Adds one row of the high preset changed by `change`.
@@ -252,6 +257,16 @@ std::vector<Setting> settings(bool quick) {
     fftSettings(high);
     modelSettings(high);
     shadingSettings(out);
+    for (const auto& [name, model] :
+         {std::pair{"high/gpu-queries-100k", ocean::SurfaceKind::Octaves},
+          std::pair{"high/gerstner-gpu-queries-100k", ocean::SurfaceKind::Gerstner},
+          std::pair{"high/fft-gpu-queries-100k", ocean::SurfaceKind::Fft}}) {
+        ocean::OceanDesc d = ocean::oceanPreset(Quality::High);
+        d.model = model;
+        Setting s{name, "100 000 asynchronous GPU height queries a frame (OceanRenderer::queueHeights)", d};
+        s.gpuQueries = 100000;
+        out.push_back(s);
+    }
     return out;
 }
 
@@ -265,11 +280,35 @@ struct Scene {
     std::vector<double> compute, sky, sea, effects, shade;
     size_t warmupSpans = 0; // the timer's first spans belong to the warm-up frames
     ocean::OceanStats stats;
+    ecs::Entity entity;
+    std::vector<glm::dvec2> queryPoints; // Setting::gpuQueries points within 2 km of the camera
+    std::vector<double> queryHeights;
+    std::vector<std::uint64_t> tickets; // queued, not yet taken
 
     Scene(Setting s, gl::GpuTimer::Clock clock) : setting(std::move(s)), timer(clock) {
-        const ecs::Entity e = registry.create();
-        registry.emplace<ocean::OceanComponent>(e, ocean::makeOcean(setting.desc));
+        entity = registry.create();
+        registry.emplace<ocean::OceanComponent>(entity, ocean::makeOcean(setting.desc));
         profiled.setPassTiming(ocean::passClock(clock));
+        for (size_t i = 0; i < setting.gpuQueries; ++i) { // a deterministic spiral around the camera
+            const double r = 2000.0 * std::sqrt((i + 0.5) / setting.gpuQueries), a = 2.399963 * i;
+            queryPoints.push_back(glm::dvec2(setting.camera) + r * glm::dvec2(std::cos(a), std::sin(a)));
+        }
+        queryHeights.resize(queryPoints.size());
+    }
+
+    /// Takes every answer ready (no wait), then queues this frame's points.
+    void queueQueries() {
+        if (queryPoints.empty())
+            return;
+        std::erase_if(tickets, [&](std::uint64_t t) {
+            bool ready = false;
+            const ocean::Status s = timed.takeHeights(t, queryHeights, ready);
+            return !s || ready; // taken, or dropped from the ring
+        });
+        std::uint64_t ticket = 0;
+        if (const ocean::Status s = timed.queueHeights(ocean::oceanId(entity), queryPoints, ticket); !s)
+            throw std::runtime_error("bench: queueHeights: " + s.message);
+        tickets.push_back(ticket);
     }
 
     ocean::OceanFrame frameAt(double t, const gl::FrameTargets& targets) const {
@@ -285,6 +324,7 @@ struct Scene {
         const ocean::OceanFrame f = frameAt(t, targets);
         if (!record)
             ++warmupSpans;
+        queueQueries();
         timer.begin();
         render(timed, registry, f);
         timer.end();

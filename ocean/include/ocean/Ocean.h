@@ -239,6 +239,18 @@ EffectFieldLayout effectFieldLayout(const EffectFieldDesc& desc, const OceanFram
 /// wall clock after a glFinish between passes (llvmpipe, whose timer queries are wrong).
 enum class PassClock { TimerQuery, WallAroundFinish };
 
+/// Batches of asynchronous GPU height queries an OceanRenderer holds at once (OceanRenderer::queueHeights).
+inline constexpr size_t GPU_QUERY_RING = 4;
+
+/// Points through the asynchronous GPU height queries since the renderer was made.
+struct GpuQueryCounters {
+    std::uint64_t queued = 0;    ///< points queued
+    std::uint64_t evaluated = 0; ///< points a render() evaluated
+    std::uint64_t answered = 0;  ///< points takeHeights() returned
+    std::uint64_t dropped = 0;   ///< points of batches a full ring overwrote before they were taken
+    std::uint64_t notReady = 0;  ///< takeHeights() calls that found the answers not ready yet
+};
+
 /// The ocean render system: draws the oceans of a scene into a framebuffer the host lends.
 class OceanRenderer {
 public:
@@ -258,6 +270,22 @@ public:
     /// off. passTimingClock(): the clock's name for reports, "" when off.
     void setPassTiming(std::optional<PassClock> clock) noexcept;
     const char* passTimingClock() const noexcept;
+
+    /// Asynchronous GPU height queries: the heights the GPU draws (the surface model's GLSL at the frame's
+    /// time and camera, plus the effects field), answered from a readback without a stall.
+    ///   std::uint64_t ticket; renderer.queueHeights(oceanId, points, ticket);  // copies the points
+    ///   renderer.render(scene, frame);       // the next frame listing oceanId evaluates them: one pass
+    ///   bool ready; renderer.takeHeights(ticket, heights, ready);   // a frame later: ready once the GPU is
+    ///                                                               // done (else call again next frame)
+    /// Latency: one frame when the host takes them before its next render(), as the GPU finishes the frame;
+    /// never a wait. A ring of GPU_QUERY_RING batches: queueing into a full ring drops the oldest batch not
+    /// taken (counted). Points far from the camera lose float precision like the drawn sea (1 mm at 10 km);
+    /// the heights are in the local flat frame, as the CPU queries (no Earth curvature). takeHeights reads
+    /// back: the context must be current. A point that is not finite is refused (InvalidArgument naming it).
+    Status queueHeights(std::uint64_t oceanId, std::span<const glm::dvec2> points,
+                        std::uint64_t& ticket) noexcept;
+    Status takeHeights(std::uint64_t ticket, std::span<double> heights, bool& ready) noexcept;
+    const GpuQueryCounters& gpuQueryCounters() const noexcept;
 
     struct Impl; ///< implementation detail (OceanRenderer.cpp; OceanDebug.h's hooks reach it)
     Impl& impl() noexcept { return *mImpl; }
