@@ -237,10 +237,11 @@ void ensureFeedbackTarget(Programs& programs) {
     programs.feedbackFbo.attachColor(0, programs.feedbackColor);
 }
 
-/// Fixed-point steps of sea_query.vert's solve for the grid point under a query point: each cuts the error
-/// by the surface's horizontal strain |grad d_xy| (<= ~0.5 for the default seas), 16 steps to < 1e-4 of the
-/// horizontal displacement.
+/// Steps of sea_query.comp's solve (Broyden's method) for the grid point under a query point: at most 16,
+/// ending once a step moves the point less than SEA_QUERY_TOLERANCE (0.1 mm; the height then errs by the
+/// slope times that).
 constexpr int SEA_QUERY_ITERATIONS = 16;
+constexpr double SEA_QUERY_TOLERANCE = 1e-4;
 
 /// The shader sources: constants, then the variant's #defines (feature set), then the files.
 std::vector<gl::ShaderSource> sources(const std::vector<std::string>& names,
@@ -624,7 +625,7 @@ struct FramePasses {
     void shade();
     /// The frame's last pass: shade under compute shading, else the sky.
     void last() { deferred ? shade() : sky(); }
-    /// The asynchronous GPU height queries queued for this ocean (queueHeights): one transform-feedback pass.
+    /// The asynchronous GPU height queries queued for this ocean (queueHeights): one compute pass.
     void queries(std::uint64_t oceanId);
 
 private:
@@ -685,22 +686,20 @@ void FramePasses::queries(std::uint64_t oceanId) {
         std::vector<std::string> files = gpu.model->glslFiles();
         if (effects)
             files.push_back("effects_sample.glsl");
-        files.push_back("sea_query.vert");
+        files.push_back("sea_query.comp");
         const std::string defines = "#define SEA_QUERY_ITERATIONS " +
-                                    std::to_string(sideways ? SEA_QUERY_ITERATIONS : 0) + "\n" +
-                                    (effects ? "#define EFFECT_FIELD\n" : "");
-        program = gl::buildProgram({{gl::ShaderStage::Vertex, sources(files, defines)}},
-                                   "ocean GPU height queries (" + gpu.programKey + ")", {"vHeight"});
+                                    std::to_string(sideways ? SEA_QUERY_ITERATIONS : 0) +
+                                    "\n#define SEA_QUERY_TOLERANCE " + std::to_string(SEA_QUERY_TOLERANCE) +
+                                    "\n" + (effects ? "#define EFFECT_FIELD\n" : "");
+        program = gl::buildProgram({{gl::ShaderStage::Compute, sources(files, defines)}},
+                                   "ocean GPU height queries (" + gpu.programKey + ")");
     }
-    ensureFeedbackTarget(programs);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, programs.feedbackFbo.id());
     const GLuint prog = program.id();
     glUseProgram(prog);
     setSurfaceUniforms(prog, ocean, gpu, frame);
     if (effects)
         r.mEffects->bindField(prog);
-    r.mStats.passes += r.mQueries.evaluate(oceanId, frame.camera.origin) > 0 ? 1 : 0;
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, frame.targetFramebuffer);
+    r.mStats.passes += r.mQueries.evaluate(oceanId, frame.camera.origin, prog) > 0 ? 1 : 0;
 }
 
 /// The sky after the sea and its effects (no overdraw): its fullscreen triangle lies at depth 0 (infinitely

@@ -88,7 +88,7 @@ protected:
     }
 };
 
-/// The CPU twin of what sea_query.vert evaluates: the Eulerian height of the surface as the GPU draws it
+/// The CPU twin of what sea_query.comp evaluates: the Eulerian height of the surface as the GPU draws it
 /// for a camera at cameraXY (SurfaceModel::displacementSeenFrom: the Gerstner sum fades its short waves with
 /// the distance), solved by the same fixed point in double run to convergence.
 std::vector<double> drawnHeights(const SurfaceModel& surface, double t, const glm::dvec2& cameraXY,

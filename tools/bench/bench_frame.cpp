@@ -289,9 +289,12 @@ struct Scene {
         entity = registry.create();
         registry.emplace<ocean::OceanComponent>(entity, ocean::makeOcean(setting.desc));
         profiled.setPassTiming(ocean::passClock(clock));
-        for (size_t i = 0; i < setting.gpuQueries; ++i) { // a deterministic spiral around the camera
-            const double r = 2000.0 * std::sqrt((i + 0.5) / setting.gpuQueries), a = 2.399963 * i;
-            queryPoints.push_back(glm::dvec2(setting.camera) + r * glm::dvec2(std::cos(a), std::sin(a)));
+        // A square grid over +-2 km around the camera, row by row (neighbours in the buffer are neighbours on
+        // the sea, as a fleet's hull points are).
+        const auto side = static_cast<size_t>(std::ceil(std::sqrt(static_cast<double>(setting.gpuQueries))));
+        for (size_t i = 0; i < setting.gpuQueries; ++i) {
+            const glm::dvec2 cell(static_cast<double>(i % side), static_cast<double>(i / side));
+            queryPoints.push_back(glm::dvec2(setting.camera) + (cell + 0.5) * (4000.0 / side) - 2000.0);
         }
         queryHeights.resize(queryPoints.size());
     }

@@ -24,7 +24,9 @@ enum StorageBinding : int {
     EFFECT_WAKE_POINTS_BINDING = 6,  ///< effects.glsl: vec4[2 * MAX_WAKE_POINTS] per wake
     EFFECT_FIELD_TILES_BINDING = 7,  ///< effects_field.comp: EffectTileGpu[] (the tiles evaluated)
     EFFECT_FIELD_LISTS_BINDING = 8,  ///< effects_field.comp: per tile, its explosions, then its wakes
-    EFFECT_GRIDS_BINDING = 9, ///< effects_sample.glsl: vec4 (centre - camera, radius, 0) per drawn grid
+    EFFECT_GRIDS_BINDING = 9,       ///< effects_sample.glsl: vec4 (centre - camera, radius, 0) per drawn grid
+    SEA_QUERY_POINTS_BINDING = 10,  ///< sea_query.comp: vec2 camera-relative points (GpuQueries.h)
+    SEA_QUERY_HEIGHTS_BINDING = 11, ///< sea_query.comp: float heights, written
 };
 
 /// Image units, given to the shaders as #defines like the storage bindings. The compute passes that use

@@ -1,6 +1,8 @@
 // GpuQueries: the asynchronous GPU height queries (GpuQueries.h).
 #include "gpu/GpuQueries.h"
 
+#include "gpu/GpuInterface.h"
+
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -9,6 +11,10 @@
 #include <string>
 
 namespace pacifica::ocean {
+
+namespace {
+constexpr size_t SEA_QUERY_GROUP = 64; ///< sea_query.comp's local_size_x
+} // namespace
 
 GpuQueries::~GpuQueries() {
     for (Slot& s : mSlots)
@@ -48,16 +54,9 @@ bool GpuQueries::waiting(std::uint64_t oceanId) const {
                        [&](const Slot& s) { return s.state == State::Queued && s.oceanId == oceanId; });
 }
 
-int GpuQueries::evaluate(std::uint64_t oceanId, const glm::dvec3& cameraOrigin) {
-    if (!mVao) {
-        mVao = gl::VertexArray::create();
-        glEnableVertexArrayAttrib(mVao.id(), 0);
-        glVertexArrayAttribFormat(mVao.id(), 0, 2, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(mVao.id(), 0, 0);
-    }
+int GpuQueries::evaluate(std::uint64_t oceanId, const glm::dvec3& cameraOrigin, unsigned program) {
+    const GLint count = glGetUniformLocation(program, "uQueryCount");
     int batches = 0;
-    glBindVertexArray(mVao.id());
-    glEnable(GL_RASTERIZER_DISCARD);
     for (Slot& s : mSlots) {
         if (s.state != State::Queued || s.oceanId != oceanId)
             continue;
@@ -74,19 +73,20 @@ int GpuQueries::evaluate(std::uint64_t oceanId, const glm::dvec3& cameraOrigin) 
         if (n > 0) {
             glNamedBufferSubData(s.input.id(), 0, static_cast<GLsizeiptr>(n * sizeof(glm::vec2)),
                                  s.rel.data());
-            glVertexArrayVertexBuffer(mVao.id(), 0, s.input.id(), 0, sizeof(glm::vec2));
-            glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, s.output.id());
-            glBeginTransformFeedback(GL_POINTS);
-            glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
-            glEndTransformFeedback();
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SEA_QUERY_POINTS_BINDING, s.input.id());
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SEA_QUERY_HEIGHTS_BINDING, s.output.id());
+            glProgramUniform1ui(program, count, static_cast<GLuint>(n));
+            glDispatchCompute(static_cast<GLuint>((n + SEA_QUERY_GROUP - 1) / SEA_QUERY_GROUP), 1, 1);
         }
+        // The readback (glGetNamedBufferSubData in take()) sees the shader's writes after this barrier.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         s.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
         s.state = State::InFlight;
         mCounters.evaluated += n;
         ++batches;
     }
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    glDisable(GL_RASTERIZER_DISCARD);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SEA_QUERY_POINTS_BINDING, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SEA_QUERY_HEIGHTS_BINDING, 0);
     return batches;
 }
 

@@ -1,7 +1,7 @@
 // GpuQueries (internal): the asynchronous GPU height queries of OceanRenderer (Ocean.h queueHeights /
 // takeHeights). A ring of GPU_QUERY_RING batches; each batch is queued (points copied), evaluated by the
-// next render() that draws its ocean (sea_query.vert through transform feedback into the batch's buffer,
-// then a fence), and taken once the fence has signalled (glClientWaitSync with a zero timeout: no stall).
+// next render() that draws its ocean (sea_query.comp, a compute pass writing the batch's buffer, then a
+// fence), and taken once the fence has signalled (glClientWaitSync with a zero timeout: no stall).
 // Buffers grow to the largest batch and are reused: steady state allocates nothing.
 #pragma once
 
@@ -31,10 +31,10 @@ public:
     std::uint64_t queue(std::uint64_t oceanId, std::span<const glm::dvec2> points);
     /// Batches of this ocean waiting for a render().
     bool waiting(std::uint64_t oceanId) const;
-    /// Evaluates this ocean's waiting batches with `program` (in use, its uniforms set) relative to the
-    /// camera at cameraOrigin: uploads each, draws its points with the rasteriser off into its buffer,
-    /// fences. Returns the batches evaluated. The caller binds a complete framebuffer and restores state.
-    int evaluate(std::uint64_t oceanId, const glm::dvec3& cameraOrigin);
+    /// Evaluates this ocean's waiting batches with the compute `program` (in use, the model's uniforms set)
+    /// relative to the camera at cameraOrigin: uploads each, dispatches, fences. Returns the batches
+    /// evaluated. The caller restores the GL state.
+    int evaluate(std::uint64_t oceanId, const glm::dvec3& cameraOrigin, unsigned program);
     /// Copies the answers of `ticket` into heights (as long as its points; std::invalid_argument otherwise,
     /// or for a ticket not pending) if the GPU has finished them; false (nothing copied) if not yet.
     bool take(std::uint64_t ticket, std::span<double> heights);
@@ -55,7 +55,6 @@ private:
     void release(Slot& slot);
 
     std::array<Slot, RING> mSlots;
-    gl::VertexArray mVao;
     std::uint64_t mNextTicket = 1;
     GpuQueryCounters mCounters;
 };
