@@ -1,6 +1,7 @@
 // World: the game's fixed-step simulation (World.h).
 #include "game/World.h"
 
+#include <ocean/Buoyancy.h>
 #include <ocean/Effects.h>
 
 #include <algorithm>
@@ -187,37 +188,28 @@ void World::placeShips(double t) {
 void World::floatShips(double t) {
     // Every afloat hull's points in one batched query, on the sea and its explosions: the wakes are the
     // ships' own waves (part of a hull's trim, not a sea that pitches it), and the costliest field to sample.
-    constexpr double ALONG[3] = {-0.4, 0.0, 0.4}, ACROSS[3] = {-0.8, 0.0, 0.8};
+    using ocean::HULL_POINTS;
     mPoints.clear();
     for (const ShipState& s : mShips) {
         if (s.sunkAt)
             continue;
-        const glm::dvec2 f = compass(s.pose.headingDeg), right(f.y, -f.x);
-        for (double a : ALONG)
-            for (double c : ACROSS)
-                mPoints.push_back(glm::dvec2(s.pose.position) + a * s.spec.length * f +
-                                  c * halfBeam(s.spec) * right);
+        mPoints.resize(mPoints.size() + HULL_POINTS);
+        ocean::hullPoints(glm::dvec2(s.pose.position), s.pose.headingDeg, s.spec.length, halfBeam(s.spec),
+                          std::span<glm::dvec2, HULL_POINTS>(mPoints.end() - HULL_POINTS, HULL_POINTS));
     }
     mHeights.resize(mPoints.size());
     seaHeightsAt(t, mPoints, mHeights, false);
-    // The least-squares plane h = z + b along + c across through the symmetric 3 x 3 grid: z is the mean,
-    // b = sum h along / sum along^2 and likewise c (the grid's moments separate).
     size_t k = 0;
     for (ShipState& s : mShips) {
         if (s.sunkAt)
             continue;
-        const double along = 0.4 * s.spec.length, across = 0.8 * halfBeam(s.spec);
-        double mean = 0.0, b = 0.0, c = 0.0;
-        for (double a : ALONG)
-            for (double x : ACROSS) {
-                const double h = mHeights[k++];
-                mean += h / HULL_POINTS;
-                b += h * a * s.spec.length / (6.0 * along * along);
-                c += h * x * halfBeam(s.spec) / (6.0 * across * across);
-            }
-        s.pose.position.z = mean;
-        s.pose.pitchDeg = std::atan(b) / DEG; // bow up where the sea is higher ahead
-        s.pose.rollDeg = -std::atan(c) / DEG; // right side down (positive roll) where it is lower
+        const ocean::HullPose p =
+            ocean::floatHull(std::span<const double, HULL_POINTS>(mHeights.data() + k, HULL_POINTS),
+                             s.spec.length, halfBeam(s.spec));
+        k += HULL_POINTS;
+        s.pose.position.z = p.heave;
+        s.pose.pitchDeg = p.pitchDeg;
+        s.pose.rollDeg = p.rollDeg;
     }
 }
 

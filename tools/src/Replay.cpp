@@ -19,10 +19,12 @@
 #include "engine/gl/GpuTimer.h"
 #include "engine/gl/ObjectRenderer.h"
 #include "engine/gl/PassTimer.h"
+#include "ocean/Buoyancy.h"
 #include "ocean/Effects.h"
 #include "ocean/Ocean.h"
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanHost.h"
+#include "ocean/SeaQuery.h"
 
 #include <nlohmann/json.hpp>
 
@@ -38,6 +40,8 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <span>
+#include <stdexcept>
 #include <unistd.h>
 #include <vector>
 
@@ -399,6 +403,7 @@ private:
     nlohmann::json extraViewPasses(size_t vi, const std::string& name, ViewTimes& times);
     nlohmann::json passJson(const ViewTimes& times);
     void progress(long long k, double t, Clock::time_point now) const;
+    void floatShips(double t, AliveObjects& alive);
     nlohmann::json summary(double totalSeconds) const;
 
     const ReplayOptions& o;
@@ -431,6 +436,9 @@ private:
     std::vector<nlohmann::json> viewFrames;
     std::vector<float> scene, display;
     std::vector<double> frameWallMs;
+    ocean::SeaQuery sea; // the recorded ships' hull points (floatShips)
+    std::vector<glm::dvec2> hullPoints;
+    std::vector<double> hullHeights;
     double firstFrameSeconds = 0.0;
     const bool tty;
     ReplayRunInfo mInfo;
@@ -459,6 +467,8 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
       extraViews(makeExtraViews(o, colour)), gpuTimer(context->info()), effects(registry, events),
       timeline(registry, events, effects), images(writeImages),
       viewFrames(input.views.size(), nlohmann::json::array()), tty(o.progress && isatty(STDERR_FILENO)) {
+    if (const ocean::Status s = sea.init(registry.get<ocean::OceanComponent>(oceanEntity)); !s)
+        throw std::runtime_error("replay: " + s.message);
     if (o.profile) { // the ocean's passes (OceanRenderer::setPassTiming) and the replay's, one clock
         renderer.setPassTiming(ocean::passClock(gpuTimer.clock()));
         passTimer = std::make_unique<gl::PassTimer>(gpuTimer.clock(), ReplayPassCount);
@@ -486,6 +496,7 @@ void ReplayRun::renderFrame(long long k) {
     for (const ReplayObject& obj : objects)
         if (t >= obj.start && t <= obj.end)
             alive.push_back({obj.id, {obj.shape, obj.length, obj.track->poseAt(t)}});
+    floatShips(t, alive);
     for (size_t vi = 0; vi < input.views.size(); ++vi) {
         nlohmann::json fj = renderView(k, vi, t, alive);
         viewFrames[vi].push_back(std::move(fj));
@@ -497,6 +508,48 @@ void ReplayRun::renderFrame(long long k) {
         firstFrameSeconds = std::chrono::duration<double>(f1 - t0).count();
     if (tty)
         progress(k, t, f1);
+}
+
+/// The recorded ships ride the sea drawn under them (ocean/Buoyancy.h): the heave, pitch and roll of the
+/// plane through the sea's heights under each hull's points, added to what the recording says (DCS records
+/// its ships level at sea level), in one batched query; the wakes left out, as the game's ships do.
+void ReplayRun::floatShips(double t, AliveObjects& alive) {
+    using ocean::HULL_POINTS;
+    constexpr double SHIP_HALF_BEAM = 0.07; // of the length: ObjectRenderer's hull (beam 0.14 L)
+    auto isShip = [](const DrawnObject& d) {
+        return d.shape == ObjectShape::Ship || d.shape == ObjectShape::Carrier;
+    };
+    hullPoints.clear();
+    for (const auto& [id, d] : alive) {
+        if (!isShip(d))
+            continue;
+        hullPoints.resize(hullPoints.size() + HULL_POINTS);
+        ocean::hullPoints(glm::dvec2(d.pose.position), d.pose.headingDeg, d.length, SHIP_HALF_BEAM * d.length,
+                          std::span<glm::dvec2, HULL_POINTS>(hullPoints.end() - HULL_POINTS, HULL_POINTS));
+    }
+    if (hullPoints.empty())
+        return;
+    const ocean::RegistryEffects fx(registry);
+    ocean::EffectsView view = fx.view();
+    view.wakes = {};
+    hullHeights.resize(hullPoints.size());
+    ocean::Status s = sea.update(t, view);
+    if (s)
+        s = sea.heights(hullPoints, hullHeights);
+    if (!s)
+        throw std::runtime_error("replay: the ships' sea heights: " + s.message);
+    size_t k = 0;
+    for (auto& [id, d] : alive) {
+        if (!isShip(d))
+            continue;
+        const ocean::HullPose p =
+            ocean::floatHull(std::span<const double, HULL_POINTS>(&hullHeights[k], HULL_POINTS), d.length,
+                             SHIP_HALF_BEAM * d.length);
+        k += HULL_POINTS;
+        d.pose.position.z += p.heave;
+        d.pose.pitchDeg += p.pitchDeg;
+        d.pose.rollDeg += p.rollDeg;
+    }
 }
 
 /// The sea, the objects and the main tonemap of one view, inside the GPU timer (and the pass timer with

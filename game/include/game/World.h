@@ -77,8 +77,6 @@ struct ShipSpec {
 };
 
 inline constexpr double SINK_S = 25.0; ///< a sunk ship is drawn settling for this long
-/// A hull's buoyancy points: a 3 x 3 grid at 0 and +-0.4 of its length, 0 and +-0.8 of its half beam.
-inline constexpr int HULL_POINTS = 9;
 
 struct ShipState {
     ShipSpec spec;
@@ -125,8 +123,8 @@ public:
 
     /// Puts the ships where their routes have them at time t (before the first step: the wake's history)
     /// and floats them on the sea at t: heave, pitch and roll of the plane fitted through the sea's heights
-    /// under HULL_POINTS points of each hull (quasi-static: no inertia, the hull's length and beam average
-    /// the short waves out).
+    /// under a 3 x 3 grid of each hull's points (ocean/Buoyancy.h: quasi-static, the hull's length and beam
+    /// average the short waves out).
     void placeShips(double t);
     /// One fixed step of dt seconds with the player's controls. Does nothing once ditched.
     void step(const FlightControls& controls, double dt);
