@@ -236,6 +236,8 @@ void World::seaHeightsAt(double t, std::span<const glm::dvec2> points, std::span
     ocean::Status s = mSea.update(t, view);
     if (s)
         s = mSea.heights(points, heights);
+    (void)mSea.update(t,
+                      {}); // let the registry's effects go (their storage moves); the same t: no resampling
     // A non-finite point's height is NaN (reported, not fatal: a host game is never aborted over bad data).
     if (!s && s.code != ocean::ErrorCode::InvalidArgument)
         throw std::runtime_error("World: sea query failed: " + s.message);

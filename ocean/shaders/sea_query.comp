@@ -10,12 +10,18 @@ layout(local_size_x = 64) in;
 layout(std430, binding = SEA_QUERY_POINTS_BINDING) readonly buffer QueryPoints { vec2 uPoints[]; };
 layout(std430, binding = SEA_QUERY_HEIGHTS_BINDING) writeonly buffer QueryHeights { float uHeights[]; };
 uniform uint uQueryCount;
+uniform float uDisplaceRadius; // the displaced grid's radius (ocean.vert's)
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= uQueryCount)
         return;
     vec2 p = uPoints[i];
+    // Beyond the displaced grid (OceanDesc::grid.rMax) the drawn sea is flat, its effects too (ocean.vert).
+    if (length(p) > uDisplaceRadius) {
+        uHeights[i] = 0.0;
+        return;
+    }
     // Broyden's method on F(x0) = x0 + d_xy(x0) - p (C. G. Broyden, "A class of methods for solving
     // nonlinear simultaneous equations", Math. Comp. 19, 1965, the "good" update of the inverse Jacobian H):
     // its first step, with H = I, is the fixed point x0 = p - d_xy(p); later steps learn the surface's

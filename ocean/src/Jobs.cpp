@@ -7,11 +7,16 @@ namespace pacifica::ocean {
 
 ThreadPool::ThreadPool(unsigned threads) {
     const unsigned n = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
-    for (unsigned i = 1; i < n; ++i)
-        mWorkers.emplace_back([this] { work(); });
+    try {
+        for (unsigned i = 1; i < n; ++i)
+            mWorkers.emplace_back([this] { work(); });
+    } catch (...) { // a thread could not start: stop the ones that did, then report it
+        stop();
+        throw;
+    }
 }
 
-ThreadPool::~ThreadPool() {
+void ThreadPool::stop() {
     {
         std::lock_guard<std::mutex> lock(mMutex);
         mStopping = true;
@@ -19,6 +24,11 @@ ThreadPool::~ThreadPool() {
     mStart.notify_all();
     for (std::thread& t : mWorkers)
         t.join();
+    mWorkers.clear();
+}
+
+ThreadPool::~ThreadPool() {
+    stop();
 }
 
 void ThreadPool::take() {

@@ -120,7 +120,8 @@ Status SeaQuery::update(double t, const EffectsView& effects) noexcept {
         if (!std::isfinite(t))
             throw std::invalid_argument("SeaQuery::update(): time must be finite, got " + std::to_string(t));
         mImpl->ready = false;
-        if (mImpl->sampled)
+        // The tiles at the time they hold already are the same bits: sample again only for a new time.
+        if (mImpl->sampled && !(mImpl->sampled->sampled() && mImpl->sampled->time() == t))
             mImpl->sampled->resample(t, mImpl->jobs);
         mImpl->time = t;
         mImpl->effects = effects;
@@ -143,7 +144,7 @@ struct Batch {
     std::atomic<size_t> firstRejected{std::numeric_limits<size_t>::max()};
     std::atomic<bool> failed{false};
 
-    size_t jobCount() const { return (points.size() + perJob - 1) / perJob; }
+    size_t jobCount() const { return points.empty() ? 0 : (points.size() - 1) / perJob + 1; }
     static void run(void* context, size_t job);
 };
 

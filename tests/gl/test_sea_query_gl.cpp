@@ -134,6 +134,18 @@ TEST_F(SeaQueryGl, TheAnswersAreWhatTheGpuDrawsNearAndFar) {
     }
 }
 
+TEST_F(SeaQueryGl, BeyondTheDisplacedGridTheDrawnSeaIsFlat) {
+    // The grid displaces out to rMax (40 km by default); the skirt beyond is flat, and so are the answers.
+    // (The octaves: the Gerstner and FFT seas fade their waves out within a few km anyway.)
+    const OceanComponent ocean = sea(SurfaceKind::Octaves);
+    const glm::dvec3 camera(5e6, 3e6, 40.0);
+    const std::vector<glm::dvec2> points = {glm::dvec2(camera) + glm::dvec2(39000.0, 0.0),
+                                            glm::dvec2(camera) + glm::dvec2(0.0, -41000.0)};
+    const std::vector<double> gpu = gpuHeights(ocean, {}, frameAt(camera, 7.0), points);
+    EXPECT_NE(gpu[0], 0.0);
+    EXPECT_EQ(gpu[1], 0.0);
+}
+
 TEST_F(SeaQueryGl, AnExplosionIsInTheAnswers) {
     const OceanComponent ocean = sea(SurfaceKind::Gerstner);
     Explosion e;

@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -267,6 +268,14 @@ TEST(SeaQuery, HardCasesZeroManyAndNaNPoints) {
         }
     }
     EXPECT_EQ(q.counters().rejected, 3u);
+
+    // One job for any count (pointsPerJob at its largest: no overflow in the job count).
+    SeaQuery whole = makeQuery(ocean, 3.0, {.fields = SeaField::Height, .pointsPerJob = SIZE_MAX});
+    std::vector<double> w(some.size(), NAN);
+    some[7] = some[40] = some[93] = glm::dvec2(0.0);
+    ASSERT_TRUE(whole.heights(some, w).ok());
+    EXPECT_EQ(w[50], ocean.surface->heightAt(some[50], 3.0));
+    EXPECT_EQ(whole.counters().points, some.size());
 }
 
 TEST(SeaQuery, UnderACrestAtTheSteepnessLimit) {

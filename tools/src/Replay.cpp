@@ -536,6 +536,7 @@ void ReplayRun::floatShips(double t, AliveObjects& alive) {
     ocean::Status s = sea.update(t, view);
     if (s)
         s = sea.heights(hullPoints, hullHeights);
+    (void)sea.update(t, {}); // let the registry's effects go (their storage moves); the same t: no resampling
     if (!s)
         throw std::runtime_error("replay: the ships' sea heights: " + s.message);
     size_t k = 0;

@@ -55,6 +55,7 @@ public:
 
 private:
     void work();
+    void stop(); // stops and joins the workers
     void take(); // runs jobs of the current batch until none is left
 
     std::vector<std::thread> mWorkers;

@@ -64,7 +64,8 @@ struct SeaQueryDesc {
     JobSystem jobs;
     /// Points per job: a batch smaller than this runs on the calling thread.
     size_t pointsPerJob = 512;
-    /// FFT: the direct sum over every component instead of the sampled tiles (the reference; ~1 ms a point).
+    /// FFT: the direct sum over every component instead of the sampled tiles (the reference; ~10 ms a point,
+    /// and it allocates per point: not for a frame loop).
     bool fftDirectSum = false;
     FftSampledSea::Interpolation fftInterpolation = FftSampledSea::Interpolation::Bicubic;
 };
@@ -89,7 +90,7 @@ public:
     /// FFT's tiles, the pool). Any earlier state is dropped. InvalidArgument names a bad field.
     Status init(const OceanComponent& ocean, const SeaQueryDesc& desc = {}) noexcept;
     /// Moves the queries to time t (finite) with these effects: their spans must stay valid until the next
-    /// update(). The FFT sea samples its tiles here.
+    /// update() (update(t, {}) lets them go). The FFT sea samples its tiles here, only when t changes.
     Status update(double t, const EffectsView& effects = {}) noexcept;
     /// Samples every point (`samples` as long as `points`), the fields in `fields` (a subset of the desc's).
     /// A point that is not finite gets NaN in every asked field and is counted: the Status is then

@@ -104,7 +104,8 @@ bool GpuQueries::take(std::uint64_t ticket, std::span<double> heights) {
         ++mCounters.notReady;
         return false;
     }
-    const GLenum wait = glClientWaitSync(static_cast<GLsync>(slot->fence), 0, 0);
+    // Flush: an unflushed fence need never signal (a headless host that never swaps would wait forever).
+    const GLenum wait = glClientWaitSync(static_cast<GLsync>(slot->fence), GL_SYNC_FLUSH_COMMANDS_BIT, 0);
     if (wait == GL_TIMEOUT_EXPIRED) {
         ++mCounters.notReady;
         return false;
