@@ -98,7 +98,7 @@ struct Sortie {
     /// The ships' wakes before the first frame (their routes run backwards in time).
     void prehistory(game::SessionRecorder* rec) {
         timeline->warmUp(-PREHISTORY_S, 0.0, world->player().pose.position, [&](double t) {
-            world->placeShips(t);
+            world->placeShips(t, false);
             if (rec)
                 rec->recordShips(*world, t);
         });

@@ -57,6 +57,7 @@ struct FftSampledSea::Tile {
     double size = 0.0;
     std::vector<glm::vec3> values;   // (lambda Dx, lambda Dy, h) at x = (a, b) L / N, row b, column a
     std::vector<glm::vec3> velocity; // d/dt of the same (empty unless asked for)
+    std::vector<glm::vec3> sampled;  // values at the sampled time, with velocity (extrapolateTo's start)
     // The transform's planes: h, Dx + i Dy (both fields are real), their time derivatives, and the output.
     std::vector<kiss_fft_cpx> heights, sideways, heightRates, sidewaysRates, out;
     FftConfig config{nullptr, [](void*) {}};
@@ -69,6 +70,7 @@ struct FftSampledSea::Tile {
         out.resize(count);
         if (withVelocity) {
             velocity.resize(count);
+            sampled.resize(count);
             heightRates.resize(count);
             sidewaysRates.resize(count);
         }
@@ -140,9 +142,11 @@ void FftSampledSea::sampleTile(const FftOcean& sea, double t, Tile& tile) {
             const float sign = (a + b) % 2 == 0 ? 1.0f : -1.0f;
             tile.values[j] =
                 sign * glm::vec3(l * tile.sideways[j].r, l * tile.sideways[j].i, tile.heights[j].r);
-            if (rates)
+            if (rates) {
                 tile.velocity[j] = sign * glm::vec3(l * tile.sidewaysRates[j].r, l * tile.sidewaysRates[j].i,
                                                     tile.heightRates[j].r);
+                tile.sampled[j] = tile.values[j];
+            }
         }
 }
 
@@ -188,8 +192,31 @@ void FftSampledSea::resample(double t, const JobSystem& jobs) {
         mSampled = false;
         throw std::runtime_error("FftSampledSea::resample(): sampling a tile failed");
     }
-    mTime = t;
+    mTime = mSampledTime = t;
     mSampled = true;
+}
+
+void FftSampledSea::extrapolateTo(double t, const JobSystem& jobs) {
+    requireSampled("extrapolateTo");
+    if (!mVelocity)
+        throw std::logic_error("FftSampledSea::extrapolateTo(): made without velocity");
+    if (!std::isfinite(t))
+        throw std::invalid_argument("FftSampledSea::extrapolateTo(): time must be finite, got " +
+                                    std::to_string(t));
+    struct Work {
+        FftSampledSea* self;
+        float dt;
+    } work{this, static_cast<float>(t - mSampledTime)}; // the offset in double first
+    jobs.run(
+        mTiles.size(),
+        [](void* context, size_t i) {
+            auto* w = static_cast<Work*>(context);
+            Tile& tile = *w->self->mTiles[i];
+            for (size_t j = 0; j < tile.values.size(); ++j)
+                tile.values[j] = tile.sampled[j] + w->dt * tile.velocity[j];
+        },
+        &work);
+    mTime = t;
 }
 
 void FftSampledSea::requireSampled(const char* what) const {

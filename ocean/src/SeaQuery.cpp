@@ -94,6 +94,9 @@ Status SeaQuery::init(const OceanComponent& ocean, const SeaQueryDesc& desc) noe
                 std::to_string(desc.fields));
         if (desc.pointsPerJob == 0)
             throw std::invalid_argument("SeaQueryDesc.pointsPerJob must be >= 1");
+        if (!std::isfinite(desc.fftResampleInterval) || desc.fftResampleInterval < 0.0)
+            throw std::invalid_argument("SeaQueryDesc.fftResampleInterval must be finite and >= 0, got " +
+                                        std::to_string(desc.fftResampleInterval));
         auto impl = std::make_unique<Impl>();
         impl->surface = ocean.surface;
         impl->desc = desc;
@@ -101,7 +104,8 @@ Status SeaQuery::init(const OceanComponent& ocean, const SeaQueryDesc& desc) noe
             const auto* cascades = dynamic_cast<const FftCascades*>(ocean.surface.get());
             if (cascades)
                 impl->sampled.emplace(*cascades, desc.fftInterpolation,
-                                      (desc.fields & SeaField::Velocity) != 0);
+                                      (desc.fields & SeaField::Velocity) != 0 ||
+                                          desc.fftResampleInterval > 0.0);
         }
         if (desc.jobs.parallelFor) {
             impl->jobs = desc.jobs;
@@ -120,9 +124,15 @@ Status SeaQuery::update(double t, const EffectsView& effects) noexcept {
         if (!std::isfinite(t))
             throw std::invalid_argument("SeaQuery::update(): time must be finite, got " + std::to_string(t));
         mImpl->ready = false;
-        // The tiles at the time they hold already are the same bits: sample again only for a new time.
-        if (mImpl->sampled && !(mImpl->sampled->sampled() && mImpl->sampled->time() == t))
-            mImpl->sampled->resample(t, mImpl->jobs);
+        // The tiles at the time they hold already are the same bits: sample again only for a new time, and
+        // within fftResampleInterval of the last transform extrapolate them instead.
+        if (FftSampledSea* s = mImpl->sampled ? &*mImpl->sampled : nullptr;
+            s && !(s->sampled() && s->time() == t)) {
+            if (s->sampled() && std::abs(t - s->sampledTime()) < mImpl->desc.fftResampleInterval)
+                s->extrapolateTo(t, mImpl->jobs);
+            else
+                s->resample(t, mImpl->jobs);
+        }
         mImpl->time = t;
         mImpl->effects = effects;
         mImpl->ready = true;

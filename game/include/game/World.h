@@ -124,8 +124,9 @@ public:
     /// Puts the ships where their routes have them at time t (before the first step: the wake's history)
     /// and floats them on the sea at t: heave, pitch and roll of the plane fitted through the sea's heights
     /// under a 3 x 3 grid of each hull's points (ocean/Buoyancy.h: quasi-static, the hull's length and beam
-    /// average the short waves out).
-    void placeShips(double t);
+    /// average the short waves out). floatOnSea false: positions only (the wakes' history before the first
+    /// frame, where a pose is not drawn and the FFT sea would be transformed for every time).
+    void placeShips(double t, bool floatOnSea = true);
     /// One fixed step of dt seconds with the player's controls. Does nothing once ditched.
     void step(const FlightControls& controls, double dt);
     /// Releases a weapon now if one is left and the last release is old enough; returns its id or 0.
