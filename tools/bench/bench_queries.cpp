@@ -74,11 +74,37 @@ void BM_FftSampledHeight(benchmark::State& state) {
     state.SetLabel(interpolation == FftSampledSea::Interpolation::Bilinear ? "bilinear" : "bicubic");
 }
 
+/// Transforming every tile at a new time into the buffers it has (FftSampledSea::resample, as SeaQuery does
+/// each step) on a pool of `threads`.
 void BM_FftSampleTiles(benchmark::State& state) {
     double t = T;
-    const auto threads = static_cast<unsigned>(state.range(0));
+    ThreadPool pool(static_cast<unsigned>(state.range(0)));
+    FftSampledSea sampled(fftSea(), FftSampledSea::Interpolation::Bicubic, false);
     for (auto _ : state) {
-        FftSampledSea sampled(fftSea(), t, FftSampledSea::Interpolation::Bicubic, threads);
+        sampled.resample(t, pool.jobs());
+        benchmark::DoNotOptimize(sampled.displacementAt({0.0, 0.0}));
+        t += 1.0 / 60.0;
+    }
+}
+
+/// Advancing the sampled tiles by their time derivative (FftSampledSea::extrapolateTo) instead of
+/// transforming them again, one thread; and a transform with the derivative's two extra planes per tile.
+void BM_FftExtrapolate(benchmark::State& state) {
+    FftSampledSea sampled(fftSea(), FftSampledSea::Interpolation::Bicubic, true);
+    sampled.resample(T);
+    double t = T;
+    for (auto _ : state) {
+        t += 1.0 / 120.0;
+        sampled.extrapolateTo(t);
+        benchmark::DoNotOptimize(sampled.displacementAt({0.0, 0.0}));
+    }
+}
+
+void BM_FftSampleTilesWithVelocity(benchmark::State& state) {
+    FftSampledSea sampled(fftSea(), FftSampledSea::Interpolation::Bicubic, true);
+    double t = T;
+    for (auto _ : state) {
+        sampled.resample(t);
         benchmark::DoNotOptimize(sampled.displacementAt({0.0, 0.0}));
         t += 1.0 / 60.0;
     }
@@ -142,6 +168,8 @@ BENCHMARK(BM_FftSampleTiles)
     ->ArgName("threads")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK(BM_FftExtrapolate)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FftSampleTilesWithVelocity)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SeaQuery)
     ->ArgsProduct({{0, 1, 2}, {0, 1}, {1, 2}, {0, 8}})
     ->ArgNames({"model", "all", "threads", "explosions"})

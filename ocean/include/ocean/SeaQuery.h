@@ -69,8 +69,8 @@ struct SeaQueryDesc {
     bool fftDirectSum = false;
     FftSampledSea::Interpolation fftInterpolation = FftSampledSea::Interpolation::Bicubic;
     /// FFT: transform the tiles again only when the time has moved this many seconds from the last transform;
-    /// in between, update() extrapolates them by their time derivative (FftSampledSea::extrapolateTo: ~0.2 ms
-    /// instead of ~6 ms, errors in docs/ACCURACY.md). 0: transform at every new time.
+    /// in between, update() extrapolates them by their time derivative (FftSampledSea::extrapolateTo: 0.08 ms
+    /// instead of 6-11 ms, errors in docs/ACCURACY.md). 0: transform at every new time.
     double fftResampleInterval = 0.0;
 };
 
