@@ -49,8 +49,9 @@ public:
 
     /// The field at time t (finite) from the last sampled one by its time derivative: values + (t -
     /// sampledTime()) velocity per lattice point, one job per tile (0.08 ms for the default sea, against a
-    /// resample's 11 ms with the derivative; docs/ACCURACY.md). Over dt the error is about a dt^2 / 2 (a = w^2 A, the waves' vertical
-    /// acceleration): millimetres over 0.1 s (docs/ACCURACY.md). Needs hasVelocity() (std::logic_error).
+    /// resample's 11 ms with the derivative; docs/ACCURACY.md). Over dt the error grows as a dt^2 / 2 (a =
+    /// w^2 A, the waves' vertical acceleration): RMS 0.3 mm after 1/60 s, 9 mm (max 33 mm) after 0.1 s for
+    /// the default sea. Needs hasVelocity() (std::logic_error).
     void extrapolateTo(double t, const JobSystem& jobs = {});
 
     /// The time the queries answer for; sampledTime(): the one the tiles were last transformed at.
