@@ -14,6 +14,7 @@
 #include "ocean/Ocean.h"
 #include "ocean/SeaQuery.h"
 
+#include "GlLayerTest.h"
 #include "OceanTestFrame.h"
 
 #include <epoxy/gl.h>
@@ -33,12 +34,9 @@ namespace {
 
 constexpr int W = 160, H = 90;
 
-class SeaQueryGl : public ::testing::Test {
+/// The shared headless context and its checks (GlLayerTest.h: no GL error or KHR_debug error left behind).
+class SeaQueryGl : public gltest::GlTest {
 protected:
-    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
-
     gl::FrameTargets targets{W, H};
     OceanRenderer renderer;
 
