@@ -103,7 +103,9 @@ private:
 inline ::testing::Environment* const gEnvironment = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
 
 /// Base for tests that need GL: the context is current, and the test must leave no GL error behind.
-class GlTest : public ::testing::Test {
+/// GlTestOf<::testing::TestWithParam<T>> for parameterised tests.
+template <class Base = ::testing::Test>
+class GlTestOf : public Base {
 protected:
     void SetUp() override {
         ASSERT_NE(GlEnvironment::context(), nullptr) << "the shared headless context was not created";
@@ -129,6 +131,8 @@ protected:
 private:
     size_t mLogStart = 0;
 };
+
+using GlTest = GlTestOf<>;
 
 // ---------------------------------------------------------------------------------------------------------
 // Helpers

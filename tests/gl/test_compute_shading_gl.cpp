@@ -20,7 +20,9 @@
 
 #include "OceanTestFrame.h"
 
+#include "GlLayerTest.h"
 #include <epoxy/gl.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -128,12 +130,8 @@ Difference compare(const std::vector<float>& a, const std::vector<float>& b) {
     return d;
 }
 
-class ComputeShadingGl : public ::testing::Test {
+class ComputeShadingGl : public gltest::GlTest {
 protected:
-    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
-
     ecs::Registry registry;
     ecs::Entity oceanEntity = registry.create();
     OceanRenderer renderer;
@@ -516,7 +514,7 @@ TEST_F(ComputeShadingGl, ShadingByTilesChangesNoPixel) {
         std::printf("[%s] tiles mixed %d, sea %d, sky %d, beyond %d of %d; pixels differing %zu (max %.2e)\n",
                     c.name, counts[0], counts[1], counts[2], counts[3], tilesX * tilesY, differing, maxRel);
         EXPECT_LE(maxRel, 1e-5);
-        if (context->info().software) {
+        if (info().software) {
             EXPECT_EQ(differing, 0u) << "llvmpipe compiles the same lighting to the same bits";
         }
         EXPECT_EQ(counts[0], mixed);

@@ -25,7 +25,9 @@
 
 #include "OceanTestFrame.h"
 
+#include "GlLayerTest.h"
 #include <epoxy/gl.h>
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -49,12 +51,8 @@ constexpr int W = 320, H = 180;
 /// bilinear reading smooths the rest (measured 0.21 m straight, 0.07 m in a tight circle).
 constexpr double WAKE_FIELD_BOUND = 0.3;
 
-class EffectsGl : public ::testing::Test {
+class EffectsGl : public gltest::GlTest {
 protected:
-    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
-
     ecs::Registry registry;
     ecs::EventQueue events;
     ecs::Entity oceanEntity = registry.create();

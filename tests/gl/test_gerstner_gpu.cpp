@@ -9,6 +9,8 @@
 #include "gpu/SurfaceProbe.h"
 #include "ocean/GerstnerWaves.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -57,11 +59,8 @@ struct Case {
     double time;
 };
 
-class GerstnerGpuCpu : public ::testing::TestWithParam<Case> {
+class GerstnerGpuCpu : public gltest::GlTestOf<::testing::TestWithParam<Case>> {
 protected:
-    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
 };
 
 TEST_P(GerstnerGpuCpu, DisplacementAndLightingMatchTheDoubleReference) {
@@ -141,8 +140,9 @@ INSTANTIATE_TEST_SUITE_P(CamerasAndTimes, GerstnerGpuCpu,
                              return std::string(param.param.name);
                          });
 
-TEST(GerstnerGpu, SteepnessRequestOfThreeRendersFinite) {
-    auto context = gl::createHeadlessContext();
+class GerstnerGpu : public gltest::GlTest {};
+
+TEST_F(GerstnerGpu, SteepnessRequestOfThreeRendersFinite) {
     // Eight crossed waves with Q = 1 and sum k A = 3: clamped to sum Q k A = 1, where cusps (J = 0) occur.
     ocean::GerstnerDesc desc;
     for (int i = 0; i < 8; ++i) {
@@ -172,7 +172,7 @@ TEST(GerstnerGpu, SteepnessRequestOfThreeRendersFinite) {
     }
 }
 
-TEST(GerstnerGpu, RejectsANullModel) {
+TEST_F(GerstnerGpu, RejectsANullModel) {
     EXPECT_THROW(ocean::GerstnerGpu(nullptr), std::invalid_argument);
 }
 

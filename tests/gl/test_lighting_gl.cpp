@@ -19,6 +19,8 @@
 #include "ocean/OceanHost.h"
 #include "ocean/OceanShaders.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -93,11 +95,8 @@ private:
     CameraFrame mLastCamera;
 };
 
-class LightingGl : public ::testing::Test {
+class LightingGl : public gltest::GlTest {
 protected:
-    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
 };
 
 /// Every value finite and >= 0 (scene-linear radiance).

@@ -15,6 +15,8 @@
 
 #include <epoxy/gl.h>
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -94,11 +96,8 @@ bool lookupsNearTexelEdge(const HeightOctaves& s, const glm::dvec2& world, const
     return false;
 }
 
-class OctaveFiltersGpu : public ::testing::TestWithParam<Mode> {
+class OctaveFiltersGpu : public gltest::GlTestOf<::testing::TestWithParam<Mode>> {
 protected:
-    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
 };
 
 TEST_P(OctaveFiltersGpu, GpuMatchesTheDoubleCpuPathOutTo40km) {
@@ -195,12 +194,14 @@ INSTANTIATE_TEST_SUITE_P(
                       Mode{VertexFilter::Packed4Tap, true}, Mode{VertexFilter::Trilinear, true}),
     [](const ::testing::TestParamInfo<Mode>& p) { return modeName(p.param); });
 
+class OctaveLightingGpu : public gltest::GlTest {};
+class OctaveFilterCost : public gltest::GlTest {};
+
 // The lighting maps are mixed to the frame's time once per frame (octaves_light_mix.comp) instead of per
 // pixel: halfway between two time slices the lighting gradient is the mean of the two slices' (filtering is
 // linear), up to the one rounding of the mix to half; at a slice's own instant it is that slice. One octave
 // (61 m tile, 12 s loop, 32 slices: a slice every 0.375 s).
-TEST(OctaveLightingGpu, LightingMapsFollowTimeLinearlyBetweenSlices) {
-    auto ctx = gl::createHeadlessContext();
+TEST_F(OctaveLightingGpu, LightingMapsFollowTimeLinearlyBetweenSlices) {
     HeightOctavesDesc desc;
     desc.octaves = {{61.0, 0.13, 12.0}};
     desc.displacedOctaves = 1;
@@ -235,8 +236,7 @@ TEST(OctaveLightingGpu, LightingMapsFollowTimeLinearlyBetweenSlices) {
 // octaves; the probe runs in the vertex stage, so the lighting array is read at level 0 like the CPU's
 // bilinear lookup. Bound: the mix to the frame's time is rounded to half (2^-11 of a memory of up to ~4
 // unit heights, times A_i) plus the float tile coordinate at 40 km.
-TEST(OctaveLightingGpu, FoamHeightMatchesTheCpu) {
-    auto ctx = gl::createHeadlessContext();
+TEST_F(OctaveLightingGpu, FoamHeightMatchesTheCpu) {
     const auto surface = std::make_shared<const HeightOctaves>(HeightOctavesDesc{});
     ocean::OctavesGpu gpu(surface);
     const std::vector<glm::vec2> rel = probePoints(2000);
@@ -289,10 +289,9 @@ std::vector<glm::vec2> radialGridPoints(int rings, int segments) {
 /// on hardware, wall clock around glFinish on llvmpipe (whose timer queries are wrong, docs/PLATFORM.md).
 /// Minimum and median of 10 runs (the minimum is the least disturbed by other processes on a shared
 /// machine); printed, not asserted.
-TEST(OctaveFilterCost, VertexAndCombinePassTimePerPath) {
-    auto ctx = gl::createHeadlessContext();
+TEST_F(OctaveFilterCost, VertexAndCombinePassTimePerPath) {
     std::vector<int> segments = {ocean::RadialGridDesc{}.segments};
-    if (!ctx->info().software)
+    if (!info().software)
         segments.push_back(8 * segments[0]);
     const glm::dvec3 camera(1.0e7 + 0.37, -1.0e7 + 0.81, 30.0);
     const double time = 1.0e6 + 0.123;
@@ -310,7 +309,7 @@ TEST(OctaveFilterCost, VertexAndCombinePassTimePerPath) {
         fbo.attachColor(0, color);
 
         std::printf("vertex cost, %zu displaced vertices (256 x %d grid), renderer %s, clock: %s\n",
-                    rel.size(), m, ctx->info().renderer.c_str(), gl::GpuTimer(ctx->info()).clockName());
+                    rel.size(), m, info().renderer.c_str(), gl::GpuTimer(info()).clockName());
         std::printf(
             "| path | vertex draw ms (min / median) | combine pass ms (min / median) |\n|---|---|---|\n");
         for (const Mode mode : {Mode{VertexFilter::Nearest, false}, Mode{VertexFilter::Bilinear, false},
@@ -332,7 +331,7 @@ TEST(OctaveFilterCost, VertexAndCombinePassTimePerPath) {
                 gl::buildProgram({{gl::ShaderStage::Vertex, sources}}, "octave filter cost", {"vHeight"});
             gl::StateGuard guard;
             glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.id());
-            gl::GpuTimer combineTimer(ctx->info()), drawTimer(ctx->info());
+            gl::GpuTimer combineTimer(info()), drawTimer(info());
             for (int run = 0; run < 11; ++run) { // run 0: shader compilation and first-use costs
                 combineTimer.begin();
                 gpu.update(time, camera);

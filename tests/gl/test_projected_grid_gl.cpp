@@ -14,6 +14,8 @@
 #include "ocean/OceanShaders.h"
 #include "ocean/ProjectedGrid.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -46,15 +48,7 @@ std::optional<double> seaHitDistance(const glm::dvec3& dir, double h, double R) 
     return rho * 2.0 * h / (-dir.z + std::sqrt(disc));
 }
 
-class ProjectedGridGl : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        context = gl::createHeadlessContext();
-        std::printf("[ info ] GL_RENDERER: %s\n", context->info().renderer.c_str());
-    }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
-};
+class ProjectedGridGl : public gltest::GlTest {}; // GlEnvironment prints GL_RENDERER
 
 TEST_F(ProjectedGridGl, EverySeaPixelIsCoveredAndNoSkyPixel) {
     const std::vector<gl::ShaderSource> vertex = {
