@@ -12,6 +12,8 @@
 #include "ocean/FftOcean.h"
 #include "ocean/OceanConstants.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,11 +31,6 @@ using ocean::FftGpu;
 using ocean::FftOcean;
 
 namespace {
-
-std::unique_ptr<gl::GlContext>& context() {
-    static std::unique_ptr<gl::GlContext> ctx = gl::createHeadlessContext();
-    return ctx;
-}
 
 FftDesc descOf(int size) {
     FftDesc d; // JONSWAP, U10 = 12 m/s, fetch 200 km, lambda = 1, T = 200 s
@@ -130,10 +127,7 @@ bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-class FftGpuCpu : public ::testing::TestWithParam<int> {
-protected:
-    static void SetUpTestSuite() { ASSERT_TRUE(context()); }
-};
+class FftGpuCpu : public gltest::GlTestOf<::testing::TestWithParam<int>> {};
 
 // The maps themselves: texel (i, j) is the field at grid point (i, j) L / N — the pure float IFFT error.
 // Bound: the RMS error over the sampled texels <= highamRms() (Higham's L2 bound); rounding errors spread
@@ -307,12 +301,15 @@ INSTANTIATE_TEST_SUITE_P(Sizes, FftGpuCpu, ::testing::Values(64, 256),
                              return "N" + std::to_string(p.param);
                          });
 
+class FftGpuTime : public gltest::GlTest {};
+class FftFoamMemory : public gltest::GlTest {};
+class FftCascadesGpu : public gltest::GlTest {};
+
 // Looping and work accounting: the upload happens once; t = 1e6 + 0.123 and the same time one loop later give
 // bitwise the same maps (time reaches the GPU only as wrap(t, T) / T in 32-bit fixed point); an intermediate
 // different time changes them (so the comparison is not trivially the same buffer); repeating a time does
 // no pass at all.
-TEST(FftGpuTime, LoopPeriodGivesTheSameMapsAndRepeatsAreSkipped) {
-    ASSERT_TRUE(context());
+TEST_F(FftGpuTime, LoopPeriodGivesTheSameMapsAndRepeatsAreSkipped) {
     const auto sea = std::make_shared<const FftOcean>(descOf(64));
     FftGpu gpu(sea);
     const double period = sea->desc().loopPeriod;
@@ -354,9 +351,8 @@ TEST(FftGpuTime, LoopPeriodGivesTheSameMapsAndRepeatsAreSkipped) {
 
 // Wall-clock time of update() around glFinish (GL timer queries are wrong on llvmpipe, docs/PLATFORM.md).
 // Measured, not asserted: printed and recorded as test properties.
-TEST(FftGpuTime, MeasureUpdateTime) {
-    ASSERT_TRUE(context());
-    std::printf("GL_RENDERER: %s\n", context()->info().renderer.c_str());
+TEST_F(FftGpuTime, MeasureUpdateTime) {
+    std::printf("GL_RENDERER: %s\n", info().renderer.c_str());
     for (int n : {256, 512}) {
         const auto sea = std::make_shared<const FftOcean>(descOf(n));
         FftGpu gpu(sea);
@@ -374,7 +370,7 @@ TEST(FftGpuTime, MeasureUpdateTime) {
         std::sort(ms.begin(), ms.end());
         std::printf("FftGpu::update N=%d: median %.2f ms, min %.2f ms, max %.2f ms (wall clock around "
                     "glFinish, %s)\n",
-                    n, ms[ms.size() / 2], ms.front(), ms.back(), context()->info().renderer.c_str());
+                    n, ms[ms.size() / 2], ms.front(), ms.back(), info().renderer.c_str());
         RecordProperty("update_ms_N" + std::to_string(n), std::to_string(ms[ms.size() / 2]));
     }
     // The living whitecaps' cost (FftDesc::foamMemory): a frame that enters a new 0.2 s lattice step adds
@@ -398,7 +394,7 @@ TEST(FftGpuTime, MeasureUpdateTime) {
     std::sort(plain.begin(), plain.end());
     std::printf("FftGpu::update N=256 with foam memory: first frame %.1f ms (30 samples), a frame entering a "
                 "lattice step median %.2f ms, inside one %.2f ms (wall clock around glFinish, %s)\n",
-                first, sampling[3], plain[3], context()->info().renderer.c_str());
+                first, sampling[3], plain[3], info().renderer.c_str());
     RecordProperty("foam_first_ms", std::to_string(first));
     RecordProperty("foam_sampling_frame_ms", std::to_string(sampling[3]));
 }
@@ -408,8 +404,7 @@ TEST(FftGpuTime, MeasureUpdateTime) {
 // crest heights, evaluated on the CPU as a trigonometric polynomial in time. Each sample is an FFT height
 // (float IFFT error as above, <= ~2e-7 Hs measured) and max and the weights are 1-Lipschitz, so the bound is
 // the maps' sanity bound 1e-4 Hs. Every texel of an N = 64 tile, at t = 17.4 s and ~10^6 s.
-TEST(FftFoamMemory, MatchesTheCpuTwinAtLatticeTimes) {
-    ASSERT_TRUE(context());
+TEST_F(FftFoamMemory, MatchesTheCpuTwinAtLatticeTimes) {
     const auto sea = seaWithFoamMemory(64);
     FftGpu gpu(sea);
     const int n = sea->desc().size;
@@ -444,8 +439,7 @@ TEST(FftFoamMemory, MatchesTheCpuTwinAtLatticeTimes) {
 // jump to a later time and back all give bitwise the same memory map. Work: the first update samples the
 // whole window (4 passes per sample + the memory pass + the maps' 4), a frame that enters a new lattice step
 // samples once (4 + 1 + 4), a frame inside a step only renews the maps (4).
-TEST(FftFoamMemory, DependsOnTheTimeAloneNotOnTheFrames) {
-    ASSERT_TRUE(context());
+TEST_F(FftFoamMemory, DependsOnTheTimeAloneNotOnTheFrames) {
     const auto sea = seaWithFoamMemory(64);
     FftGpu played(sea), jumped(sea), back(sea);
     const double t0 = 30.05, dt = 1.0 / 60.0;
@@ -483,8 +477,7 @@ TEST(FftFoamMemory, DependsOnTheTimeAloneNotOnTheFrames) {
 // whose crest stands there now. Measured (llvmpipe; the CPU twin agrees to 1e-7 Hs): 1.44x at 1.5 sigma and
 // 1.29x at 2 sigma; the heights are mostly long waves whose crests stay above a threshold for seconds anyway,
 // so the memory adds less area than for short breakers. Bound 1.2x: without a memory the ratio is 1.
-TEST(FftFoamMemory, FoamOutlivesTheCrest) {
-    ASSERT_TRUE(context());
+TEST_F(FftFoamMemory, FoamOutlivesTheCrest) {
     const auto sea = seaWithFoamMemory(256);
     FftGpu gpu(sea);
     const double t = ocean::foamStepTime(250);
@@ -520,8 +513,7 @@ TEST(FftFoamMemory, FoamOutlivesTheCrest) {
 //    bilinear is the texel: the height, the remembered crests and cascade 1's height equal foamHeightAt (the
 //    memory maps as above, 1e-4 Hs).
 // And the mix is not trivial: the sea differs from draw A's alone by more than 0.05 Hs somewhere.
-TEST(FftCascadesGpu, ShaderMatchesTheCpuTwinAroundCameras) {
-    ASSERT_TRUE(context());
+TEST_F(FftCascadesGpu, ShaderMatchesTheCpuTwinAroundCameras) {
     FftDesc d;
     d.size = 64;
     d.detailSize = 32;

@@ -9,7 +9,9 @@
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanShaders.h"
 
+#include "GlLayerTest.h"
 #include <epoxy/gl.h>
+
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -22,11 +24,6 @@ using namespace pacifica;
 using namespace pacifica::ocean;
 
 namespace {
-
-std::unique_ptr<gl::GlContext>& context() {
-    static std::unique_ptr<gl::GlContext> ctx = gl::createHeadlessContext();
-    return ctx;
-}
 
 /// A compute program of the ocean's generated #defines (both effect kinds on), then `file` (an embedded
 /// shader), then `main` (test code, or nothing when the file has its own).
@@ -98,8 +95,9 @@ void expectOffsets(GLuint program, const std::string& array, size_t size,
     }
 }
 
-TEST(GpuInterface, EffectStructsMatchTheDriversLayout) {
-    ASSERT_TRUE(context());
+class GpuInterface : public gltest::GlTest {};
+
+TEST_F(GpuInterface, EffectStructsMatchTheDriversLayout) {
     const gl::Program program = effectsProgram();
     const GLuint p = program.id();
     expectOffsets(p, "uExplosions", sizeof(ExplosionGpu),
@@ -137,8 +135,7 @@ TEST(GpuInterface, EffectStructsMatchTheDriversLayout) {
                    {"wakes", offsetof(EffectTileGpu, wakes)}});
 }
 
-TEST(GpuInterface, StorageBlocksSitAtTheEnumsSlots) {
-    ASSERT_TRUE(context());
+TEST_F(GpuInterface, StorageBlocksSitAtTheEnumsSlots) {
     const gl::Program program = effectsProgram();
     const std::vector<std::pair<const char*, int>> blocks = {
         {"EffectExplosions", EFFECT_EXPLOSIONS_BINDING},  {"EffectWakes", EFFECT_WAKES_BINDING},
@@ -183,7 +180,7 @@ TEST(GpuInterface, StorageBlocksSitAtTheEnumsSlots) {
               FFT_OMEGA_MULTIPLES_BINDING);
 }
 
-TEST(GpuInterface, BindingDefinesAreGeneratedFromTheEnum) {
+TEST_F(GpuInterface, BindingDefinesAreGeneratedFromTheEnum) {
     const std::string d = shaderConstantDefines();
     for (const auto& [name, slot] :
          std::vector<std::pair<std::string, int>>{{"FFT_PLANES_BINDING", FFT_PLANES_BINDING},

@@ -15,6 +15,8 @@
 
 #include <epoxy/gl.h>
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -79,11 +81,8 @@ const Case CASES[] = {
     {"under_water", {10.0, 20.0, -5.0}, 25.0, 42.0, NAN, true},
 };
 
-class Stability : public ::testing::TestWithParam<std::tuple<int, int>> {
+class Stability : public gltest::GlTestOf<::testing::TestWithParam<std::tuple<int, int>>> {
 protected:
-    static void SetUpTestSuite() { context = gl::createHeadlessContext(); }
-    static void TearDownTestSuite() { context.reset(); }
-    static inline std::unique_ptr<gl::GlContext> context;
 };
 
 TEST_P(Stability, FiniteFrameVerticesNearReferenceNoHorizonGap) {
