@@ -18,6 +18,8 @@
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanHost.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -31,13 +33,7 @@ namespace {
 
 constexpr int W = 320, H = 180;
 
-class GameGl : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() { sCtx = gl::createHeadlessContext({}); }
-    static void TearDownTestSuite() { sCtx.reset(); }
-    static std::unique_ptr<gl::GlContext> sCtx;
-};
-std::unique_ptr<gl::GlContext> GameGl::sCtx;
+class GameGl : public gltest::GlTest {};
 
 /// Everything of the host's state the test's host relies on.
 struct HostState {

@@ -15,6 +15,8 @@
 #include "ocean/OceanHost.h"
 #include "ocean/SeaState.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -137,13 +139,7 @@ Glitter renderedGlitter(double u, ocean::LightingDesc::Glitter model = ocean::Li
     return g;
 }
 
-class LookGl : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() { sCtx = gl::createHeadlessContext({}); }
-    static void TearDownTestSuite() { sCtx.reset(); }
-    static std::unique_ptr<gl::GlContext> sCtx;
-};
-std::unique_ptr<gl::GlContext> LookGl::sCtx;
+class LookGl : public gltest::GlTest {};
 
 } // namespace
 

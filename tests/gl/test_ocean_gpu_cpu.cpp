@@ -9,6 +9,8 @@
 #include "ocean/OceanDebug.h"
 #include "ocean/OceanHost.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,10 +26,9 @@ struct Case {
     double time;
 };
 
-class OceanGpuCpu : public ::testing::TestWithParam<Case> {
+class OceanGpuCpu : public gltest::GlTestOf<::testing::TestWithParam<Case>> {
 protected:
     static void SetUpTestSuite() {
-        context = gl::createHeadlessContext();
         renderer = std::make_unique<ocean::OceanRenderer>();
         entity = registry.create();
         // Frustum culling off: every vertex is displaced, so every vertex can be compared.
@@ -35,11 +36,7 @@ protected:
         desc.cullVertices = false;
         registry.emplace<ocean::OceanComponent>(entity, ocean::makeOcean(desc));
     }
-    static void TearDownTestSuite() {
-        renderer.reset();
-        context.reset();
-    }
-    static inline std::unique_ptr<gl::GlContext> context;
+    static void TearDownTestSuite() { renderer.reset(); }
     static inline std::unique_ptr<ocean::OceanRenderer> renderer;
     static inline ecs::Registry registry;
     static inline ecs::Entity entity;
@@ -102,8 +99,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"high_15km", {2.5e6, 3.3e6, 15000.0}, 3.6e5}),
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
-TEST(OceanGpuCpuErrors, EntityWithoutOceanIsRejected) {
-    auto ctx = gl::createHeadlessContext();
+class OceanGpuCpuErrors : public gltest::GlTest {};
+
+TEST_F(OceanGpuCpuErrors, EntityWithoutOceanIsRejected) {
     ocean::OceanRenderer r;
     ecs::Registry reg;
     const ecs::Entity e = reg.create();

@@ -14,6 +14,8 @@
 #include "ocean/OceanDebug.h"
 #include "ocean/OceanHost.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -48,12 +50,11 @@ std::filesystem::path writeCosineExr(const std::string& name, int frames) {
     return path;
 }
 
-class OctaveImagesGpu : public ::testing::Test {
+class OctaveImagesGpu : public gltest::GlTest {
 protected:
     static void SetUpTestSuite() {
         still = writeCosineExr("still", 1);
         strip = writeCosineExr("strip", 4);
-        context = gl::createHeadlessContext();
         renderer = std::make_unique<ocean::OceanRenderer>();
         entity = registry.create();
         ocean::OceanDesc desc;
@@ -67,7 +68,6 @@ protected:
     }
     static void TearDownTestSuite() {
         renderer.reset();
-        context.reset();
         std::filesystem::remove(still);
         std::filesystem::remove(strip);
     }
@@ -76,7 +76,6 @@ protected:
             *registry.get<ocean::OceanComponent>(entity).surface);
     }
     static inline std::filesystem::path still, strip;
-    static inline std::unique_ptr<gl::GlContext> context;
     static inline std::unique_ptr<ocean::OceanRenderer> renderer;
     static inline ecs::Registry registry;
     static inline ecs::Entity entity;

@@ -10,6 +10,8 @@
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GlObjects.h"
 
+#include "GlLayerTest.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,14 +63,8 @@ struct Comparison {
     int alphaChanged = 0; // pixels whose alpha differs from the input's
 };
 
-class TonemapTest : public ::testing::Test {
+class TonemapTest : public pacifica::gltest::GlTest {
 protected:
-    static void SetUpTestSuite() {
-        sContext = gl::createHeadlessContext();
-        std::cout << "[ info ] GL_RENDERER: " << sContext->info().renderer << "\n";
-    }
-    static void TearDownTestSuite() { sContext.reset(); }
-
     // Runs the pipeline's selection through the Tonemapper and through applyCpu on the same ramp.
     Comparison compareGpuWithCpu(const ColorPipeline& pipeline, int expectedLuts = 0) {
         const std::vector<float> input = hdrRamp();
@@ -132,11 +128,7 @@ protected:
         ::testing::Test::RecordProperty("maxDiff " + name, std::to_string(c.maxDiff));
         return c;
     }
-
-    static std::unique_ptr<gl::GlContext> sContext;
 };
-
-std::unique_ptr<gl::GlContext> TonemapTest::sContext;
 
 // docs/PLATFORM.md measured 3.4e-6 (analytic transforms) between OCIO's GPU and CPU processors on
 // llvmpipe; 1e-4 leaves room for other drivers' pow/exp2 while still catching a wrong transform, a wrong
