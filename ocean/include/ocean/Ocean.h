@@ -14,9 +14,9 @@
 //      attachment; reverse-Z: it clears depth to 0 and tests GL_GREATER) and restores the host's GL state
 //      (gl::StateGuard), except texture bindings: units 0..(model units - 1) and 12..14 (lighting) are left
 //      changed, image unit 0 when the octave combine pass runs, and units 15..18 under compute shading.
-//   5. CPU queries (physics, buoyancy, cameras): heightsAt(ocean, effects, points, time, heights) matches
-//   what
-//      the GPU drew to float precision.
+//   5. CPU queries (physics, buoyancy, cameras): SeaQuery (ocean/SeaQuery.h: heights, normals, velocities
+//      of many points a call, threaded, allocation-free) or heightsAt(ocean, effects, points, time,
+//      heights) for a few; the heights the GPU drew exactly, a frame later: queueHeights/takeHeights below.
 //
 // ERRORS are values (Status) across this boundary: every function here is noexcept; bad input (a description
 // out of range, a frame with no pixels, a non-finite time or camera) and GPU failures (a shader the driver
