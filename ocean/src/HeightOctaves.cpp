@@ -558,32 +558,11 @@ double HeightOctaves::packedBilinear(int octave, int level, int frame, const glm
 
 double HeightOctaves::sliceHeight(int octave, VertexFilter filter, int level, int frame,
                                   const glm::dvec2& u) const {
-    const int s = mDesc.mapSize;
-    const double wx = wrapPhase(u.x, 1.0), wy = wrapPhase(u.y, 1.0);
     switch (filter) {
     case VertexFilter::Nearest:
-        // The texel whose square [i, i + 1) / size holds u (GL's NEAREST rule).
-        return heightMip(octave, 0, frame, static_cast<int>(std::floor(wx * s)),
-                         static_cast<int>(std::floor(wy * s)));
     case VertexFilter::Bilinear:
-    case VertexFilter::HardwareBilinear: {
-        double px = wx * s - 0.5, py = wy * s - 0.5;
-        if (filter == VertexFilter::HardwareBilinear) {
-            // Fixed-point sub-texel position with HARDWARE_WEIGHT_BITS fractional bits, rounded to nearest.
-            const double q = std::ldexp(1.0, HARDWARE_WEIGHT_BITS);
-            px = std::floor(px * q + 0.5) / q;
-            py = std::floor(py * q + 0.5) / q;
-        }
-        const double fx0 = std::floor(px), fy0 = std::floor(py);
-        const double ax = px - fx0, ay = py - fy0;
-        const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
-        const double h00 = heightMip(octave, 0, frame, x0, y0), h10 = heightMip(octave, 0, frame, x0 + 1, y0);
-        const double h01 = heightMip(octave, 0, frame, x0, y0 + 1);
-        const double h11 = heightMip(octave, 0, frame, x0 + 1, y0 + 1);
-        const double bottom = h00 + (h10 - h00) * ax;
-        const double top = h01 + (h11 - h01) * ax;
-        return bottom + (top - bottom) * ay;
-    }
+    case VertexFilter::HardwareBilinear:
+        return frameHeight(octave, frame, footprint(octave, filter, u));
     case VertexFilter::Packed4Tap:
     case VertexFilter::Trilinear:
         break;
@@ -615,8 +594,57 @@ double HeightOctaves::sampleHeight(int octave, VertexFilter filter, const glm::d
         const double w = (fr - TRILINEAR_BAND_LOW) / (TRILINEAR_BAND_HIGH - TRILINEAR_BAND_LOW);
         return r0 + (r1 - r0) * w;
     };
-    const double a = slice(f0), b = slice(f1);
+    if (filter == VertexFilter::Trilinear || filter == VertexFilter::Packed4Tap) {
+        const double a = slice(f0), b = slice(f1);
+        return a + (b - a) * at;
+    }
+    // Nearest and bilinear: both frames share the footprint, worked out once (the same operations as
+    // sliceHeight(), so the same bits: a query reads each frame's four texels and wraps the point once).
+    const Footprint f = footprint(octave, filter, u);
+    const double a = frameHeight(octave, f0, f), b = frameHeight(octave, f1, f);
     return a + (b - a) * at;
+}
+
+HeightOctaves::Footprint HeightOctaves::footprint(int octave, VertexFilter filter,
+                                                  const glm::dvec2& u) const {
+    const int s = mDesc.mapSize;
+    const double wx = wrapPhase(u.x, 1.0), wy = wrapPhase(u.y, 1.0);
+    Footprint f;
+    const int n = mMaps[static_cast<size_t>(octave)].size; // heightMip's wrap at level 0
+    if (filter == VertexFilter::Nearest) {
+        // The texel whose square [i, i + 1) / size holds u (GL's NEAREST rule).
+        f.nearest = true;
+        f.x0 = f.x1 = wrapIndex(static_cast<int>(std::floor(wx * s)), n);
+        f.y0 = f.y1 = wrapIndex(static_cast<int>(std::floor(wy * s)), n);
+        return f;
+    }
+    double px = wx * s - 0.5, py = wy * s - 0.5;
+    if (filter == VertexFilter::HardwareBilinear) {
+        // Fixed-point sub-texel position with HARDWARE_WEIGHT_BITS fractional bits, rounded to nearest.
+        const double q = std::ldexp(1.0, HARDWARE_WEIGHT_BITS);
+        px = std::floor(px * q + 0.5) / q;
+        py = std::floor(py * q + 0.5) / q;
+    }
+    const double fx0 = std::floor(px), fy0 = std::floor(py);
+    f.ax = px - fx0;
+    f.ay = py - fy0;
+    const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
+    f.x0 = wrapIndex(x0, n);
+    f.x1 = wrapIndex(x0 + 1, n);
+    f.y0 = wrapIndex(y0, n);
+    f.y1 = wrapIndex(y0 + 1, n);
+    return f;
+}
+
+double HeightOctaves::frameHeight(int octave, int frame, const Footprint& f) const {
+    const OctaveMap& map = mMaps[static_cast<size_t>(octave)];
+    auto at = [&](int x, int y) { return static_cast<double>(map.texel(frame, x, y)[0]); }; // wrapped already
+    if (f.nearest)
+        return at(f.x0, f.y0);
+    const double h00 = at(f.x0, f.y0), h10 = at(f.x1, f.y0), h01 = at(f.x0, f.y1), h11 = at(f.x1, f.y1);
+    const double bottom = h00 + (h10 - h00) * f.ax;
+    const double top = h01 + (h11 - h01) * f.ax;
+    return bottom + (top - bottom) * f.ay;
 }
 
 double HeightOctaves::trilinearLod(int octave, double distance) const {

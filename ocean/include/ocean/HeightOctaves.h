@@ -302,6 +302,16 @@ public:
 private:
     /// One time slice of one octave at level `level` with the filter (no time interpolation).
     double sliceHeight(int octave, VertexFilter filter, int level, int frame, const glm::dvec2& u) const;
+    /// Level 0's nearest or bilinear footprint of map coordinate u in octave's map: its texel columns x0,
+    /// x1 and rows y0, y1 (wrapped into the map) and the weights, the same for every frame; frameHeight()
+    /// reads one frame through it.
+    struct Footprint {
+        int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+        double ax = 0.0, ay = 0.0;
+        bool nearest = false;
+    };
+    Footprint footprint(int octave, VertexFilter filter, const glm::dvec2& u) const;
+    double frameHeight(int octave, int frame, const Footprint& f) const;
     double packedBilinear(int octave, int level, int frame, const glm::dvec2& u) const;
 
     HeightOctavesDesc mDesc;
