@@ -150,6 +150,17 @@ double explosionFoam(const ExplosionParams& p, const ExplosionState& s, const gl
 
 WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t) {
     WakeState s;
+    wakeState(ship, trail, t, s);
+    return s;
+}
+
+void wakeState(const Ship& ship, const ShipTrail& trail, double t, WakeState& s) {
+    // Every field from scratch, the vectors emptied with their capacity kept.
+    for (std::vector<double>* v : {&s.sigma, &s.age, &s.amplitude, &s.k0})
+        v->clear();
+    s.offsets.clear();
+    s.radius = s.peak = s.foamPeak = 0.0;
+    s.boxMin = s.boxMax = glm::dvec2(0.0);
     s.ship = trail.history.empty() ? ship.position : trail.history.front().position;
     s.length = std::max(ship.length, 1.0);
     s.beam = s.length / 5.0;
@@ -157,7 +168,7 @@ WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t) {
     s.foamLife = trail.params.foamLife;
     const size_t n = trail.history.size();
     if (n < 2)
-        return s;
+        return;
     double sigma = 0.0;
     for (size_t i = 0; i < n; ++i) {
         const WakePoint& pt = trail.history[i];
@@ -195,7 +206,6 @@ WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t) {
     }
     s.boxMin -= margin;
     s.boxMax += margin;
-    return s;
 }
 
 WakeCoords wakeCoords(const WakeState& s, const glm::dvec2& q) {
@@ -405,6 +415,37 @@ glm::dvec3 saturate(const glm::dvec3& sum) {
 
 glm::dvec3 effectsAt(const EffectsView& effects, const glm::dvec2& xy, double t, double kMax) {
     return saturate(sampleEffects(effects, xy, t, kMax).wave);
+}
+
+void EffectsSnapshot::update(const EffectsView& effects, double t) {
+    mView = effects;
+    mTime = t;
+    mExplosions.resize(effects.explosions.size());
+    for (size_t i = 0; i < mExplosions.size(); ++i)
+        mExplosions[i] = explosionState(effects.explosions[i], t);
+    mWakes.resize(effects.wakes.size());
+    for (size_t i = 0; i < mWakes.size(); ++i)
+        if (effects.wakes[i].trail->active)
+            wakeState(*effects.wakes[i].ship, *effects.wakes[i].trail, t, mWakes[i]);
+}
+
+glm::dvec3 EffectsSnapshot::at(const glm::dvec2& xy, double kMax) const {
+    // sampleEffects()'s wave sum, the states made once.
+    glm::dvec3 wave(0.0);
+    for (size_t i = 0; i < mExplosions.size(); ++i) {
+        const Explosion& e = mView.explosions[i];
+        wave += explosionWave(e.params, mExplosions[i], xy - e.center, kMax);
+    }
+    for (size_t i = 0; i < mWakes.size(); ++i) {
+        if (!mView.wakes[i].trail->active)
+            continue;
+        const WakeState& s = mWakes[i];
+        const glm::dvec2 q = xy - s.ship;
+        if (!insideWakeBox(s, q))
+            continue;
+        wave += wakeWaveAt(s, wakeCoords(s, q), kMax);
+    }
+    return saturate(wave);
 }
 
 double effectsFoamAt(const EffectsView& effects, const glm::dvec2& xy, double t) {

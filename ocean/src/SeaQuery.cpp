@@ -30,7 +30,9 @@ struct SeaQuery::Impl {
     SeaQueryDesc desc;
     double time = 0.0;
     bool ready = false; // update() has succeeded
-    EffectsView effects;
+    // The effects at the query's time (and at time -+ EFFECT_RATE_STEP for dE/dt when velocity is asked):
+    // every effect's state made once per update(), not per point.
+    EffectsSnapshot effects, effectsBefore, effectsAfter;
     SeaQueryCounters counters;
 
     /// One point's answer into `out` (the asked fields); false for a point that is not finite.
@@ -56,7 +58,7 @@ bool SeaQuery::Impl::answer(const glm::dvec2& p, unsigned fields, SeaSample& out
     glm::dvec3 e(0.0); // the effects' (E, dE/dx, dE/dy)
     const bool withEffects = !effects.empty() && (fields & (SeaField::Height | SeaField::Normal));
     if (withEffects)
-        e = effectsAt(effects, p, time);
+        e = effects.at(p);
     if (fields & SeaField::Height)
         out.height = d.z + e.x;
     if (fields & SeaField::Displacement)
@@ -70,9 +72,7 @@ bool SeaQuery::Impl::answer(const glm::dvec2& p, unsigned fields, SeaSample& out
     if (fields & SeaField::Velocity) {
         glm::dvec3 v = sampled ? sampled->velocityAt(x0) : surface->velocityAt(x0, time);
         if (!effects.empty())
-            v.z += (effectsAt(effects, p, time + EFFECT_RATE_STEP).x -
-                    effectsAt(effects, p, time - EFFECT_RATE_STEP).x) /
-                   (2.0 * EFFECT_RATE_STEP);
+            v.z += (effectsAfter.at(p).x - effectsBefore.at(p).x) / (2.0 * EFFECT_RATE_STEP);
         out.velocity = v;
     }
     return true;
@@ -134,7 +134,11 @@ Status SeaQuery::update(double t, const EffectsView& effects) noexcept {
                 s->resample(t, mImpl->jobs);
         }
         mImpl->time = t;
-        mImpl->effects = effects;
+        mImpl->effects.update(effects, t);
+        if (mImpl->desc.fields & SeaField::Velocity) {
+            mImpl->effectsBefore.update(effects, t - EFFECT_RATE_STEP);
+            mImpl->effectsAfter.update(effects, t + EFFECT_RATE_STEP);
+        }
         mImpl->ready = true;
         ++mImpl->counters.updates;
     });

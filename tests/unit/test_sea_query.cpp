@@ -10,6 +10,8 @@
 //   under a Gerstner crest at the steepness limit; bad calls refused with a message.
 #include "ocean/SeaQuery.h"
 
+#include "engine/Ecs.h"
+#include "ocean/Effects.h"
 #include "ocean/FftOcean.h"
 
 #include <gtest/gtest.h>
@@ -24,6 +26,7 @@
 #include <random>
 #include <vector>
 
+using namespace pacifica;
 using namespace pacifica::ocean;
 
 // ---- A counting allocator for this binary -----------------------------------------------------------------
@@ -359,4 +362,43 @@ TEST(SeaQuery, FftExtrapolatedBetweenTransformsStaysWithinItsBound) {
     SeaQuery exact = makeQuery(ocean, t0 + 0.3, {.fields = SeaField::Height});
     ASSERT_TRUE(exact.heights(points, b).ok());
     EXPECT_EQ(a, b);
+}
+
+TEST(SeaQuery, AWakeIsInTheAnswersBitForBitAndAllocatesNothing) {
+    // A ship's Kelvin wake (the costliest effect: its state walks the ship's path) through the query's
+    // snapshot of the effects, made once per update(): the same bits as effectsAt() per point, and no
+    // allocation per query or per update once warm.
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const ecs::Entity ship = reg.create();
+    reg.emplace<Ship>(ship, Ship{{0.0, 0.0}, 120.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    for (int i = 0; i <= 600; ++i) { // 60 s east at 10 m/s, recorded at 10 Hz
+        reg.get<Ship>(ship).position = {static_cast<double>(i), 0.0};
+        events.dispatch();
+        fx.update(0.1 * i, {0.0, 0.0, 100.0});
+    }
+    const RegistryEffects gathered(reg);
+    const EffectsView effects = gathered.view();
+    ASSERT_EQ(effects.wakes.size(), 1u);
+    const OceanComponent ocean = makeSea(SurfaceKind::Gerstner);
+    const double t = 60.0;
+    SeaQuery q = makeQuery(ocean, t, {.fields = SeaField::All, .threads = 2, .pointsPerJob = 64}, effects);
+    const std::vector<glm::dvec2> points = randomPoints(1000, {450.0, 0.0}, 150.0);
+    std::vector<SeaSample> out(points.size());
+    ASSERT_TRUE(q.sample(points, out, SeaField::All).ok());
+    double largest = 0.0;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const double e = effectsAt(effects, points[i], t).x;
+        largest = std::max(largest, std::abs(e));
+        ASSERT_EQ(out[i].height, ocean.surface->heightAt(points[i], t) + e) << i;
+    }
+    EXPECT_GT(largest, 0.05); // the wake is there
+    const long before = gAllocations.load();
+    for (int step = 1; step <= 3; ++step) {
+        EXPECT_TRUE(q.update(t + step / 60.0, effects).ok());
+        EXPECT_TRUE(q.sample(points, out, SeaField::All).ok());
+    }
+    EXPECT_EQ(gAllocations.load() - before, 0);
 }

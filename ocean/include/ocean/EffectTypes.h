@@ -183,6 +183,8 @@ struct WakeState {
 /// path widened by the wedge's reach and 3 foam-strip widths.
 bool insideWakeBox(const WakeState& s, const glm::dvec2& q);
 WakeState wakeState(const Ship& ship, const ShipTrail& trail, double t);
+/// The same into `out`, reusing its vectors' capacity (no allocation once they are large enough).
+void wakeState(const Ship& ship, const ShipTrail& trail, double t, WakeState& out);
 
 /// Where a point lies relative to the path: arc length behind the ship, signed lateral offset, age of the
 /// path there, and the path's travel direction there. behind < 0 means ahead of the ship.
@@ -301,6 +303,25 @@ struct EffectsView {
 /// / L)), band-limited at kMax. Zero with no effects. The analytic field: the effects field's texels hold it
 /// (EffectFieldLayout), the GPU draws it interpolated.
 glm::dvec3 effectsAt(const EffectsView& effects, const glm::dvec2& xy, double t, double kMax = EFFECT_K_MAX);
+/// The effects at one time for many points: each explosion's and wake's state made once by update() (into
+/// buffers it keeps: no allocation once they are large enough), then at() per point -- the same sums in the
+/// same order as effectsAt(effects, xy, t), so the same bits, without rebuilding every wake's path for every
+/// point. The view's spans must stay valid while at() is used.
+class EffectsSnapshot {
+public:
+    void update(const EffectsView& effects, double t);
+    bool empty() const { return mView.empty(); }
+    double time() const { return mTime; }
+    /// effectsAt(effects, xy, time(), kMax).
+    glm::dvec3 at(const glm::dvec2& xy, double kMax = EFFECT_K_MAX) const;
+
+private:
+    EffectsView mView;
+    double mTime = 0.0;
+    std::vector<ExplosionState> mExplosions;
+    std::vector<WakeState> mWakes; // one per wake of the view (an inactive one's is not used)
+};
+
 /// Foam coverage of the effects at xy (max over effects).
 double effectsFoamAt(const EffectsView& effects, const glm::dvec2& xy, double t);
 /// (E, dE/dx, dE/dy, foam) at xy in one pass over the effects; foam prefiltered by `foamFilter2`
