@@ -22,7 +22,7 @@ namespace {
 constexpr double MS_TO_KT = 1.943844;
 const char* QUALITIES[] = {"low", "medium", "high", "reference"};
 const char* MODELS[] = {"octaves", "gerstner", "fft"};
-const char* CAMERAS[] = {"cockpit", "chase", "orbit", "weapon"};
+const char* CAMERAS[] = {"cockpit", "chase", "orbit", "weapon", "ship"};
 
 template <size_t N>
 int indexOf(const char* (&list)[N], const std::string& v) {
@@ -114,6 +114,12 @@ void Hud::flightWindow(const GameState& gs, const World& world) {
                 gs.slowMotion ? "  SLOW x0.25" : "");
     if (gs.autopilot || !gs.autopilotPhase.empty())
         ImGui::Text("Autopilot: %s", gs.autopilotPhase.c_str());
+    if (gs.camera == CameraMode::Ship) { // the watched hull's float on the sea's heights (ocean::floatHull)
+        const ShipState& s = world.ships()[world.nearestAfloatTarget(glm::dvec2(a.pose.position))];
+        ImGui::Separator();
+        ImGui::Text("%s: heave %+.2f m", s.spec.name.c_str(), s.pose.position.z);
+        ImGui::Text("pitch %+.2f deg  roll %+.2f deg", s.pose.pitchDeg, s.pose.rollDeg);
+    }
     ImGui::End();
 }
 

@@ -22,6 +22,8 @@ const char* toString(CameraMode m) {
         return "orbit";
     case CameraMode::Weapon:
         return "weapon";
+    case CameraMode::Ship:
+        return "ship";
     }
     return "?";
 }
@@ -37,7 +39,10 @@ CameraMode parseCamera(const std::string& camera) {
         return CameraMode::Orbit;
     if (camera == "weapon")
         return CameraMode::Weapon;
-    throw UsageError("--camera: unknown camera '" + camera + "' (valid: cockpit, chase, orbit, weapon)");
+    if (camera == "ship")
+        return CameraMode::Ship;
+    throw UsageError("--camera: unknown camera '" + camera +
+                     "' (valid: cockpit, chase, orbit, weapon, ship)");
 }
 
 /// "WxH", 64..8192 each (a window smaller than 64 has no room for the HUD).
@@ -93,7 +98,7 @@ Options parseOptions(int argc, char** argv) {
     app.add_option("--record", o.record, "write the session as Tacview ACMI 2.2 (for pacifica replay)");
     app.add_option("--summary", o.summary, "write what happened as JSON at exit");
     app.add_option("--bench", o.bench, "time the autopilot's sortie at each quality preset into FILE.json");
-    app.add_option("--camera", camera, "cockpit | chase | orbit | weapon (C cycles)");
+    app.add_option("--camera", camera, "cockpit | chase | orbit | weapon | ship (C cycles)");
     app.add_option("--quality", o.sea.quality, "low | medium | high | reference (default medium)");
     app.add_option("--model", o.sea.model, "octaves | gerstner | fft");
     app.add_option("--wind", o.sea.windSpeed, "sea state: wind speed U10 in m/s, 2..25 (default 12)");

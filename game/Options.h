@@ -14,9 +14,11 @@ public:
 };
 
 /// cockpit, chase and orbit are the replay's rigs (recording/CameraRig.h) over the player's live track;
-/// weapon follows the newest bomb or rocket down and then watches where it hit for a few seconds.
-enum class CameraMode { Cockpit = 0, Chase = 1, Orbit = 2, Weapon = 3 };
-inline constexpr int CAMERA_MODES = 4;
+/// weapon follows the newest bomb or rocket down and then watches where it hit for a few seconds; ship
+/// circles the target ship nearest to the player (else the carrier) low over the sea, to see it pitch and
+/// heave on the waves.
+enum class CameraMode { Cockpit = 0, Chase = 1, Orbit = 2, Weapon = 3, Ship = 4 };
+inline constexpr int CAMERA_MODES = 5;
 const char* toString(CameraMode m);
 
 /// The sea the HUD can switch live: quality preset, surface model, wind speed (sea state).

@@ -142,6 +142,15 @@ Pose cameraPose(const Sortie& s, game::CameraMode mode, double t, double orbitAz
         }
         break;
     }
+    case game::CameraMode::Ship: {
+        // Low over the sea, 1.6 hull lengths out, circling a point a fifth of the hull's length above its
+        // centre: the bow and the stern rise and fall against the horizon.
+        const game::ShipState& ship = w.ships()[w.nearestAfloatTarget(glm::dvec2(w.player().pose.position))];
+        const glm::dvec3 centre(glm::dvec2(ship.pose.position), 0.2 * ship.spec.length);
+        Pose p = orbitPose(centre, 1.6 * ship.spec.length, 3.0, orbitAzimuth);
+        p.position.z = std::max(p.position.z, w.seaHeight(glm::dvec2(p.position)) + 1.5);
+        return p;
+    }
     case game::CameraMode::Chase:
         break;
     }
@@ -281,6 +290,21 @@ game::GameState initialState(const game::Options& opt, const Tonemappers& tonema
             throw game::UsageError("--view/--wipe: no OCIO view '" + v + "' (this config has: " + list + ")");
         }
     return gs;
+}
+
+/// Every ship's float on the sea now: heave (metres), pitch and roll (degrees) from its hull points' sea
+/// heights (game::World::placeShips), as drawn.
+nlohmann::json shipsJson(const game::World& world) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const game::ShipState& s : world.ships())
+        out.push_back({{"name", s.spec.name},
+                       {"afloat", !s.sunkAt},
+                       {"x", s.pose.position.x},
+                       {"y", s.pose.position.y},
+                       {"heave_m", s.pose.position.z},
+                       {"pitch_deg", s.pose.pitchDeg},
+                       {"roll_deg", s.pose.rollDeg}});
+    return out;
 }
 
 nlohmann::json eventsJson(const game::World& world, const game::SessionRecorder* recorder) {
@@ -538,7 +562,10 @@ void Session::takeScreenshots(const gl::Framebuffer& display, const glm::ivec2& 
     while (!screenshots.empty() && time >= screenshots.front().first - 1e-9) {
         const std::vector<float> px = readPixels(display.id(), !opt.headless, size.x, size.y);
         capture::writePng8(screenshots.front().second, size.x, size.y, 4, px.data());
-        shots.push_back({{"file", screenshots.front().second}, {"time_s", time}, {"frame", frames}});
+        shots.push_back({{"file", screenshots.front().second},
+                         {"time_s", time},
+                         {"frame", frames},
+                         {"ships", shipsJson(*sortie->world)}});
         screenshots.erase(screenshots.begin());
     }
 }
@@ -598,6 +625,7 @@ nlohmann::json Session::summary() const {
     const glm::dvec3 p = world.player().pose.position;
     j["player"] = {{"x", p.x}, {"y", p.y}, {"z", p.z}, {"on_deck", world.player().onDeck}};
     j["events"] = eventsJson(world, recorder.get());
+    j["ships"] = shipsJson(world);
     j["ships"] = shipsJson(world, recorder.get());
     return j;
 }

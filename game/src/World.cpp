@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -275,6 +276,20 @@ int World::targetsLeft() const {
     return n;
 }
 
+int World::nearestAfloatTarget(const glm::dvec2& xy) const {
+    int best = 0;
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < mShips.size(); ++i) {
+        const ShipState& s = mShips[i];
+        const double d = glm::length(glm::dvec2(s.pose.position) - xy);
+        if (s.spec.target && !s.sunkAt && d < bestDistance) {
+            best = static_cast<int>(i);
+            bestDistance = d;
+        }
+    }
+    return best;
+}
+
 int World::score() const {
     int points = 0;
     for (const GameEvent& e : mHistory) {
@@ -337,11 +352,11 @@ uint64_t World::fire(WeaponKind kind) {
     return w.id;
 }
 
-void World::impact(Weapon& w, int shipHit) {
+void World::impact(Weapon& w, int shipHit, double seaUnder) {
     const double strength = w.kind == WeaponKind::Bomb ? BOMB_STRENGTH : ROCKET_STRENGTH;
     if (shipHit < 0 && w.kind == WeaponKind::Bomb) // a near miss within the lethal radius counts
         shipHit = shipHitBy(glm::dvec3(glm::dvec2(w.position), 0.0), BOMB_LETHAL_M);
-    const glm::dvec3 at(glm::dvec2(w.position), seaHeight(glm::dvec2(w.position)));
+    const glm::dvec3 at(glm::dvec2(w.position), seaUnder);
     mEvents.enqueue(ocean::SpawnExplosion{glm::dvec2(at), mTime, strength});
     GameEvent e{GameEvent::Kind::Impact, mTime, at, w.id, w.kind, shipHit, strength};
     emit(e);
@@ -363,39 +378,27 @@ void World::impact(Weapon& w, int shipHit) {
 void World::step(const FlightControls& controls, double dt) {
     mTime += dt;
     placeShips(mTime);
-    if (mState != SortieState::Ditched) {
+    const bool flying = mState != SortieState::Ditched;
+    if (flying)
         stepAircraft(mPlayer, controls, mDesc.aircraft, dt, deck());
-        const glm::dvec2 xy(mPlayer.pose.position);
-        const bool inSea =
-            !mPlayer.onDeck && mPlayer.pose.position.z - 0.5 * mDesc.aircraft.gearHeight <= seaHeight(xy);
-        // Flown into a hull (the wheels more than a metre below its top: a touch-down on the deck is fine).
-        const int crashed =
-            mPlayer.onDeck
-                ? -1
-                : shipHitBy(mPlayer.pose.position - glm::dvec3(0, 0, mDesc.aircraft.gearHeight), 0.0, 1.0);
-        if (inSea || crashed >= 0) {
-            mState = SortieState::Ditched;
-            const glm::dvec3 at(xy, seaHeight(xy));
-            mEvents.enqueue(ocean::SpawnExplosion{xy, mTime, AIRCRAFT_STRENGTH});
-            mPlayer.pose.position.z = at.z;
-            mPlayer.velocity = glm::dvec3(0.0);
-            emit({GameEvent::Kind::Ditched, mTime, at, 0, WeaponKind::Bomb, crashed, AIRCRAFT_STRENGTH});
-        }
-    }
-    // Every weapon's sea height in one batched query, then the hits in order (a ship sunk by one weapon is
-    // not hit by the next).
-    mPoints.clear();
-    for (Weapon& w : mWeapons) {
+    for (Weapon& w : mWeapons)
         stepWeapon(w, mTime, dt);
+    // The sea under the player's wheels and under every weapon in one batched query (one effects snapshot
+    // a step besides the hulls'), then the ditching and the hits in order (a ship sunk by one weapon is not
+    // hit by the next).
+    mPoints.clear();
+    mPoints.push_back(glm::dvec2(mPlayer.pose.position));
+    for (const Weapon& w : mWeapons)
         mPoints.push_back(glm::dvec2(w.position));
-    }
     mHeights.resize(mPoints.size());
     seaHeights(mPoints, mHeights);
+    if (flying)
+        checkDitching(mHeights[0]);
     for (size_t i = 0; i < mWeapons.size(); ++i) {
         Weapon& w = mWeapons[i];
         const int ship = shipHitBy(w.position, 0.0);
-        if (ship >= 0 || w.position.z <= mHeights[i]) {
-            impact(w, ship);
+        if (ship >= 0 || w.position.z <= mHeights[i + 1]) {
+            impact(w, ship, mHeights[i + 1]);
             w.id = 0; // spent
         } else if (mTime - w.launchTime > WEAPON_MAX_LIFE_S) {
             emit({GameEvent::Kind::WeaponLost, mTime, w.position, w.id, w.kind});
@@ -403,6 +406,25 @@ void World::step(const FlightControls& controls, double dt) {
         }
     }
     std::erase_if(mWeapons, [](const Weapon& w) { return w.id == 0; });
+}
+
+void World::checkDitching(double seaUnderPlayer) {
+    const glm::dvec2 xy(mPlayer.pose.position);
+    const bool inSea =
+        !mPlayer.onDeck && mPlayer.pose.position.z - 0.5 * mDesc.aircraft.gearHeight <= seaUnderPlayer;
+    // Flown into a hull (the wheels more than a metre below its top: a touch-down on the deck is fine).
+    const int crashed =
+        mPlayer.onDeck
+            ? -1
+            : shipHitBy(mPlayer.pose.position - glm::dvec3(0, 0, mDesc.aircraft.gearHeight), 0.0, 1.0);
+    if (!inSea && crashed < 0)
+        return;
+    mState = SortieState::Ditched;
+    const glm::dvec3 at(xy, seaUnderPlayer);
+    mEvents.enqueue(ocean::SpawnExplosion{xy, mTime, AIRCRAFT_STRENGTH});
+    mPlayer.pose.position.z = at.z;
+    mPlayer.velocity = glm::dvec3(0.0);
+    emit({GameEvent::Kind::Ditched, mTime, at, 0, WeaponKind::Bomb, crashed, AIRCRAFT_STRENGTH});
 }
 
 } // namespace pacifica::game

@@ -243,6 +243,7 @@ struct SortieResult {
     SortieState state = SortieState::Flying;
     glm::dvec3 finalPosition{0.0};
     std::vector<GameEvent> history;
+    int watched = -1; ///< the ship camera's hull at the end (World::nearestAfloatTarget)
 };
 
 SortieResult flySortie(double seconds, SessionRecorder* rec = nullptr) {
@@ -281,6 +282,7 @@ SortieResult flySortie(double seconds, SessionRecorder* rec = nullptr) {
     r.score = s.world->score();
     r.state = s.world->state();
     r.finalPosition = s.world->player().pose.position;
+    r.watched = s.world->nearestAfloatTarget(glm::dvec2(r.finalPosition));
     return r;
 }
 } // namespace
@@ -366,6 +368,7 @@ TEST(Autopilot, SinksAllThreeTargetsAndCompletesTheMissionWithATimeBonus) {
     const SortieResult r = flySortie(600.0);
     ASSERT_EQ(r.state, SortieState::Complete) << r.sunk << " sunk in 600 s";
     EXPECT_EQ(r.sunk, 3);
+    EXPECT_EQ(r.watched, 0); // no target afloat: the ship camera watches the carrier
     const auto done = std::find_if(r.history.begin(), r.history.end(), [](const GameEvent& e) {
         return e.kind == GameEvent::Kind::MissionComplete;
     });
@@ -373,6 +376,24 @@ TEST(Autopilot, SinksAllThreeTargetsAndCompletesTheMissionWithATimeBonus) {
     EXPECT_EQ(r.score, SCORE_HIT * r.hits + SCORE_SUNK * 3 +
                            SCORE_PER_SECOND_UNDER_PAR *
                                static_cast<int>(std::max(0.0, std::floor(MISSION_PAR_S - done->time))));
+}
+
+TEST(World, TheShipCameraWatchesTheNearestAfloatTargetThenTheCarrier) {
+    Scene s;
+    World& w = *s.world;
+    for (size_t i = 1; i < w.ships().size(); ++i) { // standing on each target, that one is the nearest
+        SCOPED_TRACE(w.ships()[i].spec.name);
+        EXPECT_EQ(w.nearestAfloatTarget(glm::dvec2(w.ships()[i].pose.position)), static_cast<int>(i));
+    }
+    // From the carrier's deck: the nearest of the three by distance.
+    const glm::dvec2 deck(w.ships()[0].pose.position);
+    size_t nearest = 1;
+    for (size_t i = 2; i < w.ships().size(); ++i)
+        if (glm::length(glm::dvec2(w.ships()[i].pose.position) - deck) <
+            glm::length(glm::dvec2(w.ships()[nearest].pose.position) - deck))
+            nearest = i;
+    EXPECT_EQ(w.nearestAfloatTarget(deck), static_cast<int>(nearest));
+    // With every target sunk it is the carrier (SinksAllThreeTargetsAndCompletesTheMissionWithATimeBonus).
 }
 
 TEST(World, ShipsFloatOnTheSeaTheySail) {

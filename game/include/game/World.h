@@ -141,6 +141,8 @@ public:
     int bombsLeft() const { return mBombs; }
     int rocketsLeft() const { return mRockets; }
     int targetsLeft() const;
+    /// The afloat target ship nearest to xy (index into ships()), else the carrier (0): the ship camera's.
+    int nearestAfloatTarget(const glm::dvec2& xy) const;
     /// The score so far (SCORE_* above), from the events since the start.
     int score() const;
     /// The carrier's deck now (for the flight model).
@@ -159,9 +161,10 @@ public:
 private:
     void emit(GameEvent e);
     void floatShips(double t);
+    void checkDitching(double seaUnderPlayer);
     void seaHeightsAt(double t, std::span<const glm::dvec2> points, std::span<double> heights,
                       bool wakes = true) const;
-    void impact(Weapon& w, int shipHit);
+    void impact(Weapon& w, int shipHit, double seaUnder);
     int shipHitBy(const glm::dvec3& p, double reach, double topMargin = 0.0) const;
     ecs::Registry& mRegistry;
     ecs::EventQueue& mEvents;
