@@ -76,6 +76,18 @@ std::vector<Wave> makeWaves(const OctaveDesc& o, const HeightOctavesDesc& d, std
     return waves;
 }
 
+/// One wave's row of a map added in place: v = (a + b i) (cr + ci i) per texel; h += Re v, dh/du -= su Im v,
+/// dh/dv -= sv Im v.
+void addWaveToRow(double a, double b, double su, double sv, const double* cr, const double* ci, double* rh,
+                  double* ru, double* rv, size_t n) {
+    for (size_t x = 0; x < n; ++x) {
+        const double vr = a * cr[x] - b * ci[x], vi = a * ci[x] + b * cr[x];
+        rh[x] += vr;
+        ru[x] -= su * vi;
+        rv[x] -= sv * vi;
+    }
+}
+
 OctaveMap generate(const OctaveDesc& o, const HeightOctavesDesc& d, std::mt19937_64& rng) {
     const int size = d.mapSize, frames = d.frames;
     const std::vector<Wave> waves = makeWaves(o, d, rng);
@@ -84,43 +96,60 @@ OctaveMap generate(const OctaveDesc& o, const HeightOctavesDesc& d, std::mt19937
         sumSq += 0.5 * w.amplitude * w.amplitude; // distinct lattice cosines are orthogonal over a tile
     const double norm = 1.0 / std::sqrt(sumSq);   // unit RMS height
 
-    // Spatial phasors e^{i 2 pi (n x + m y) / size} factor into per-axis tables.
-    const size_t texels = static_cast<size_t>(size) * size;
-    std::vector<double> re(static_cast<size_t>(frames) * texels * 3, 0.0);
-    std::vector<std::complex<double>> ex(static_cast<size_t>(size)), ey(static_cast<size_t>(size));
-    for (const Wave& w : waves) {
-        for (int x = 0; x < size; ++x)
-            ex[static_cast<size_t>(x)] = std::polar(1.0, kTwoPi * w.n * x / size);
+    // Spatial phasors e^{i 2 pi (n x + m y) / size} factor into per-axis tables, one pair per wave (the x
+    // table as real and imaginary rows), and each wave's complex amplitude into one value per frame.
+    const size_t texels = static_cast<size_t>(size) * size, n = static_cast<size_t>(size);
+    const size_t nf = static_cast<size_t>(frames);
+    std::vector<double> exRe(waves.size() * n), exIm(waves.size() * n);
+    std::vector<std::complex<double>> ey(waves.size() * n), c0(waves.size() * nf);
+    for (size_t k = 0; k < waves.size(); ++k) {
+        const Wave& w = waves[k];
+        for (int x = 0; x < size; ++x) {
+            const std::complex<double> e = std::polar(1.0, kTwoPi * w.n * x / size);
+            exRe[k * n + static_cast<size_t>(x)] = e.real();
+            exIm[k * n + static_cast<size_t>(x)] = e.imag();
+        }
         for (int y = 0; y < size; ++y)
-            ey[static_cast<size_t>(y)] = std::polar(1.0, kTwoPi * w.m * y / size);
+            ey[k * n + static_cast<size_t>(y)] = std::polar(1.0, kTwoPi * w.m * y / size);
         for (int f = 0; f < frames; ++f) {
             const double t = o.loopPeriod * f / frames;
             // h = a cos(theta - w t + phi); dh/du = -a 2 pi n sin(...); dh/dv = -a 2 pi m sin(...)
-            const std::complex<double> c0 = w.amplitude * norm * std::polar(1.0, w.phase - w.omega * t);
-            double* out = &re[static_cast<size_t>(f) * texels * 3];
-            for (int y = 0; y < size; ++y) {
-                const std::complex<double> cy = c0 * ey[static_cast<size_t>(y)];
-                for (int x = 0; x < size; ++x) {
-                    const std::complex<double> v = cy * ex[static_cast<size_t>(x)];
-                    double* t3 = out + (static_cast<size_t>(y) * size + x) * 3;
-                    t3[0] += v.real();
-                    t3[1] -= kTwoPi * w.n * v.imag();
-                    t3[2] -= kTwoPi * w.m * v.imag();
-                }
-            }
+            c0[k * nf + static_cast<size_t>(f)] = w.amplitude * norm * std::polar(1.0, w.phase - w.omega * t);
         }
     }
+    // Row by row, every wave added to the row while it sits in the cache, in planes of h, dh/du and dh/dv.
+    // Each texel sums the waves in their order with the same operations as one pass per wave with
+    // std::complex (whose product of finite values is (ac - bd) + (ad + bc) i), so the maps are the same to
+    // the bit; written out, the product vectorises.
+    std::vector<double> planes(nf * texels * 3, 0.0);
+    double* const hPlane = planes.data();
+    double* const uPlane = hPlane + nf * texels;
+    double* const vPlane = uPlane + nf * texels;
+    for (size_t f = 0; f < nf; ++f)
+        for (size_t y = 0; y < n; ++y) {
+            const size_t row = f * texels + y * n;
+            double* const rh = hPlane + row;
+            double* const ru = uPlane + row;
+            double* const rv = vPlane + row;
+            for (size_t k = 0; k < waves.size(); ++k) {
+                const std::complex<double> cy = c0[k * nf + f] * ey[k * n + y];
+                const double a = cy.real(), b = cy.imag();
+                const double su = kTwoPi * waves[k].n, sv = kTwoPi * waves[k].m;
+                addWaveToRow(a, b, su, sv, &exRe[k * n], &exIm[k * n], rh, ru, rv, n);
+            }
+        }
     OctaveMap map;
     map.size = size;
     map.frames = frames;
     map.texels.resize(static_cast<size_t>(frames) * texels * 4);
     for (size_t i = 0; i < static_cast<size_t>(frames) * texels; ++i) {
         // Stored as half floats on the GPU (RGBA16F): round here so the CPU samples the identical values.
-        for (int c = 0; c < 3; ++c)
-            map.texels[i * 4 + c] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(re[i * 3 + c])));
+        const double h = hPlane[i], sx = uPlane[i], sy = vPlane[i];
+        map.texels[i * 4 + 0] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(h)));
+        map.texels[i * 4 + 1] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(sx)));
+        map.texels[i * 4 + 2] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(sy)));
         // Squared slope: after mip filtering E[s^2] - |E[s]|^2 is the slope variance the pixel no longer
         // resolves, which the shader turns into specular roughness (LEAN mapping, Olano & Baker 2010).
-        const double sx = re[i * 3 + 1], sy = re[i * 3 + 2];
         map.texels[i * 4 + 3] = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(sx * sx + sy * sy)));
     }
     return map;
