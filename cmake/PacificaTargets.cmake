@@ -3,10 +3,14 @@ function(pacifica_target_defaults tgt)
     target_compile_options(${tgt} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wno-missing-field-initializers
         # GCC 12 false positive on std::string concatenation (GCC bug 105329).
         $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
-    if(PACIFICA_SANITIZE)
+    # A sanitized library needs its runtime in whatever links it (an installed consumer too): PUBLIC links.
+    if(PACIFICA_SANITIZE STREQUAL "thread")
+        target_compile_options(${tgt} PRIVATE -fsanitize=thread -fno-omit-frame-pointer)
+        target_link_options(${tgt} PUBLIC -fsanitize=thread)
+    elseif(PACIFICA_SANITIZE)
         target_compile_options(${tgt} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
                                               -fno-sanitize-recover=undefined)
-        target_link_options(${tgt} PRIVATE -fsanitize=address,undefined)
+        target_link_options(${tgt} PUBLIC -fsanitize=address,undefined)
     endif()
 endfunction()
 

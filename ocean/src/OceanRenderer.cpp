@@ -538,6 +538,7 @@ const OceanStats& OceanRenderer::lastStats() const noexcept {
 }
 
 Status OceanRenderer::render(const OceanScene& scene, const OceanFrame& frame) noexcept {
+    gl::keepDriverLoadedForLeakChecks(); // the host's context: sanitizer builds only (engine/gl/GlContext.h)
     return guarded([&] { mImpl->render(scene, frame); });
 }
 

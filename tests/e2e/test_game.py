@@ -237,8 +237,15 @@ elif args.case == "bad-input":
     # of shared libraries) stays out of the game's process.
     r = subprocess.run(["ldd", args.game], capture_output=True, text=True, timeout=60)
     libs = [line.split()[0] for line in r.stdout.splitlines() if line.strip()]
+    # The bound on the closure is the shipped (Release) build's: a sanitized build (RelWithDebInfo,
+    # instrumented) pulls more objects of the static recording library into the game, netCDF's and HDF5's
+    # ~45 libraries with them (the land mask's reader; measured with readelf -d).
+    sanitized = any(lib.startswith(("libasan.", "libtsan.")) for lib in libs)
     c.check(r.returncode == 0 and "libpng16.so.16" in libs and not any("OpenImageIO" in lib for lib in libs)
-            and len(libs) < 60, "the game links libpng, not OpenImageIO (fewer than 60 shared libraries)",
+            and (sanitized or len(libs) < 60),
+            "the game links libpng, not OpenImageIO ("
+            + ("sanitized build: the library count is the Release build's check" if sanitized
+               else "fewer than 60 shared libraries") + ")",
             " ".join(libs))
 
 sys.exit(c.finish(f"game {args.case}", started, tmp))

@@ -7,6 +7,19 @@
 
 #include <string>
 
+#if defined(__SANITIZE_ADDRESS__)
+#define PACIFICA_LEAK_CHECKS 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PACIFICA_LEAK_CHECKS 1
+#endif
+#endif
+#ifdef PACIFICA_LEAK_CHECKS
+#include <cstring>
+#include <dlfcn.h>
+#include <link.h>
+#endif
+
 namespace pacifica::gl {
 namespace {
 
@@ -33,7 +46,22 @@ bool isSoftwareRenderer(std::string_view renderer) {
            renderer.find("softpipe") != std::string_view::npos;
 }
 
+void keepDriverLoadedForLeakChecks() noexcept {
+#ifdef PACIFICA_LEAK_CHECKS
+    // Mesa's drivers live in .../dri/*_dri.so (swrast_dri.so for llvmpipe). dlopen of a loaded module with
+    // RTLD_NOLOAD | RTLD_NODELETE loads nothing and marks it never to be unloaded.
+    dl_iterate_phdr(
+        [](dl_phdr_info* info, size_t, void*) {
+            if (info->dlpi_name && std::strstr(info->dlpi_name, "/dri/"))
+                (void)dlopen(info->dlpi_name, RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
+            return 0;
+        },
+        nullptr);
+#endif
+}
+
 void GlContext::initialiseInfo(const std::string& platform, bool debug) {
+    keepDriverLoadedForLeakChecks();
     mInfo.vendor = str(GL_VENDOR);
     mInfo.renderer = str(GL_RENDERER);
     mInfo.version = str(GL_VERSION);

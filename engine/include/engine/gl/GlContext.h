@@ -25,6 +25,13 @@ public:
 /// queries are wrong there (docs/PLATFORM.md), and it runs both sides of every shader branch.
 bool isSoftwareRenderer(std::string_view renderer);
 
+/// In AddressSanitizer builds: keeps the GL driver modules loaded now (RTLD_NODELETE) until the process ends,
+/// so LeakSanitizer sees their one-time state as reachable. Mesa keeps such state (made under pthread_once)
+/// only in the driver's own data and unloads the driver at eglTerminate / XCloseDisplay: the state then looks
+/// leaked, from a module that can no longer be named, which no suppression can match. Other builds: nothing.
+/// Called by every engine context and by the ocean's renderer (for a host's own context); thread-safe.
+void keepDriverLoadedForLeakChecks() noexcept;
+
 struct ContextInfo {
     std::string vendor;
     std::string renderer;
