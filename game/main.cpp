@@ -118,6 +118,12 @@ struct Sortie {
     }
 };
 
+/// `p` lifted to 1.5 m above the sea under it where it would be lower (the sea's CPU query, as drawn).
+Pose aboveTheWaves(Pose p, const game::World& w) {
+    p.position.z = std::max(p.position.z, w.seaHeight(glm::dvec2(p.position)) + 1.5);
+    return p;
+}
+
 Pose cameraPose(const Sortie& s, game::CameraMode mode, double t, double orbitAzimuth) {
     const game::World& w = *s.world;
     switch (mode) {
@@ -147,18 +153,13 @@ Pose cameraPose(const Sortie& s, game::CameraMode mode, double t, double orbitAz
         // centre: the bow and the stern rise and fall against the horizon.
         const game::ShipState& ship = w.ships()[w.nearestAfloatTarget(glm::dvec2(w.player().pose.position))];
         const glm::dvec3 centre(glm::dvec2(ship.pose.position), 0.2 * ship.spec.length);
-        Pose p = orbitPose(centre, 1.6 * ship.spec.length, 3.0, orbitAzimuth);
-        p.position.z = std::max(p.position.z, w.seaHeight(glm::dvec2(p.position)) + 1.5);
-        return p;
+        return aboveTheWaves(orbitPose(centre, 1.6 * ship.spec.length, 3.0, orbitAzimuth), w);
     }
     case game::CameraMode::Chase:
         break;
     }
-    Pose p = chasePose([&](double tt) { return s.playerAt(tt); }, t, 45.0, 9.0, 0.8);
     // Never below the waves (the chase camera of an aircraft skimming the sea).
-    const double floor = w.seaHeight(glm::dvec2(p.position)) + 1.5;
-    p.position.z = std::max(p.position.z, floor);
-    return p;
+    return aboveTheWaves(chasePose([&](double tt) { return s.playerAt(tt); }, t, 45.0, 9.0, 0.8), w);
 }
 
 /// A splash's white water column: rises to H = 45 m x strength^(1/3) (a 500 kg bomb ~45 m) with
