@@ -308,6 +308,17 @@ def case_bad_input(c, exe, source_dir, tmp):
     c.check(not os.path.exists(os.path.join(tmp, "v.mp4")), "no video file was written", "")
 
 
+def at_sea_shares(listing, names):
+    """The at_sea column (percent) of the --list-objects rows naming each of `names`, -1 where none does."""
+    header = listing.splitlines()[0].split() if listing else []
+    col = header.index("at_sea") - len(header) if "at_sea" in header else None
+    out = []
+    for n in names:
+        rows = [line for line in listing.splitlines() if f" {n} " in line]
+        out.append(int(rows[0].split()[col].rstrip("%")) if rows and col is not None else -1)
+    return out
+
+
 def case_bundled_sample(c, exe, source_dir, tmp):
     """The README's replay example on what a clone has: tools/data/sortie.txt.acmi, the game's autopilot
     sortie recorded with --record (a carrier group, the jet's launch, a bomb that sinks a frigate)."""
@@ -317,6 +328,16 @@ def case_bundled_sample(c, exe, source_dir, tmp):
     names = ["Carrier", "Frigate Alpha", "Frigate Bravo", "Tanker Charlie", "Pacifica Jet", "Mk-82"]
     c.check(p.returncode == 0 and all(n in p.stdout for n in names), "--list-objects lists its six objects",
             p.stdout[-600:] + p.stderr[-300:])
+    c.check(at_sea_shares(p.stdout, names[:5]) == [100, 100, 100, 100, 0],
+            "--list-objects: the ships are at the default sea's surface, the jet on the deck and in the air",
+            p.stdout[-900:])
+    bomb = at_sea_shares(p.stdout, names[5:])[0]
+    c.check(1 <= bomb <= 20, "--list-objects: the bomb's last samples are at the sea surface", str(bomb))
+    p = subprocess.run([exe, "replay", acmi, "--list-objects", "--model", "gerstner", "--sea-state", "30"],
+                       env=child_env(None), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    ships = at_sea_shares(p.stdout, names[:4])
+    c.check(p.returncode == 0 and all(80 <= s < 100 for s in ships),
+            "--list-objects at sea state 30: the crests pass 5 m above the recorded ships at times", str(ships))
     s = replay(c, exe, [acmi, "--rig", "chase:Pacifica Jet", "--start", "216", "--end", "226", "--fps", "1",
                         "--size", "160x90", "--no-progress"], os.path.join(tmp, "sortie"))
     c.check(s["events"]["ships"] == 4 and s["events"]["explosions"] == 1,

@@ -7,6 +7,8 @@
 
 #include <recording/LandMask.h>
 
+#include "ocean/SeaQuery.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -117,40 +119,6 @@ double parseTimeArgument(const std::string& text, const std::optional<double>& r
     if (!referenceUnix)
         throw UsageError(option + " " + text + ": this flight has no reference time; give seconds instead");
     return *utc - *referenceUnix;
-}
-
-std::string listObjects(const recording::Recording& rec) {
-    // The share of each track over the sea by the GSHHG shorelines when installed, else at sea level (|alt|
-    // <= 5 m).
-    const std::optional<recording::LandMask> mask = recording::LandMask::loadDefault();
-    std::string out;
-    char line[512];
-    std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9s %9s %8s %8s %8s\n", "id", "type", "name",
-                  "pilot", "start_s", "end_s", "alt_min", "alt_max", mask ? "over_sea" : "at_sea");
-    out += line;
-    for (const recording::RecordedObject& o : rec.objects) {
-        if (o.track.empty())
-            continue;
-        double lo = o.track.front().alt, hi = lo;
-        size_t sea = 0;
-        for (const recording::ObjectSample& s : o.track) {
-            lo = std::min(lo, s.alt);
-            hi = std::max(hi, s.alt);
-            sea += (mask ? !mask->isLand(s.lat, s.lon) : std::abs(s.alt) <= recording::SEA_CONTACT_M) ? 1 : 0;
-        }
-        std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9.2f %9.2f %8.0f %8.0f %7.0f%%\n",
-                      recording::hexId(o.id).c_str(), o.type.substr(0, 36).c_str(),
-                      o.name.substr(0, 16).c_str(), o.pilot.substr(0, 16).c_str(), o.startTime(), o.endTime(),
-                      lo, hi, 100.0 * static_cast<double>(sea) / static_cast<double>(o.track.size()));
-        out += line;
-    }
-    if (!mask)
-        out +=
-            "(no GSHHG shorelines installed: at_sea is the share of samples within 5 m of sea level; apt-get "
-            "install gmt-gshhg-low for over_sea)\n";
-    else
-        out += "(over_sea: share of samples over the sea by " + mask->source() + ")\n";
-    return out;
 }
 
 namespace {
@@ -342,10 +310,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
                    "taken as above sea level (no geoid model installed; it differs by -106..+85 m)");
     in.referenceUnix = rec->referenceUnix;
     const std::vector<recording::RigSpec> specs = rigSpecs(rigs, *rec, flight);
-    // The world origin: the first view's object where the replay starts (near the action).
-    const recording::RecordedObject& focus = recording::selectObject(*rec, specs.front().object);
-    in.frame = std::make_shared<const recording::EarthFrame>(
-        recording::chooseFrame(*rec, &focus, focus.startTime()));
+    in.frame = std::make_shared<const recording::EarthFrame>(replayEarthFrame(*rec, rigs, flight));
     nlohmann::json rigsJson = addRigViews(in, specs, defaultWidth, defaultHeight, defaultFov);
     // GSHHG shorelines when installed (gmt-gshhg-*): impacts over land are left out by position, not
     // altitude.
@@ -354,6 +319,110 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
     addSeaDrivers(in, drivers);
     in.summary = recordingSummary(in, drivers, mask, std::move(rigsJson));
     return in;
+}
+
+namespace {
+
+/// How many of each object's samples lie within SEA_CONTACT_M of the sea surface drawn under them at their
+/// time (the waves alone: the recording's own explosions and wakes are left out). Samples are taken in time
+/// order, every object's samples at one time in one batched query.
+std::vector<size_t> samplesAtTheSurface(const recording::Recording& rec, const recording::EarthFrame& frame,
+                                        const ocean::OceanDesc& desc) {
+    ocean::OceanComponent ocean;
+    if (const ocean::Status s = ocean::makeOcean(desc, ocean); !s)
+        throw UsageError("--list-objects: the sea: " + s.message);
+    ocean::SeaQuery sea;
+    ocean::SeaQueryDesc queryDesc;
+    queryDesc.threads = 0;
+    // The FFT sea is transformed every 0.5 s of the recording and advanced by its time derivative between
+    // (docs/RECORDINGS.md: 3.6x faster on a 220 s recording); the error grows as dt^2, to ~0.7 m at 0.5 s
+    // (docs/ACCURACY.md: 0.115 m at 0.2 s), inside the 5 m of contact.
+    queryDesc.fftResampleInterval = 0.5;
+    if (const ocean::Status s = sea.init(ocean, queryDesc); !s)
+        throw UsageError("--list-objects: the sea's queries: " + s.message);
+    struct Sample {
+        double time;
+        uint32_t object;
+        double alt;
+        glm::dvec2 at;
+    };
+    std::vector<Sample> samples;
+    for (uint32_t i = 0; i < rec.objects.size(); ++i)
+        for (const recording::ObjectSample& s : rec.objects[i].track) {
+            const glm::dvec3 w = frame.toWorld(s.lat, s.lon, s.alt);
+            samples.push_back({s.time, i, s.alt, {w.x, w.y}});
+        }
+    std::stable_sort(samples.begin(), samples.end(),
+                     [](const Sample& a, const Sample& b) { return a.time < b.time; });
+    std::vector<size_t> atSea(rec.objects.size(), 0);
+    std::vector<glm::dvec2> points;
+    std::vector<double> heights;
+    for (size_t first = 0, last = 0; first < samples.size(); first = last) {
+        while (last < samples.size() && samples[last].time == samples[first].time)
+            ++last;
+        points.clear();
+        for (size_t k = first; k < last; ++k)
+            points.push_back(samples[k].at);
+        heights.resize(points.size());
+        ocean::Status s = sea.update(samples[first].time);
+        if (s)
+            s = sea.heights(points, heights);
+        if (!s)
+            throw UsageError("--list-objects: the sea's heights at t = " +
+                             std::to_string(samples[first].time) + " s: " + s.message);
+        for (size_t k = first; k < last; ++k)
+            atSea[samples[k].object] +=
+                std::abs(samples[k].alt - heights[k - first]) <= recording::SEA_CONTACT_M ? 1 : 0;
+    }
+    return atSea;
+}
+
+} // namespace
+
+recording::EarthFrame replayEarthFrame(const recording::Recording& rec, const std::vector<std::string>& rigs,
+                                       const std::filesystem::path& flight) {
+    const std::vector<recording::RigSpec> specs = rigSpecs(rigs, rec, flight);
+    const recording::RecordedObject& focus = recording::selectObject(rec, specs.front().object);
+    return recording::chooseFrame(rec, &focus, focus.startTime());
+}
+
+std::string listObjects(const recording::Recording& rec, const recording::EarthFrame& frame,
+                        const ocean::OceanDesc& sea) {
+    const std::vector<size_t> atSea = samplesAtTheSurface(rec, frame, sea);
+    const std::optional<recording::LandMask> mask = recording::LandMask::loadDefault();
+    std::string out;
+    char line[512];
+    std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9s %9s %8s %8s %8s%s\n", "id", "type", "name",
+                  "pilot", "start_s", "end_s", "alt_min", "alt_max", "at_sea", mask ? " over_sea" : "");
+    out += line;
+    for (size_t i = 0; i < rec.objects.size(); ++i) {
+        const recording::RecordedObject& o = rec.objects[i];
+        if (o.track.empty())
+            continue;
+        double lo = o.track.front().alt, hi = lo;
+        size_t overSea = 0;
+        for (const recording::ObjectSample& s : o.track) {
+            lo = std::min(lo, s.alt);
+            hi = std::max(hi, s.alt);
+            overSea += mask && !mask->isLand(s.lat, s.lon) ? 1 : 0;
+        }
+        const double n = static_cast<double>(o.track.size());
+        std::snprintf(line, sizeof line, "%-10s %-36s %-16s %-16s %9.2f %9.2f %8.0f %8.0f %7.0f%%",
+                      recording::hexId(o.id).c_str(), o.type.substr(0, 36).c_str(),
+                      o.name.substr(0, 16).c_str(), o.pilot.substr(0, 16).c_str(), o.startTime(), o.endTime(),
+                      lo, hi, 100.0 * static_cast<double>(atSea[i]) / n);
+        out += line;
+        if (mask) {
+            std::snprintf(line, sizeof line, " %7.0f%%", 100.0 * static_cast<double>(overSea) / n);
+            out += line;
+        }
+        out += "\n";
+    }
+    out += "(at_sea: share of samples within " + std::to_string(static_cast<int>(recording::SEA_CONTACT_M)) +
+           " m of the sea surface drawn under them at their time; ";
+    out += mask ? "over_sea: share of samples over the sea by " + mask->source() + ")\n"
+                : "no GSHHG shorelines installed: apt-get install gmt-gshhg-low for over_sea)\n";
+    return out;
 }
 
 } // namespace pacifica::tools

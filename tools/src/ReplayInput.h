@@ -4,6 +4,7 @@
 #pragma once
 
 #include "FlightPath.h"
+#include "ocean/Ocean.h"
 #include <engine/gl/ObjectRenderer.h>
 
 #include <recording/CameraRig.h>
@@ -71,9 +72,18 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
 /// time in [start, end], with their world tracks. Empty for a CSV flight.
 std::vector<ReplayObject> replayObjects(const ReplayInput& input, double start, double end);
 
-/// `--list-objects`: one line per object with a track: id, type, name, pilot, time span, altitude range and
-/// the share of its samples at the sea surface (|alt| <= 5 m; recordings carry no land mask).
-std::string listObjects(const recording::Recording& rec);
+/// The world frame a replay of this recording with these --rig specs uses: its origin is the first rig's
+/// object where that object's track starts (near the action). Throws UsageError or RecordingError.
+recording::EarthFrame replayEarthFrame(const recording::Recording& rec, const std::vector<std::string>& rigs,
+                                       const std::filesystem::path& flight);
+
+/// `--list-objects`: one line per object with a track: id, type, name, pilot, time span, altitude range, the
+/// share of its samples at the sea surface drawn under it (`at_sea`: within recording::SEA_CONTACT_M of the
+/// waves of `sea` at the sample's time and place in `frame`; every object's samples at one time are one
+/// batched ocean::SeaQuery), and with the GSHHG shorelines installed the share over the sea (`over_sea`).
+/// Throws UsageError when the ocean cannot be made.
+std::string listObjects(const recording::Recording& rec, const recording::EarthFrame& frame,
+                        const ocean::OceanDesc& sea);
 
 /// --start/--end: seconds on the flight's clock, or a UTC timestamp (YYYY-MM-DDTHH:MM:SS[.f]Z) when the
 /// recording has a reference time. Throws UsageError naming the option.

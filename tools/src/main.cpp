@@ -51,7 +51,8 @@ void ReplayCommand::add(CLI::App& parent) {
         ->required();
     app->add_option("--out", outDir, "output directory (created if missing)");
     app->add_flag("--list-objects", listObjects,
-                  "print the recording's objects (id, type, name, pilot, time span, altitudes) and exit");
+                  "print the recording's objects (id, type, name, pilot, time span, altitudes, share at the "
+                  "sea surface of --model/--wind... and over the sea) and exit");
     app->add_option("--rig", replay.rigs,
                     "camera rig KIND:OBJECT[,key=value...] (cockpit, chase, orbit, fixed, lookat; size=WxH, "
                     "fov=DEG, name=N); repeat for several views; CSV flights: path")
@@ -137,8 +138,10 @@ tools::ReplayOptions ReplayCommand::options() const {
 
 int ReplayCommand::run() const {
     if (listObjects) {
+        const tools::ReplayOptions o = options();
         const pacifica::recording::Recording rec = pacifica::recording::readRecording(flight);
-        std::fputs(tools::listObjects(rec).c_str(), stdout);
+        std::fputs(tools::listObjects(rec, tools::replayEarthFrame(rec, o.rigs, flight), o.ocean).c_str(),
+                   stdout);
         return 0;
     }
     tools::runReplay(options());
