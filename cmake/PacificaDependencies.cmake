@@ -7,7 +7,6 @@ find_package(glm CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(Threads REQUIRED)
-find_library(PACIFICA_EGL_LIBRARY EGL REQUIRED)
 
 if(PACIFICA_WITH_GLFW)
     find_package(glfw3 CONFIG REQUIRED)

@@ -393,6 +393,7 @@ private:
     std::vector<double> cpuMs;
     long long frames = 0;
     int glErrors = 0;
+    int screenshotErrors = 0; ///< screenshots that could not be written (the run goes on; exit code 1)
     double lastRecord = -1e9;
     std::vector<std::string> messages; // every banner shown, for the summary
     double orbitAzimuth = 200.0;
@@ -562,11 +563,19 @@ void Session::takeScreenshots(const gl::Framebuffer& display, const glm::ivec2& 
     const double time = sortie->world->time();
     while (!screenshots.empty() && time >= screenshots.front().first - 1e-9) {
         const std::vector<float> px = readPixels(display.id(), !opt.headless, size.x, size.y);
-        capture::writePng8(screenshots.front().second, size.x, size.y, 4, px.data());
-        shots.push_back({{"file", screenshots.front().second},
-                         {"time_s", time},
-                         {"frame", frames},
-                         {"ships", shipsJson(*sortie->world)}});
+        nlohmann::json shot = {{"file", screenshots.front().second},
+                               {"time_s", time},
+                               {"frame", frames},
+                               {"ships", shipsJson(*sortie->world)}};
+        try { // a screenshot that cannot be written (a missing folder, a full disk) does not stop the game
+            capture::writePng8(screenshots.front().second, size.x, size.y, 4, px.data());
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "pacifica-game: warning: screenshot not written, the game goes on: %s\n",
+                         e.what());
+            shot["error"] = e.what();
+            ++screenshotErrors;
+        }
+        shots.push_back(std::move(shot));
         screenshots.erase(screenshots.begin());
     }
 }
@@ -588,7 +597,7 @@ RunResult Session::finish() {
                      "pacifica-game: warning: %zu screenshot(s) after the last frame were not taken\n",
                      screenshots.size());
     RunResult r;
-    r.exitCode = glErrors == 0 ? 0 : 1;
+    r.exitCode = glErrors == 0 && screenshotErrors == 0 ? 0 : 1;
     r.cpuMs = std::move(cpuMs);
     r.gpuMs = gpuTimer.samples();
     r.renderer = ctx->info().renderer;

@@ -70,6 +70,15 @@ TEST_F(ContextTest, BogusForcedPlatformThrowsNamingTheVariable) {
     EXPECT_EQ(info().renderer, reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
 }
 
+TEST_F(ContextTest, AMissingEglDeviceIsAnErrorListingTheDevices) {
+    const std::string message =
+        messageOf<gl::ContextError>([] { (void)gl::createHeadlessContext({.eglDevice = 15}); });
+    EXPECT_TRUE(contains(message, "EGL device 15 does not exist: this machine has ")) << message;
+    // The shared context is still current and usable.
+    EXPECT_NO_THROW(GlEnvironment::context()->makeCurrent());
+    EXPECT_EQ(info().renderer, reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+}
+
 // ---------------------------------------------------------------------------------------------------------
 
 TEST(EglDisplaySharing, DestroyingOneHeadlessContextKeepsAnotherWorking) {

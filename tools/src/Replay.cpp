@@ -3,6 +3,7 @@
 #include "Replay.h"
 
 #include "FlightPath.h"
+#include "OutputTransaction.h"
 #include "ReplayInput.h"
 #include "VideoWriter.h"
 #include "WorkerQueue.h"
@@ -61,82 +62,6 @@ std::string hex64(uint64_t v) {
     std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
     return buf;
 }
-
-/// Output as a transaction: frames are written into a hidden staging directory inside DIR and moved into
-/// DIR only when the whole run succeeded (summary.json last), so a failed run leaves DIR exactly as it was
-/// (files of an earlier run included) and a directory it had to create is removed again.
-class OutputTransaction {
-public:
-    explicit OutputTransaction(fs::path dir) : mDir(std::move(dir)) {
-        std::error_code ec;
-        if (!fs::exists(mDir, ec)) {
-            // Remember the outermost directory we create, to remove exactly that on failure.
-            fs::path probe = mDir;
-            while (!probe.empty() && !fs::exists(probe, ec)) {
-                mCreatedRoot = probe;
-                probe = probe.parent_path();
-            }
-            fs::create_directories(mDir, ec);
-            if (ec)
-                throw UsageError("--out: cannot create directory '" + mDir.string() + "': " + ec.message());
-        } else if (!fs::is_directory(mDir, ec)) {
-            throw UsageError("--out: '" + mDir.string() + "' exists and is not a directory");
-        }
-        mStaging = mDir / (".pacifica-staging-" + std::to_string(getpid()));
-        fs::create_directory(mStaging, ec);
-        if (ec)
-            throw UsageError("--out: cannot write into '" + mDir.string() + "': " + ec.message());
-    }
-    ~OutputTransaction() {
-        std::error_code ec;
-        fs::remove_all(mStaging, ec);
-        if (!mCommitted && !mCreatedRoot.empty())
-            fs::remove_all(mCreatedRoot, ec); // everything under it is ours
-    }
-    /// Where to write a file that will appear as DIR/name on commit.
-    fs::path staged(const std::string& name) {
-        mNames.push_back(name);
-        return mStaging / name;
-    }
-    /// Moves every staged file into DIR, then writes summary.json (atomically) last. Files of an earlier run
-    /// that get replaced are kept aside until the end, so a failure part-way puts DIR back as it was.
-    void commit(const nlohmann::json& summary) {
-        std::error_code ec;
-        for (const std::string& n :
-             mNames) { // check first: never half-commit over something we can't replace
-            const fs::path dest = mDir / n;
-            if (fs::exists(dest, ec) && !fs::is_regular_file(dest, ec))
-                throw std::runtime_error(dest.string() +
-                                         ": exists and is not a regular file; not replacing it");
-        }
-        const fs::path old = mStaging / ".replaced";
-        fs::create_directory(old);
-        std::vector<std::string> moved, replaced;
-        try {
-            for (const std::string& n : mNames) {
-                if (fs::exists(mDir / n, ec)) {
-                    fs::rename(mDir / n, old / n);
-                    replaced.push_back(n);
-                }
-                fs::rename(mStaging / n, mDir / n);
-                moved.push_back(n);
-            }
-            writeFileAtomically(mDir / "summary.json", summary.dump(2) + "\n");
-        } catch (...) {
-            for (const std::string& n : moved)
-                fs::remove(mDir / n, ec);
-            for (const std::string& n : replaced)
-                fs::rename(old / n, mDir / n, ec);
-            throw;
-        }
-        mCommitted = true;
-    }
-
-private:
-    fs::path mDir, mStaging, mCreatedRoot;
-    std::vector<std::string> mNames;
-    bool mCommitted = false;
-};
 
 /// --env: reads an HDR lat-long image and validates it into an EnvironmentMap (alpha dropped). Errors name
 /// the file: "FILE: pixel (x,y) is NaN", "FILE: expected 3 (RGB) or 4 (RGBA) channels, got 1".
@@ -462,7 +387,7 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
     : o(o_), input(input_), plan(plan_), t0(t0_), writeImages(o.writeImages && !o.outDir.empty()),
       oceanDesc(oceanWithEnvironment(o, environmentJson)),
       environmentName(o.environment ? o.environment->filename().string() : "procedural"),
-      colour(replayColour(o)), context(gl::createHeadlessContext()),
+      colour(replayColour(o)), context(gl::createHeadlessContext({.eglDevice = o.eglDevice})),
       oceanEntity(addOcean(registry, oceanDesc)), targets(makeTargets(input.views)), tonemapper(colour),
       extraViews(makeExtraViews(o, colour)), gpuTimer(context->info()), effects(registry, events),
       timeline(registry, events, effects), images(writeImages),
@@ -479,8 +404,12 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
         objectRenderer = std::make_unique<ObjectRenderer>();
     if (o.events)
         scheduleEvents(timeline, input, plan.start);
-    if (!o.outDir.empty())
+    if (!o.outDir.empty()) {
         out.emplace(o.outDir);
+        if (out->staleRemoved() > 0)
+            logInfo("replay: removed " + std::to_string(out->staleRemoved()) + " staging folder(s) of " +
+                    "earlier runs into " + o.outDir.string() + " that did not finish (killed)");
+    }
     if (o.video)
         video = std::make_unique<VideoWriter>(*o.video, input.views.front().width, input.views.front().height,
                                               o.fps);
@@ -792,6 +721,8 @@ ReplaySession::ReplaySession(const ReplayOptions& o) : mState(std::make_unique<S
     s.t0 = Clock::now();
     s.o = o;
     checkOptions(s.o);
+    if (!s.o.outDir.empty())
+        OutputTransaction::checkWritable(s.o.outDir); // before a GL context is made or a frame rendered
     s.input = loadReplayInput(s.o.flight, s.o.rigs, s.o.width, s.o.height, s.o.fovYDeg);
     s.plan = planFrames(s.o, s.input);
     if (s.o.video)

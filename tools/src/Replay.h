@@ -32,8 +32,11 @@ struct ReplayOptions {
     std::optional<std::filesystem::path> video;
     double speed = 1.0;           ///< --speed: recording seconds per real second (time-lapse > 1)
     long long maxFrames = 100000; ///< --max-frames: a run with more frames is refused before it starts
-    std::string display;          ///< empty = the config's default display
-    std::string view;             ///< empty = the display's default view
+    /// --egl-device N: render on EGL device N of eglQueryDevicesEXT's list (gl::ContextDesc::eglDevice);
+    /// -1 = the first hardware device, else Mesa's surfaceless platform.
+    int eglDevice = -1;
+    std::string display; ///< empty = the config's default display
+    std::string view;    ///< empty = the display's default view
     /// Further views of the same display (--view repeated): the scene is rendered once per frame and
     /// tonemapped once more per extra view, written as frame_NNNNN.<view>.png (slug of the view name).
     std::vector<std::string> extraViews;

@@ -64,6 +64,10 @@ void ReplayCommand::add(CLI::App& parent) {
         ->default_val(1.0);
     app->add_option("--max-frames", replay.maxFrames, "refuse runs with more frames than this")
         ->default_val(100000);
+    app->add_option("--egl-device", replay.eglDevice,
+                    "render on EGL device N (eglQueryDevicesEXT's order, software included; default: the "
+                    "first GPU, else Mesa's surfaceless llvmpipe)")
+        ->check(CLI::Range(0, 15));
     app->add_option("--fps", replay.fps, "frames per simulated second")->default_val(10.0);
     app->add_option("--size", size, "frame size WxH")->default_val("640x360");
     startOpt = app->add_option(

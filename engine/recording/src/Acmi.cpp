@@ -264,6 +264,12 @@ struct AcmiParser::Impl {
 
     void feed(std::string_view chunk) {
         rec.bytes += chunk.size();
+        if (rec.bytes > RecordingLimits::MAX_TEXT_BYTES) {
+            logicalStart = lineNo + 1;
+            fail("", "the recording's text is longer than " +
+                         std::to_string(RecordingLimits::MAX_TEXT_BYTES >> 30) +
+                         " GiB (a zip member inflating without end?); refused");
+        }
         if (firstBytes) {
             // The BOM may arrive split over chunks only for absurd chunk sizes; keep it simple and exact.
             carry.append(chunk);
@@ -287,6 +293,7 @@ struct AcmiParser::Impl {
             const size_t nl = chunk.find('\n');
             if (nl == std::string_view::npos) {
                 carry.append(chunk);
+                checkLineLength(carry.size());
                 return;
             }
             carry.append(chunk.substr(0, nl));
@@ -304,11 +311,23 @@ struct AcmiParser::Impl {
             const size_t nl = chunk.find('\n', pos);
             if (nl == std::string_view::npos) {
                 carry.assign(chunk.substr(pos));
+                checkLineLength(carry.size());
                 return;
             }
             physicalLine(chunk.substr(pos, nl - pos));
             pos = nl + 1;
         }
+    }
+
+    /// A line (a physical one being read, or a logical one being joined) past MAX_LINE_BYTES is refused
+    /// before it is held whole.
+    void checkLineLength(size_t bytes) {
+        if (bytes <= RecordingLimits::MAX_LINE_BYTES)
+            return;
+        if (!continuing)
+            logicalStart = lineNo + 1;
+        fail("", "line longer than " + std::to_string(RecordingLimits::MAX_LINE_BYTES >> 20) + " MiB" +
+                     (continuing ? " (continued with '\\' since this line)" : "") + "; refused");
     }
 
     void physicalLine(std::string_view line) {
@@ -322,6 +341,7 @@ struct AcmiParser::Impl {
         const bool continues = slashes % 2 == 1;
         if (continuing) {
             logical.append(line.substr(0, continues ? line.size() - 1 : line.size()));
+            checkLineLength(logical.size());
             if (continues) {
                 logical.push_back('\n');
                 return;
@@ -431,6 +451,9 @@ struct AcmiParser::Impl {
         }
         uint32_t obj = index.find(id);
         if (obj == IdIndex::NONE) {
+            if (rec.objects.size() >= RecordingLimits::MAX_OBJECTS)
+                fail("object id",
+                     "more than " + std::to_string(RecordingLimits::MAX_OBJECTS) + " objects; refused");
             obj = static_cast<uint32_t>(rec.objects.size());
             RecordedObject o;
             o.id = id;
@@ -567,6 +590,9 @@ struct AcmiParser::Impl {
         if (!o.track.empty() && o.track.back().time == now)
             o.track.back() = sample;
         else {
+            if (rec.samples >= RecordingLimits::MAX_SAMPLES)
+                fail("T",
+                     "more than " + std::to_string(RecordingLimits::MAX_SAMPLES) + " track samples; refused");
             o.track.push_back(sample);
             ++rec.samples;
         }

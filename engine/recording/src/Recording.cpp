@@ -106,6 +106,7 @@ void inflateWithIsal(zip_file_t* zf, uint32_t crc, const std::filesystem::path& 
     std::vector<unsigned char> in(CHUNK);
     std::vector<char> buf(CHUNK);
     std::unique_ptr<RecordingError> parseError;
+    uint64_t inflated = 0;
     while (zs->block_state != ISAL_BLOCK_FINISH) {
         if (zs->avail_in == 0) {
             const zip_int64_t got = zip_fread(zf, in.data(), in.size());
@@ -125,6 +126,12 @@ void inflateWithIsal(zip_file_t* zf, uint32_t crc, const std::filesystem::path& 
         const size_t produced = buf.size() - zs->avail_out;
         if (produced == 0 && zs->avail_in == inBefore && zs->block_state != ISAL_BLOCK_FINISH)
             throw corruptMember(file, "inflate made no progress");
+        inflated += produced;
+        if (inflated > RecordingLimits::MAX_TEXT_BYTES) // a bomb: stop now, even after a parse error
+            throw RecordingError(file.string(), 0, "",
+                                 "the zip member inflates to more than " +
+                                     std::to_string(RecordingLimits::MAX_TEXT_BYTES >> 30) +
+                                     " GiB; refused (a zip bomb?)");
         if (produced > 0 && !parseError) {
             try {
                 parser.feed(std::string_view(buf.data(), produced));
@@ -411,10 +418,15 @@ Recording readRecording(const std::filesystem::path& file) {
         return parser.finish();
     }
     if (format == "igc") {
+        const uintmax_t size = std::filesystem::file_size(file, ec);
+        if (ec || size > RecordingLimits::MAX_IGC_BYTES)
+            throw RecordingError(file.string(), 0, "",
+                                 ec ? "cannot read its size: " + ec.message()
+                                    : "IGC file of " + std::to_string(size >> 20) + " MiB, larger than " +
+                                          std::to_string(RecordingLimits::MAX_IGC_BYTES >> 20) +
+                                          " MiB; refused before reading it");
         std::ifstream in(file, std::ios::binary);
         const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (text.size() > (size_t(1) << 30))
-            throw RecordingError(file.string(), 0, "", "IGC file larger than 1 GiB");
         return parseIgc(text, file.string());
     }
     if (format == "csv")

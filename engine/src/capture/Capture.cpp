@@ -157,6 +157,12 @@ Image readImage(const std::filesystem::path& path) {
         throw CaptureError(path, "cannot open image: " + OIIO::geterror());
     }
     const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
+        int64_t(spec.width) * int64_t(spec.height) * int64_t(spec.nchannels) > MAX_READ_SAMPLES)
+        throw CaptureError(
+            path, "the header declares " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                      " pixels of " + std::to_string(spec.nchannels) + " channels; at most " +
+                      std::to_string(MAX_READ_SAMPLES) + " samples (16384 x 8192 RGBA) are read; refused");
 
     Image image;
     image.width = spec.width;

@@ -10,6 +10,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <map>
 #include <string>
 #include <vector>
@@ -144,6 +145,49 @@ EGLContext makeCoreContext(EGLDisplay display, bool debug, std::string& why) {
     return ctx;
 }
 
+/// "0: /dev/dri/renderD128, 1: software" for an error message.
+std::string describeDevices(const EGLDeviceEXT* devices, EGLint count) {
+    constexpr EGLint DRM_DEVICE_FILE = 0x3233; // EGL_DRM_DEVICE_FILE_EXT (EGL_EXT_device_drm)
+    std::string list;
+    for (EGLint i = 0; i < count; ++i) {
+        const char* exts = eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
+        const char* file = hasExtension(exts, "EGL_EXT_device_drm")
+                               ? eglQueryDeviceStringEXT(devices[i], DRM_DEVICE_FILE)
+                               : nullptr;
+        list += (i ? ", " : "") + std::to_string(i) + ": " +
+                (hasExtension(exts, "EGL_MESA_device_software") ? std::string("software (llvmpipe)")
+                 : file                                         ? std::string(file)
+                                                                : std::string("a device with no DRM file"));
+    }
+    return list.empty() ? "none" : list;
+}
+
+/// ContextDesc::eglDevice >= 0: that device or an error naming what there is.
+std::unique_ptr<GlContext> chosenDeviceContext(const char* clientExts, const ContextDesc& desc) {
+    const std::string asked = "EGL device " + std::to_string(desc.eglDevice);
+    if (!hasExtension(clientExts, "EGL_EXT_device_enumeration") ||
+        !hasExtension(clientExts, "EGL_EXT_platform_device"))
+        throw ContextError(asked +
+                           " was asked for, but this EGL cannot list devices (no EGL_EXT_device_enumeration "
+                           "and EGL_EXT_platform_device)");
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (!eglQueryDevicesEXT(16, devices, &count))
+        count = 0;
+    if (desc.eglDevice >= count)
+        throw ContextError(asked + " does not exist: this machine has " + std::to_string(count) + " (" +
+                           describeDevices(devices, count) + ")");
+    EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[desc.eglDevice], nullptr);
+    if (display == EGL_NO_DISPLAY)
+        throw ContextError(asked + " (" + describeDevices(devices + desc.eglDevice, 1).substr(3) +
+                           "): no display (" + eglErrorName(eglGetError()) + ")");
+    std::string why;
+    EGLContext ctx = makeCoreContext(display, desc.debug, why);
+    if (ctx == EGL_NO_CONTEXT)
+        throw ContextError(asked + ": " + why);
+    return std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
+}
+
 } // namespace
 
 std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
@@ -153,10 +197,25 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
         throw ContextError("PACIFICA_EGL_PLATFORM must be 'device' or 'surfaceless', got '" + forced + "'");
     std::vector<std::string> reasons;
 
+    // libepoxy loads libEGL on the first EGL call and aborts the process when it cannot: look first.
+    if (!dlopen("libEGL.so.1", RTLD_LAZY | RTLD_LOCAL)) { // kept loaded: epoxy opens it next
+        const char* err = dlerror();
+        throw ContextError(std::string("no EGL library: ") + (err ? err : "libEGL.so.1 cannot be loaded") +
+                           "; install libegl1 and a driver (libegl-mesa0)");
+    }
     const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!clientExts)
         throw ContextError("no EGL implementation found (eglQueryString(EGL_NO_DISPLAY) failed: " +
                            eglErrorName(eglGetError()) + "); install libegl1 and a driver (libegl-mesa0)");
+    if (desc.eglDevice >= 0)
+        return chosenDeviceContext(clientExts, desc);
+    if (!hasExtension(clientExts, "EGL_EXT_platform_device") &&
+        !hasExtension(clientExts, "EGL_MESA_platform_surfaceless"))
+        throw ContextError(
+            "no headless OpenGL 4.5 context: EGL found no driver: neither devices (EGL_EXT_platform_device) "
+            "nor Mesa's surfaceless "
+            "platform are offered, so libglvnd loaded no vendor library; install libegl-mesa0 "
+            "(Mesa) or the NVIDIA driver's EGL, and check __EGL_VENDOR_LIBRARY_FILENAMES/_DIRS");
 
     // 1. A hardware EGL device.
     if (forced != "surfaceless" && hasExtension(clientExts, "EGL_EXT_device_enumeration") &&

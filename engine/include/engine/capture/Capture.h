@@ -61,8 +61,13 @@ struct Image {
     std::map<std::string, std::string> attributes;
 };
 
+/// The most samples (pixels x channels) readImage() reads: a 16384 x 8192 RGBA lat-long environment (a 16k
+/// HDR sky), 2 GiB of floats. A header declaring more (an EXR of 65535 x 65535) is refused before any pixel
+/// memory is allocated.
+inline constexpr int64_t MAX_READ_SAMPLES = int64_t(16384) * 8192 * 4;
+
 /// Reads any image OpenImageIO understands (first subimage, all channels) as float. 8-bit files read as
-/// value / 255. Throws CaptureError naming the file.
+/// value / 255. Throws CaptureError naming the file (also for more than MAX_READ_SAMPLES samples).
 Image readImage(const std::filesystem::path& path);
 
 } // namespace pacifica::capture

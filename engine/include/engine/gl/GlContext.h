@@ -46,6 +46,10 @@ struct ContextDesc {
     std::string title = "Pacifica";
     bool debug = true; ///< request a debug context and route KHR_debug messages to the log
     bool vsync = true;
+    /// Headless only. -1: the first hardware EGL device that makes a context, else Mesa's surfaceless
+    /// platform. N >= 0: exactly device N of eglQueryDevicesEXT's list (Mesa's software device included,
+    /// which is not necessarily last), no fallback; a missing device is a ContextError listing those there.
+    int eglDevice = -1;
 };
 
 class GlContext {

@@ -107,6 +107,21 @@ struct Recording {
     const RecordedObject* find(uint64_t id) const;
 };
 
+/// What a recording may hold. A file built to exhaust memory or time (a zip member that inflates to many GB,
+/// 10^7 object ids, a 1 GB line, a 3 GB IGC) is refused with a RecordingError naming the limit as soon as it
+/// is passed, so a read holds at most MAX_SAMPLES samples (48 bytes each, twice that while a track grows),
+/// MAX_OBJECTS objects and one MAX_LINE_BYTES line. Real recordings sit far below: the 220 s DCS recording of
+/// docs/RECORDINGS.md has 14 objects and ~7 000 samples; a 2-hour mission of 300 objects sampled at 10 Hz
+/// has ~2 x 10^7. docs/RELIABILITY.md ("Hostile inputs") gives what each refusal costs.
+struct RecordingLimits {
+    static constexpr uint64_t MAX_TEXT_BYTES = uint64_t(4) << 30; ///< decoded ACMI text, zip members inflated
+    static constexpr size_t MAX_LINE_BYTES = size_t(1) << 20;     ///< one line, '\\' continuations joined
+    static constexpr size_t MAX_OBJECTS = 1000000;                ///< objects (an id reused after removal: 2)
+    static constexpr long long MAX_SAMPLES = 25000000;            ///< track samples, all objects together
+    /// An IGC file: 7 x 10^6 one-second fixes.
+    static constexpr uint64_t MAX_IGC_BYTES = uint64_t(256) << 20;
+};
+
 /// Reads a recording, detecting the format from the content: ACMI text (`FileType=text/acmi/tacview`,
 /// UTF-8 BOM allowed), zip (`PK` magic; one `.acmi`/`.txt` member, streamed), IGC (first record `A...` and
 /// B fixes). Anything else -- including a 7z-wrapped ACMI -- is a RecordingError that lists the supported

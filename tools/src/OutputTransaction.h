@@ -1,0 +1,52 @@
+// OutputTransaction: a replay's output folder as a transaction. Frames are written into a hidden staging
+// folder inside DIR and moved into DIR only when the whole run succeeded (summary.json last, atomically), so
+// a failed run leaves DIR exactly as it was (files of an earlier run included) and a folder it had to create
+// is removed again.
+//
+// A run killed outright (kill -9, power loss) cannot clean up: its staging folder stays behind with the
+// frames it had written, DIR itself holds only whole files of earlier commits. Each staging folder has a lock
+// file beside it (DIR/.pacifica-staging-PID.lock, flock held for the run's life, released by the kernel when
+// the process dies), and the next run into DIR removes every staging folder whose lock is free.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace pacifica::tools {
+
+class OutputTransaction {
+public:
+    /// Creates DIR if missing, removes the staging folders of runs into DIR that died, and makes this run's.
+    /// Throws UsageError naming DIR when it cannot be written (checkWritable).
+    explicit OutputTransaction(std::filesystem::path dir);
+    ~OutputTransaction();
+    OutputTransaction(const OutputTransaction&) = delete;
+    OutputTransaction& operator=(const OutputTransaction&) = delete;
+
+    /// Where to write a file that will appear as DIR/name on commit.
+    std::filesystem::path staged(const std::string& name);
+    /// Moves every staged file into DIR, then writes summary.json (atomically) last. Files of an earlier run
+    /// that get replaced are kept aside until the end, so a failure part-way puts DIR back as it was.
+    void commit(const nlohmann::json& summary);
+    /// Staging folders of dead runs removed when this one started (for the log).
+    int staleRemoved() const { return mStaleRemoved; }
+
+    /// Throws UsageError "--out: ..." naming the folder when DIR, or the nearest folder above it that exists
+    /// (where DIR would be created), is not a folder, is on a read-only file system or is not writable by
+    /// this process: the replay calls it before it makes a GL context or renders anything.
+    static void checkWritable(const std::filesystem::path& dir);
+
+private:
+    void removeStaleStaging();
+
+    std::filesystem::path mDir, mStaging, mLock, mCreatedRoot;
+    std::vector<std::string> mNames;
+    int mLockFd = -1;
+    int mStaleRemoved = 0;
+    bool mCommitted = false;
+};
+
+} // namespace pacifica::tools
