@@ -184,6 +184,13 @@ std::vector<recording::RigSpec> rigSpecs(const std::vector<std::string>& rigs,
     return specs;
 }
 
+/// The world frame of a replay with these rigs: its origin is the first rig's object where its track starts.
+recording::EarthFrame earthFrameFor(const recording::Recording& rec,
+                                    const std::vector<recording::RigSpec>& specs) {
+    const recording::RecordedObject& focus = recording::selectObject(rec, specs.front().object);
+    return recording::chooseFrame(rec, &focus, focus.startTime());
+}
+
 /// One view per rig (named when there are several; names must differ); the first rig's object sets the
 /// replay's time span. Returns summary.json's "rigs".
 nlohmann::json addRigViews(ReplayInput& in, const std::vector<recording::RigSpec>& specs, int defaultWidth,
@@ -310,7 +317,7 @@ ReplayInput loadReplayInput(const std::filesystem::path& flight, const std::vect
                    "taken as above sea level (no geoid model installed; it differs by -106..+85 m)");
     in.referenceUnix = rec->referenceUnix;
     const std::vector<recording::RigSpec> specs = rigSpecs(rigs, *rec, flight);
-    in.frame = std::make_shared<const recording::EarthFrame>(replayEarthFrame(*rec, rigs, flight));
+    in.frame = std::make_shared<const recording::EarthFrame>(earthFrameFor(*rec, specs));
     nlohmann::json rigsJson = addRigViews(in, specs, defaultWidth, defaultHeight, defaultFov);
     // GSHHG shorelines when installed (gmt-gshhg-*): impacts over land are left out by position, not
     // altitude.
@@ -381,9 +388,7 @@ std::vector<size_t> samplesAtTheSurface(const recording::Recording& rec, const r
 
 recording::EarthFrame replayEarthFrame(const recording::Recording& rec, const std::vector<std::string>& rigs,
                                        const std::filesystem::path& flight) {
-    const std::vector<recording::RigSpec> specs = rigSpecs(rigs, rec, flight);
-    const recording::RecordedObject& focus = recording::selectObject(rec, specs.front().object);
-    return recording::chooseFrame(rec, &focus, focus.startTime());
+    return earthFrameFor(rec, rigSpecs(rigs, rec, flight));
 }
 
 std::string listObjects(const recording::Recording& rec, const recording::EarthFrame& frame,
