@@ -88,9 +88,10 @@ struct Sortie {
     std::vector<game::GameEvent> splashes; ///< impacts and ditchings still drawn as a plume
     glm::dvec2 impactFrom{0.0, 1.0};       ///< horizontal direction the weapon came from (unit)
 
-    explicit Sortie(const game::SeaSettings& sea) {
+    /// `sea` is shared, not rebuilt: a new sortie on the same sea costs no surface build and no upload.
+    explicit Sortie(const ocean::OceanComponent& sea) {
         ocean = registry.create();
-        registry.emplace<ocean::OceanComponent>(ocean, buildOcean(sea));
+        registry.emplace<ocean::OceanComponent>(ocean, sea);
         effects = std::make_unique<ocean::EffectsSystem>(registry, events);
         timeline = std::make_unique<ocean::EffectsTimeline>(registry, events, *effects);
         world = std::make_unique<game::World>(registry, events, ocean);
@@ -348,7 +349,7 @@ nlohmann::json shipsJson(const game::World& world, const game::SessionRecorder* 
 }
 
 /// A sortie on `sea` whose ships have sailed their prehistory (recorded by `recorder` when given).
-std::unique_ptr<Sortie> newSortie(const game::SeaSettings& sea, int maxSteps,
+std::unique_ptr<Sortie> newSortie(const ocean::OceanComponent& sea, int maxSteps,
                                   game::SessionRecorder* recorder) {
     auto sortie = std::make_unique<Sortie>(sea);
     sortie->clock.setMaxStepsPerAdvance(maxSteps);
@@ -405,8 +406,9 @@ Session::Session(const game::Options& o, gl::GlContext* c)
       gs(initialState(opt, tonemappers)),
       maxSteps(opt.scripted() ? static_cast<int>(std::ceil(1.0 / (opt.fps * STEP))) + 1 : 30),
       recorder(opt.record.empty() ? nullptr : std::make_unique<game::SessionRecorder>(opt.record)),
-      sortie(newSortie(gs.sea, maxSteps, recorder.get())), renderer(std::make_unique<ocean::OceanRenderer>()),
-      input(*ctx), hud(*ctx), gpuTimer(ctx->info()), screenshots(opt.screenshots) {
+      sortie(newSortie(buildOcean(gs.sea), maxSteps, recorder.get())),
+      renderer(std::make_unique<ocean::OceanRenderer>()), input(*ctx), hud(*ctx), gpuTimer(ctx->info()),
+      screenshots(opt.screenshots) {
     ctx->makeCurrent();
     std::sort(screenshots.begin(), screenshots.end());
     last = std::chrono::steady_clock::now();
@@ -420,9 +422,9 @@ bool Session::frame() {
     const game::InputState in = opt.autopilot || opt.headless
                                     ? game::InputState{}
                                     : input.poll(hud.wantsKeyboard(), hud.wantsMouse());
+    applyInput(in); // keys typed with Escape in one poll still count (the summary shows them)
     if (in.quit)
         return false;
-    applyInput(in);
     const double realDt =
         opt.scripted() ? 1.0 / opt.fps : std::chrono::duration<double>(frameStart - last).count();
     last = frameStart;
@@ -471,9 +473,10 @@ void Session::restartSortie() {
         note += " (" + opt.record + " saved; this sortie is not recorded)";
     }
     messages.push_back(note);
-    // The renderer stays (its programs are built): the new registry's ocean entity gets the same handle,
-    // and the renderer rebuilds that ocean's surface state for the new surface.
-    sortie = newSortie(gs.sea, maxSteps, nullptr);
+    // The renderer stays (its programs are built) and so does the sea: the new registry's ocean entity gets
+    // the same handle and the same surface (immutable, shared), so the renderer keeps that ocean's textures.
+    // The live sea switch keeps the component equal to gs.sea.
+    sortie = newSortie(sortie->registry.get<ocean::OceanComponent>(sortie->ocean), maxSteps, nullptr);
     gs.banner = note;
     gs.bannerUntil = 3.0;
 }

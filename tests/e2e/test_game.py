@@ -166,22 +166,23 @@ if args.case == "sortie":
                     f"{lat}, {lon} vs {sh.get('latitude_deg')}, {sh.get('longitude_deg')}")
 
 elif args.case == "keys":
-    # A shell script under one Xvfb: start the game (real-time stepping), wait for its window, focus it, then
-    # type. Generous sleeps: llvmpipe frames take ~0.3 s here.
+    # A shell script under one Xvfb: start the game (real-time stepping), wait until its window is mapped (the
+    # game shows it at its first swap, once its programs are built: seconds here, tens of seconds under ASan
+    # with other tests beside it), focus it, then type. The holds are generous: a frame takes ~0.3 s here in
+    # Release, several under a sanitizer, and the game steps at most 0.25 s of game time a frame.
     script = os.path.join(tmp, "keys.sh")
     with open(script, "w") as f:
         f.write(f"""#!/bin/sh
 "{args.game}" --quality low --size 480x270 --summary k.json --record k.txt.acmi &
 pid=$!
-wid=$(xdotool search --sync --name '^Pacifica$' | head -1)
-sleep 4
+wid=$(timeout 240 xdotool search --sync --onlyvisible --name '^Pacifica$' | head -1)
 xdotool windowfocus --sync "$wid"
 xdotool mousemove --window "$wid" 240 200
 xdotool key BackSpace; sleep 2
-xdotool keydown r; sleep 6; xdotool keyup r
-xdotool key c; sleep 1.5
-xdotool key t; sleep 1.5
-xdotool key p; sleep 1.5
+xdotool keydown r; sleep 8; xdotool keyup r
+xdotool key c; sleep 2
+xdotool key t; sleep 2
+xdotool key p; sleep 2
 xdotool key Escape
 ( sleep 60; kill $pid ) >/dev/null 2>&1 &
 watchdog=$!

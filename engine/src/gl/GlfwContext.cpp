@@ -28,6 +28,8 @@ public:
         glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
         glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
         glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, desc.debug ? GLFW_TRUE : GLFW_FALSE);
+        glfwWindowHint(GLFW_VISIBLE, desc.showAtFirstSwap ? GLFW_FALSE : GLFW_TRUE);
+        mHidden = desc.showAtFirstSwap;
         mWindow = glfwCreateWindow(desc.width, desc.height, desc.title.c_str(), nullptr, nullptr);
         if (!mWindow) {
             glfwTerminate();
@@ -44,7 +46,13 @@ public:
     void makeCurrent() override { glfwMakeContextCurrent(mWindow); }
     bool windowed() const override { return true; }
     void* nativeWindow() const override { return mWindow; }
-    void swapBuffers() override { glfwSwapBuffers(mWindow); }
+    void swapBuffers() override {
+        glfwSwapBuffers(mWindow);
+        if (mHidden) {
+            glfwShowWindow(mWindow);
+            mHidden = false;
+        }
+    }
     void pollEvents() override { glfwPollEvents(); }
     bool shouldClose() const override { return glfwWindowShouldClose(mWindow); }
     bool keyDown(int key) const override { return glfwGetKey(mWindow, key) == GLFW_PRESS; }
@@ -56,6 +64,7 @@ public:
 
 private:
     GLFWwindow* mWindow = nullptr;
+    bool mHidden = false; ///< created unmapped; shown at the first swapBuffers (ContextDesc::showAtFirstSwap)
 };
 
 } // namespace

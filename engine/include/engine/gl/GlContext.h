@@ -46,6 +46,10 @@ struct ContextDesc {
     std::string title = "Pacifica";
     bool debug = true; ///< request a debug context and route KHR_debug messages to the log
     bool vsync = true;
+    /// Windowed only: the window is mapped at the first swapBuffers, so no blank window stands on the screen
+    /// while the first frame's programs build (seconds on a software driver), and a script driving the
+    /// window (xdotool search --onlyvisible) knows the host is drawing.
+    bool showAtFirstSwap = true;
     /// Headless only. -1: the first hardware EGL device that makes a context, else Mesa's surfaceless
     /// platform. N >= 0: exactly device N of eglQueryDevicesEXT's list (Mesa's software device included,
     /// which is not necessarily last), no fallback; a missing device is a ContextError listing those there.
