@@ -23,7 +23,8 @@ Cases (chosen with --case, one ctest test each):
                (wait4) under a stated bound: a zip ACMI whose member inflates past 4 GiB (its header lies about the
                size and CRC), 10^7 object ids, a line of 1 GB (a sparse file), a '\' continuation chain of
                600 000 lines, an IGC of 10^8 B records (3.5 GB, sparse), an EXR declaring 65535 x 65535 pixels
-               (--env), and a height map holding a NaN (--height-map).
+               (--env), one of 16384 x 8192 (within the limit) without its pixels, and a height map holding
+               a NaN (--height-map).
   game-shot    the game asked for a screenshot into a folder that does not exist: it says so, plays on to the
                last frame, writes the next screenshot and its summary (the failed shot with its error), and
                exits 1. PACIFICA_GAME_EXE names the game (set by ctest).
@@ -375,6 +376,10 @@ def case_hostile(c, exe, source_dir, tmp):
     write_sparse(igc, b"AXXXABC\r\nHFDTE271126\r\nB1000004500000N00700000EA0010000100\r\n", 10**8 * 37)
     exr = os.path.join(tmp, "huge.exr")
     write_exr_header(exr, 65535, 65535)
+    # Within the size limit (16384 x 8192 RGB, 1.5 GiB as floats) but without its pixels: the reader decodes
+    # a band of rows at a time, so the missing data is found before the declared size is allocated.
+    truncated = os.path.join(tmp, "truncated.exr")
+    write_exr_header(truncated, 16384, 8192)
     nan_map = os.path.join(tmp, "nan.exr")
     p = subprocess.run([test_e2e.oiio_tool("oiiotool"), "--pattern", "constant:color=nan", "1x1", "1", "--pattern",
                         "constant:color=0.5", "64x64", "1", "--paste", "+10+10", "-d", "float", "-o", nan_map],
@@ -389,13 +394,15 @@ def case_hostile(c, exe, source_dir, tmp):
              ("an IGC of 10^8 B records", [igc, "--list-objects"], [igc, "larger than 256 MiB", "before reading"]),
              ("an EXR of 65535 x 65535", [*slice_args(source_dir, os.path.join(tmp, "o1"), 1), "--env", exr],
               [exr, "65535 x 65535", "refused"]),
+             ("an EXR of 16384 x 8192 without pixels", [*slice_args(source_dir, os.path.join(tmp, "o3"), 1), "--env",
+                                                       truncated], [truncated, "cannot read pixels"]),
              ("a height map with a NaN", [*slice_args(source_dir, os.path.join(tmp, "o2"), 1), "--height-map",
                                           nan_map], [nan_map, "NaN"])]
     for name, args, must in cases:
         p, rss, seconds = run_measured([exe, "replay", *args])
         one_clear_error(c, name, p, must)
         c.check(rss < limit_mib, f"{name}: peak RSS {rss:.0f} MiB < {limit_mib} MiB", "")
-    c.check(not os.path.exists(os.path.join(tmp, "o1")) and not os.path.exists(os.path.join(tmp, "o2")),
+    c.check(not any(os.path.exists(os.path.join(tmp, o)) for o in ("o1", "o2", "o3")),
             "no output folder from the refused replays", "")
 
 

@@ -1,7 +1,8 @@
 #!/bin/sh
-# Builds the recorded-flight reader fuzzers with clang's libFuzzer (+ AddressSanitizer, UndefinedBehaviorSanitizer,
-# LeakSanitizer) and runs each for SECONDS, starting from a seed corpus of real inputs (the first lines of the
-# DCS recording, an IGC file, the demo flight CSV). Fails on any crash, leak, timeout (a hang: 10 s per input)
+# Builds the recorded-flight reader fuzzers, the ACMI writer/reader round trip and the image inputs with
+# clang's libFuzzer (+ AddressSanitizer, UndefinedBehaviorSanitizer, LeakSanitizer) and runs each for SECONDS,
+# starting from a seed corpus of real inputs (the first lines of the DCS recording, an IGC file, the demo flight
+# CSV, small EXR/PNG/HDR images made with oiiotool). Fails on any crash, leak, timeout (a hang: 10 s per input)
 # or out-of-memory; prints the executions each made (libFuzzer's final stats).
 #   tests/fuzz/run_fuzzers.sh SOURCE_DIR WORK_DIR SECONDS     (ctest runs it with 15 s; longer by hand)
 set -eu
@@ -14,17 +15,30 @@ mkdir -p "$WORK"
 FLAGS="-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
 -I$SRC/engine/recording/include -I$SRC/tools/src -I$SRC/engine/include"
 LIB="$SRC/engine/recording/src/Recording.cpp $SRC/engine/recording/src/Acmi.cpp $SRC/engine/recording/src/Igc.cpp \
-$SRC/tools/src/FlightPath.cpp $SRC/engine/src/Pose.cpp"
-for t in acmi igc csv; do
-    if [ ! -x "$WORK/fuzz_$t" ] || [ -n "$(find "$SRC/engine/recording" "$SRC/tools/src/FlightPath.cpp" \
-        "$SRC/tests/fuzz" -newer "$WORK/fuzz_$t" -type f 2>/dev/null | head -1)" ]; then
+$SRC/engine/recording/src/AcmiWriter.cpp $SRC/tools/src/FlightPath.cpp $SRC/engine/src/Pose.cpp"
+TARGETS="acmi igc csv acmi_roundtrip image"
+# fuzz_image: the image inputs (height maps, environment maps, EXRs) through OpenImageIO.
+IMAGE_SRC="$SRC/engine/src/capture/Capture.cpp $SRC/engine/src/capture/Png.cpp $SRC/engine/src/AtomicFile.cpp \
+$SRC/tools/src/ImageInputs.cpp $SRC/ocean/src/HeightOctaves.cpp $SRC/ocean/src/Lighting.cpp $SRC/ocean/src/SurfaceModel.cpp"
+for t in $TARGETS; do
+    if [ "$t" = image ]; then deps="$IMAGE_SRC $SRC/engine/include $SRC/ocean/include"; else deps="$LIB $SRC/engine/recording"; fi
+    # shellcheck disable=SC2086
+    if [ ! -x "$WORK/fuzz_$t" ] || [ -n "$(find $deps "$SRC/tools/src/ImageInputs.h" "$SRC/tests/fuzz" \
+        -newer "$WORK/fuzz_$t" -type f 2>/dev/null | head -1)" ]; then
         echo "building fuzz_$t"
-        # shellcheck disable=SC2086
-        "$CXX" $FLAGS "$SRC/tests/fuzz/fuzz_$t.cpp" $LIB -lzip -lisal -o "$WORK/fuzz_$t"
+        if [ "$t" = image ]; then
+            # shellcheck disable=SC2086
+            "$CXX" $FLAGS -I"$SRC/ocean/include" -I/usr/include/OpenEXR -I/usr/include/Imath \
+                "$SRC/tests/fuzz/fuzz_image.cpp" $IMAGE_SRC -lOpenImageIO -lOpenImageIO_Util -lxxhash -lpng \
+                -o "$WORK/fuzz_$t"
+        else
+            # shellcheck disable=SC2086
+            "$CXX" $FLAGS "$SRC/tests/fuzz/fuzz_$t.cpp" $LIB -lzip -lisal -o "$WORK/fuzz_$t"
+        fi
     fi
 done
 # Seed corpora.
-mkdir -p "$WORK/corpus_acmi" "$WORK/corpus_igc" "$WORK/corpus_csv"
+mkdir -p "$WORK/corpus_acmi" "$WORK/corpus_igc" "$WORK/corpus_csv" "$WORK/corpus_acmi_roundtrip" "$WORK/corpus_image"
 # The real DCS recording's first 6000 bytes, when the shared data directory ($PACIFICA_SHARED_DIR) has it.
 DCS="${PACIFICA_SHARED_DIR:-}/data/flights/dcs-blacksea-f14b.txt.acmi"
 if [ -n "${PACIFICA_SHARED_DIR:-}" ] && [ -f "$DCS" ]; then
@@ -35,15 +49,33 @@ printf '\001FileType=text/acmi/tacview\r\nFileVersion=2.1\r\n0,Comments=a\\\r\n-
 printf 'AXXX\r\nHFDTEDATE:150717,01\r\nHFPLTPILOTINCHARGE:A\r\nB2359584600000N00700000EA0100001000\r\nB0000024600100N00700100EA0100501050\r\nB0000064600200N00700300EV-001000000\r\n' \
     > "$WORK/corpus_igc/rollover"
 head -c 4000 "$SRC/tools/data/demo_flight.csv" > "$WORK/corpus_csv/demo_head"
+# Images: the first byte picks the file type (0 EXR, 1 PNG, 2 Radiance HDR, 3 TIFF), the rest is the file: a
+# two-frame 16 x 32 height map (half EXR), a grey PNG, an RGB HDR, a PIZ-compressed RGBA EXR.
+if [ ! -s "$WORK/corpus_image/piz_exr" ]; then
+    oiiotool --pattern noise:type=uniform:min=0:max=1 16x32 3 -d half -o "$WORK/seed.exr" &&
+        { printf '\000'; cat "$WORK/seed.exr"; } > "$WORK/corpus_image/height_exr"
+    oiiotool --pattern noise:type=uniform 16x16 1 -d uint8 -o "$WORK/seed.png" &&
+        { printf '\001'; cat "$WORK/seed.png"; } > "$WORK/corpus_image/grey_png"
+    oiiotool --pattern fill:top=0.1,0.2,0.3:bottom=2,3,4 8x4 3 -o "$WORK/seed.hdr" &&
+        { printf '\002'; cat "$WORK/seed.hdr"; } > "$WORK/corpus_image/sky_hdr"
+    oiiotool --pattern noise:type=uniform 16x16 4 -d half --compression piz -o "$WORK/seed.exr" &&
+        { printf '\000'; cat "$WORK/seed.exr"; } > "$WORK/corpus_image/piz_exr"
+fi
 status=0
-for t in acmi igc csv; do
+for t in $TARGETS; do
     echo "fuzz_$t: ${SECONDS_EACH} s"
-    if ! ASAN_OPTIONS=detect_leaks=1 "$WORK/fuzz_$t" "$WORK/corpus_$t" -max_total_time="$SECONDS_EACH" \
-        -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 -artifact_prefix="$WORK/crash_$t-" \
+    # fuzz_image: OpenImageIO's leaks on malformed files are suppressed by name (lsan-image.supp explains
+    # each), which needs full stacks through the non-instrumented libraries (slow unwinding); readImage may
+    # take 2 GiB for a declared 16384 x 8192 RGBA image (MAX_READ_SAMPLES), hence the larger RSS limit.
+    asan=detect_leaks=1 rss=2048
+    [ "$t" = image ] && asan=detect_leaks=1:fast_unwind_on_malloc=0 rss=3072
+    if ! ASAN_OPTIONS=$asan LSAN_OPTIONS="suppressions=$SRC/tests/fuzz/lsan-image.supp:print_suppressions=0" \
+        "$WORK/fuzz_$t" "$WORK/corpus_$t" -max_total_time="$SECONDS_EACH" \
+        -timeout=10 -rss_limit_mb=$rss -max_len=65536 -print_final_stats=1 -artifact_prefix="$WORK/crash_$t-" \
         > "$WORK/fuzz_$t.log" 2>&1; then
         echo "fuzz_$t FAILED:"; tail -40 "$WORK/fuzz_$t.log"; status=1
     fi
     grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$WORK/fuzz_$t.log" | sed "s/^/  fuzz_$t /"
 done
-[ $status -eq 0 ] && echo "3 passed, 0 failed" || echo "fuzzing found a problem: inputs are in $WORK/crash_*"
+[ $status -eq 0 ] && echo "$(echo $TARGETS | wc -w) passed, 0 failed" || echo "fuzzing found a problem: inputs are in $WORK/crash_*"
 exit $status

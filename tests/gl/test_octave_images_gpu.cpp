@@ -1,10 +1,10 @@
 // Painted octave height maps end to end, from image files: a cosine written to an EXR and a 4-frame
-// travelling cosine strip are read back with the tools' loader (tools/src/HeightMapFile.cpp, as
+// travelling cosine strip are read back with the tools' loader (tools/src/ImageInputs.cpp, as
 // `pacifica replay --height-map` does), the loaded map holds the analytic cosine in the documented
 // orientation (top row = north edge), and the heights the sea's vertex shader draws from them (transform
 // feedback) equal the CPU's HeightOctaves::heightAt — near the origin and at 10^7 m / t = 10^6 s, the same
 // 1e-3 m bound as tests/gl/test_ocean_gpu_cpu.cpp.
-#include "HeightMapFile.h"
+#include "ImageInputs.h"
 #include "engine/Ecs.h"
 #include "engine/Space.h"
 #include "engine/capture/Capture.h"

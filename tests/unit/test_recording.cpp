@@ -735,6 +735,25 @@ TEST(AcmiWriter, RoundTripsEscapesEventsRemovalsAndPositionOnlyTracks) {
     EXPECT_DOUBLE_EQ(c.objects[0].track[1].lat, 44.6);
 }
 
+// Found by the writer/reader round-trip fuzzer (tests/fuzz/fuzz_acmi_roundtrip.cpp).
+TEST(AcmiWriter, EscapedReferenceTimeHexLookingEventTextAndUnwritableEvents) {
+    std::ostringstream out;
+    AcmiWriter w(out, {"2024,01\\x", 0, 0, ""}); // ReferenceTime is unescaped like every other value
+    w.frame(1.0);
+    w.event("Bookmark", {}, "cafe"); // no ids: a text that reads as a hex id stays text
+    w.event("Message", {0x1f}, "beef");
+    EXPECT_THROW(w.event("", {}, "x"), std::invalid_argument);          // no type
+    EXPECT_THROW(w.event("A|B", {}, "x"), std::invalid_argument);       // ACMI cannot escape '|'
+    EXPECT_THROW(w.event("Message", {}, "a|b"), std::invalid_argument); // in the text either
+    const Recording r = acmi(out.str());
+    EXPECT_EQ(r.referenceTime, "2024,01\\x");
+    ASSERT_EQ(r.events.size(), 2u) << out.str();
+    EXPECT_TRUE(r.events[0].objects.empty());
+    EXPECT_EQ(r.events[0].text, "cafe");
+    EXPECT_EQ(r.events[1].objects, std::vector<uint64_t>{0x1f});
+    EXPECT_EQ(r.events[1].text, "beef");
+}
+
 TEST(RealRecording, DcsBlackSeaF14) {
     const fs::path file = pacifica::testdata::sharedDir() / "data/flights/dcs-blacksea-f14b.txt.acmi";
     ASSERT_TRUE(fs::exists(file)) << file;

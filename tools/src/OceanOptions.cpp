@@ -1,7 +1,7 @@
 // OceanOptions: command-line ocean knobs -> OceanDesc.
 #include "OceanOptions.h"
 
-#include "HeightMapFile.h"
+#include "ImageInputs.h"
 #include "Replay.h"
 #include "ocean/OceanConstants.h"
 #include "ocean/Presets.h"

@@ -44,7 +44,7 @@ struct OceanOptions {
     std::optional<double> fftTile;          ///< metres per FFT tile, > 0
     std::optional<int> fftCascades;         ///< FFT tiles, [1, FFT_MAX_CASCADES] (FftDesc::cascades)
     bool noFftMix = false;                  ///< one draw per FFT cascade (FftDesc::aperiodic off)
-    /// octaves: painted height maps, one file per octave from octave 0 (the swell) on (HeightMapFile.h)
+    /// octaves: painted height maps, one file per octave from octave 0 (the swell) on (ImageInputs.h)
     std::vector<std::string> heightMaps;
 
     // Lighting (ocean::LightingDesc); unset = the LightingDesc default.

@@ -3,6 +3,7 @@
 #include "Replay.h"
 
 #include "FlightPath.h"
+#include "ImageInputs.h"
 #include "OutputTransaction.h"
 #include "ReplayInput.h"
 #include "VideoWriter.h"
@@ -62,30 +63,6 @@ std::string hex64(uint64_t v) {
     std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
     return buf;
 }
-
-/// --env: reads an HDR lat-long image and validates it into an EnvironmentMap (alpha dropped). Errors name
-/// the file: "FILE: pixel (x,y) is NaN", "FILE: expected 3 (RGB) or 4 (RGBA) channels, got 1".
-std::shared_ptr<const ocean::EnvironmentMap> loadEnvironment(const fs::path& file) {
-    const capture::Image image = capture::readImage(file); // CaptureError "FILE: ..." if missing/garbled
-    if (image.channels != 3 && image.channels != 4)
-        throw std::runtime_error(file.string() + ": expected 3 (RGB) or 4 (RGBA) channels, got " +
-                                 std::to_string(image.channels));
-    const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
-    std::vector<float> rgb(pixels * 3);
-    for (size_t p = 0; p < pixels; ++p)
-        for (size_t c = 0; c < 3; ++c)
-            rgb[p * 3 + c] = image.pixels[p * static_cast<size_t>(image.channels) + c];
-    try {
-        return std::make_shared<const ocean::EnvironmentMap>(
-            ocean::makeEnvironmentMap(image.width, image.height, std::move(rgb)));
-    } catch (const ocean::EnvironmentMapError& e) {
-        throw std::runtime_error(file.string() + ": " + e.problem());
-    }
-}
-
-} // namespace
-
-namespace {
 
 using Clock = std::chrono::steady_clock;
 

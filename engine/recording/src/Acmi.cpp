@@ -612,8 +612,8 @@ struct AcmiParser::Impl {
             else if (key == "ReferenceLatitude")
                 rec.referenceLatitude = number(value, "ReferenceLatitude");
             else if (key == "ReferenceTime") {
-                rec.referenceTime = std::string(value);
-                rec.referenceUnix = parseIsoUtc(value);
+                rec.referenceTime = escaped ? unescape(value) : std::string(value);
+                rec.referenceUnix = parseIsoUtc(rec.referenceTime);
             } else if (key == "Title")
                 rec.title = escaped ? unescape(value) : std::string(value);
             else if (key == "Event")

@@ -110,9 +110,20 @@ void AcmiWriter::remove(uint64_t id) {
 }
 
 void AcmiWriter::event(const std::string& type, const std::vector<uint64_t>& ids, const std::string& text) {
+    // Event=Type|Id|...|Text has no escape for '|', and a type is required.
+    if (type.empty() || type.find('|') != std::string::npos || text.find('|') != std::string::npos)
+        throw std::invalid_argument("AcmiWriter::event: the type must be non-empty and neither type nor text "
+                                    "may hold '|' (ACMI cannot escape it), got type '" +
+                                    type + "', text '" + text + "'");
     mOut << "0,Event=" << escape(type);
     for (uint64_t id : ids)
         mOut << "|" << hexId(id);
+    // "Type|Text" with a text that reads as a hex id would read back as an id: an empty id field keeps it
+    // text.
+    const bool hexText = !text.empty() && text.size() <= 16 &&
+                         text.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+    if (ids.empty() && hexText)
+        mOut << "|";
     mOut << "|" << escape(text) << "\n";
 }
 

@@ -168,13 +168,30 @@ Image readImage(const std::filesystem::path& path) {
     image.width = spec.width;
     image.height = spec.height;
     image.channels = spec.nchannels;
-    image.pixels.resize(static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) *
-                        static_cast<size_t>(spec.nchannels));
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-        const std::string reason = in->geterror();
+    const size_t rowSamples = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.nchannels);
+    const size_t samples = rowSamples * static_cast<size_t>(spec.height);
+    auto fail = [&](const std::string& reason) {
         in->close();
         in->geterror();
-        throw CaptureError(path, "cannot read pixels: " + reason);
+        return CaptureError(path, "cannot read pixels: " + reason);
+    };
+    if (spec.tile_width > 0) { // tiled: the whole image at once
+        image.pixels.resize(samples);
+        if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+            throw fail(in->geterror());
+    } else {
+        // Scanlines, a band at a time, appended to reserved (not yet touched) memory: a file whose header
+        // declares a large image but whose data ends early costs what was decoded, not the declared size.
+        image.pixels.reserve(samples);
+        const int band = static_cast<int>(std::clamp<size_t>((size_t(1) << 20) / rowSamples, 1, 256));
+        std::vector<float> rows(rowSamples * static_cast<size_t>(band));
+        for (int y = spec.y; y < spec.y + spec.height; y += band) {
+            const int end = std::min(y + band, spec.y + spec.height);
+            if (!in->read_scanlines(0, 0, y, end, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, rows.data()))
+                throw fail(in->geterror());
+            image.pixels.insert(image.pixels.end(), rows.begin(),
+                                rows.begin() + static_cast<std::ptrdiff_t>(rowSamples * size_t(end - y)));
+        }
     }
 
     for (const OIIO::ParamValue& p : spec.extra_attribs) {

@@ -239,7 +239,8 @@ public:
     /// combinedDisplacement.
     double heightSeenFrom(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY) const;
     /// (0, 0, heightSeenFrom()).
-    glm::dvec3 displacementSeenFrom(const glm::dvec2& worldXY, double time, const glm::dvec2& cameraXY) const;
+    glm::dvec3 displacementSeenFrom(const glm::dvec2& worldXY, double time,
+                                    const glm::dvec2& cameraXY) const override;
     /// The per-vertex path: sum over the displaced octaves of A_i * sampleHeight(i, filter, B_i x, f_i,
     /// trilinearLod(i, |x - camera|)). What the vertex shader computes without the combine pass, and what
     /// the combine pass computes at its nodes.

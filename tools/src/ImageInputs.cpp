@@ -1,11 +1,13 @@
-// HeightMapFile: reads and checks a painted octave height map (see HeightMapFile.h for the file scheme).
-#include "HeightMapFile.h"
+// ImageInputs: reads and checks height maps and environment maps (ImageInputs.h has the file schemes).
+#include "ImageInputs.h"
 
 #include "engine/capture/Capture.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pacifica::tools {
 
@@ -56,6 +58,24 @@ ocean::OctaveImage loadHeightMap(const std::filesystem::path& file) {
         throw std::runtime_error(e.what());
     }
     return out;
+}
+
+std::shared_ptr<const ocean::EnvironmentMap> loadEnvironment(const std::filesystem::path& file) {
+    const capture::Image image = capture::readImage(file); // CaptureError "FILE: ..." if missing/garbled
+    if (image.channels != 3 && image.channels != 4)
+        throw std::runtime_error(file.string() + ": expected 3 (RGB) or 4 (RGBA) channels, got " +
+                                 std::to_string(image.channels));
+    const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+    std::vector<float> rgb(pixels * 3);
+    for (size_t p = 0; p < pixels; ++p)
+        for (size_t c = 0; c < 3; ++c)
+            rgb[p * 3 + c] = image.pixels[p * static_cast<size_t>(image.channels) + c];
+    try {
+        return std::make_shared<const ocean::EnvironmentMap>(
+            ocean::makeEnvironmentMap(image.width, image.height, std::move(rgb)));
+    } catch (const ocean::EnvironmentMapError& e) {
+        throw std::runtime_error(file.string() + ": " + e.problem());
+    }
 }
 
 } // namespace pacifica::tools

@@ -1,11 +1,15 @@
-// HeightMapFile: `pacifica replay --height-map FILE`: reads a painted octave height map from an image file
-// (PNG, EXR, anything OpenImageIO reads) into an ocean::OctaveImage. The ocean library reads no files; this
-// is the tools' side of HeightOctavesDesc.images.
+// ImageInputs: the images the tools read as ocean inputs, from any file OpenImageIO reads (PNG, EXR, ...):
+// `pacifica replay --height-map FILE` (a painted octave height map into an ocean::OctaveImage, the tools'
+// side of HeightOctavesDesc.images) and `--env FILE` (an HDR lat-long environment into an
+// ocean::EnvironmentMap). The ocean library reads no files. Every error is an exception whose message starts
+// with the file.
 #pragma once
 
 #include "ocean/HeightOctaves.h"
+#include "ocean/Lighting.h"
 
 #include <filesystem>
+#include <memory>
 
 namespace pacifica::tools {
 
@@ -22,5 +26,10 @@ namespace pacifica::tools {
 /// capture::readImage), the wrong shape, a non-finite value, a flat map, or slopes beyond the GPU maps'
 /// half-float range (ocean::makeOctaveMap()).
 ocean::OctaveImage loadHeightMap(const std::filesystem::path& file);
+
+/// --env: reads an HDR lat-long image and validates it into an EnvironmentMap (alpha dropped). Throws
+/// std::runtime_error naming the file: "FILE: pixel (x,y) is NaN", "FILE: expected 3 (RGB) or 4 (RGBA)
+/// channels, got 1" (capture::CaptureError "FILE: ..." when it cannot be read).
+std::shared_ptr<const ocean::EnvironmentMap> loadEnvironment(const std::filesystem::path& file);
 
 } // namespace pacifica::tools
