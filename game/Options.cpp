@@ -106,8 +106,9 @@ Options parseOptions(int argc, char** argv) {
     app.add_option("--wipe", o.wipeView, "split screen: this second OCIO view right of the wipe line");
     app.add_option("--wipe-position", o.wipePosition, "the wipe line, fraction of the width (0..1)");
     app.add_option("--size", size, "window size WxH (default 1280x720)");
-    app.add_flag(
-        "--no-hud", [&](int64_t) { o.hud = false; }, "hide the HUD (F1 toggles)");
+    // A plain bool: a flag with a callback took "--no-hud=x" to std::stoll, which threw past CLI11's errors.
+    bool noHud = false;
+    app.add_flag("--no-hud", noHud, "hide the HUD (F1 toggles)");
     app.add_flag("--headless", o.headless, "no window: EGL, offscreen (benchmarks)");
     try {
         app.parse(argc, argv);
@@ -118,6 +119,7 @@ Options parseOptions(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         throw UsageError(e.what());
     }
+    o.hud = !noHud;
     checkRanges(o);
     o.camera = parseCamera(camera);
     try {

@@ -222,7 +222,8 @@ elif args.case == "bad-input":
                         (["--size", "10x10"], "--size"), (["--screenshot", "soon.png"], "--screenshot"),
                         (["--camera", "drone"], "--camera"), (["--wind", "99"], "--wind"),
                         (["--model", "waves"], "--model"), (["--fps", "0"], "--fps"),
-                        (["--bogus"], "--bogus"), (["--view", "No Such View", "--frames", "1"], "--view")]:
+                        (["--bogus"], "--bogus"), (["--view", "No Such View", "--frames", "1"], "--view"),
+                        (["--no-hud=x"], "--no-hud")]:  # found by fuzz_game_options: it aborted
         r = game(*bad)
         c.check(r.returncode == 2 and needle in r.stderr and "error" in r.stderr,
                 f"{' '.join(bad)}: exit 2 naming {needle}", f"exit {r.returncode}: {r.stderr[-300:]}")

@@ -4,7 +4,7 @@
 # starting from a seed corpus of real inputs (the first lines of the DCS recording, an IGC file, the demo flight
 # CSV, small EXR/PNG/HDR images made with oiiotool). Fails on any crash, leak, timeout (a hang: 10 s per input)
 # or out-of-memory; prints the executions each made (libFuzzer's final stats).
-#   tests/fuzz/run_fuzzers.sh SOURCE_DIR WORK_DIR SECONDS     (ctest runs it with 15 s; longer by hand)
+#   tests/fuzz/run_fuzzers.sh SOURCE_DIR WORK_DIR SECONDS     (ctest runs it with 10 s; longer by hand)
 set -eu
 SRC=$1
 WORK=$2
@@ -16,12 +16,18 @@ FLAGS="-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recov
 -I$SRC/engine/recording/include -I$SRC/tools/src -I$SRC/engine/include"
 LIB="$SRC/engine/recording/src/Recording.cpp $SRC/engine/recording/src/Acmi.cpp $SRC/engine/recording/src/Igc.cpp \
 $SRC/engine/recording/src/AcmiWriter.cpp $SRC/tools/src/FlightPath.cpp $SRC/engine/src/Pose.cpp"
-TARGETS="acmi igc csv acmi_roundtrip image"
+TARGETS="acmi igc csv acmi_roundtrip image game_options"
 # fuzz_image: the image inputs (height maps, environment maps, EXRs) through OpenImageIO.
 IMAGE_SRC="$SRC/engine/src/capture/Capture.cpp $SRC/engine/src/capture/Png.cpp $SRC/engine/src/AtomicFile.cpp \
 $SRC/tools/src/ImageInputs.cpp $SRC/ocean/src/HeightOctaves.cpp $SRC/ocean/src/Lighting.cpp $SRC/ocean/src/SurfaceModel.cpp"
+# fuzz_game_options: pacifica-game's command line.
+GAME_SRC="$SRC/game/Options.cpp $SRC/ocean/src/Presets.cpp"
 for t in $TARGETS; do
-    if [ "$t" = image ]; then deps="$IMAGE_SRC $SRC/engine/include $SRC/ocean/include"; else deps="$LIB $SRC/engine/recording"; fi
+    case $t in
+    image) deps="$IMAGE_SRC $SRC/engine/include $SRC/ocean/include" ;;
+    game_options) deps="$GAME_SRC $SRC/game/Options.h $SRC/ocean/include" ;;
+    *) deps="$LIB $SRC/engine/recording" ;;
+    esac
     # shellcheck disable=SC2086
     if [ ! -x "$WORK/fuzz_$t" ] || [ -n "$(find $deps "$SRC/tools/src/ImageInputs.h" "$SRC/tests/fuzz" \
         -newer "$WORK/fuzz_$t" -type f 2>/dev/null | head -1)" ]; then
@@ -31,6 +37,10 @@ for t in $TARGETS; do
             "$CXX" $FLAGS -I"$SRC/ocean/include" -I/usr/include/OpenEXR -I/usr/include/Imath \
                 "$SRC/tests/fuzz/fuzz_image.cpp" $IMAGE_SRC -lOpenImageIO -lOpenImageIO_Util -lxxhash -lpng \
                 -o "$WORK/fuzz_$t"
+        elif [ "$t" = game_options ]; then
+            # shellcheck disable=SC2086
+            "$CXX" $FLAGS -I"$SRC/game" -I"$SRC/game/include" -I"$SRC/ocean/include" \
+                "$SRC/tests/fuzz/fuzz_game_options.cpp" $GAME_SRC -o "$WORK/fuzz_$t"
         else
             # shellcheck disable=SC2086
             "$CXX" $FLAGS "$SRC/tests/fuzz/fuzz_$t.cpp" $LIB -lzip -lisal -o "$WORK/fuzz_$t"
@@ -38,7 +48,8 @@ for t in $TARGETS; do
     fi
 done
 # Seed corpora.
-mkdir -p "$WORK/corpus_acmi" "$WORK/corpus_igc" "$WORK/corpus_csv" "$WORK/corpus_acmi_roundtrip" "$WORK/corpus_image"
+mkdir -p "$WORK/corpus_acmi" "$WORK/corpus_igc" "$WORK/corpus_csv" "$WORK/corpus_acmi_roundtrip" "$WORK/corpus_image" \
+    "$WORK/corpus_game_options"
 # The real DCS recording's first 6000 bytes, when the shared data directory ($PACIFICA_SHARED_DIR) has it.
 DCS="${PACIFICA_SHARED_DIR:-}/data/flights/dcs-blacksea-f14b.txt.acmi"
 if [ -n "${PACIFICA_SHARED_DIR:-}" ] && [ -f "$DCS" ]; then
@@ -49,6 +60,12 @@ printf '\001FileType=text/acmi/tacview\r\nFileVersion=2.1\r\n0,Comments=a\\\r\n-
 printf 'AXXX\r\nHFDTEDATE:150717,01\r\nHFPLTPILOTINCHARGE:A\r\nB2359584600000N00700000EA0100001000\r\nB0000024600100N00700100EA0100501050\r\nB0000064600200N00700300EV-001000000\r\n' \
     > "$WORK/corpus_igc/rollover"
 head -c 4000 "$SRC/tools/data/demo_flight.csv" > "$WORK/corpus_csv/demo_head"
+# The game's command lines, one argument a line: the e2e sortie's, a headless wipe, a bench with --help.
+printf -- '--autopilot\n--frames\n202\n--fps\n4\n--quality\nlow\n--size\n640x360\n--camera\nweapon\n--screenshot\n1:deck.png' \
+    > "$WORK/corpus_game_options/sortie"
+printf -- '--headless\n--frames\n10\n--wind\n25\n--model\nfft\n--wipe\nACES\n--wipe-position\n0.3\n--no-hud\n--view\nRaw' \
+    > "$WORK/corpus_game_options/wipe"
+printf -- '--bench\nb.json\n--record\nk.acmi\n--summary\ns.json\n--help' > "$WORK/corpus_game_options/bench"
 # Images: the first byte picks the file type (0 EXR, 1 PNG, 2 Radiance HDR, 3 TIFF), the rest is the file: a
 # two-frame 16 x 32 height map (half EXR), a grey PNG, an RGB HDR, a PIZ-compressed RGBA EXR.
 if [ ! -s "$WORK/corpus_image/piz_exr" ]; then
