@@ -610,6 +610,22 @@ double explosionVisibility(const Explosion& e, double t, const glm::dvec2& camer
     return s.amplitude * extent / std::max(dist, extent);
 }
 
+/// Why a spawn cannot be an explosion (nullptr: it can). Beyond finiteness, values no scene means: a centre
+/// farther than MAX_EFFECT_DISTANCE from the origin (the float offsets the GPU sees would overflow), a
+/// strength above MAX_EXPLOSION_STRENGTH, a start more than MAX_SPAWN_LEAD after the frame (it would hold a
+/// place under the cap, flat, for that long).
+const char* spawnProblem(const SpawnExplosion& sp, double now) {
+    if (!finite(sp.position) || !std::isfinite(sp.time) || !std::isfinite(sp.strength) || sp.strength <= 0.0)
+        return "all must be finite, strength > 0";
+    if (std::abs(sp.position.x) > MAX_EFFECT_DISTANCE || std::abs(sp.position.y) > MAX_EFFECT_DISTANCE)
+        return "position beyond 1e9 m of the origin";
+    if (sp.strength > MAX_EXPLOSION_STRENGTH)
+        return "strength above 1e6 (a 500 kt charge)";
+    if (sp.time > now + MAX_SPAWN_LEAD)
+        return "starts more than an hour after the frame";
+    return nullptr;
+}
+
 } // namespace
 
 namespace {
@@ -673,16 +689,33 @@ void EffectsSystem::update(double time, const glm::dvec3& cameraWorld) {
 }
 
 /// 1. Spawns, with the cap: when full, the least visible of the active ones and the newcomer is dropped.
+/// Within one update every visibility is fixed (one time, one camera), so each is computed once: the active
+/// explosions go into a heap, least visible on top, the first time a spawn finds the cap reached; each
+/// further spawn then costs O(log n), not a scan of the active ones (10 000 spawns in one second with 1024
+/// active took 55 ms in one frame's update here with the scan).
 void EffectsSystem::applySpawns(double time, const glm::dvec2& camera, double camHeight) {
     std::vector<SpawnExplosion> spawns;
     spawns.swap(mPendingExplosions);
+    if (spawns.empty())
+        return;
+    size_t count = 0;
+    mRegistry.view<Explosion>().each([&](ecs::Entity, Explosion&) { ++count; });
+    struct Candidate {
+        double visibility;
+        ecs::Entity entity;
+    };
+    const auto moreVisible = [](const Candidate& a, const Candidate& b) {
+        return a.visibility > b.visibility;
+    };
+    std::vector<Candidate> heap; // a min-heap on visibility once built
+    bool heapBuilt = false;
+    const size_t cap = static_cast<size_t>(mDesc.maxExplosions);
     for (const SpawnExplosion& sp : spawns) {
-        if (!finite(sp.position) || !std::isfinite(sp.time) || !std::isfinite(sp.strength) ||
-            sp.strength <= 0.0) {
+        if (const char* why = spawnProblem(sp, time)) {
             ++mCounters.rejected;
             logWarning("effects: explosion spawn rejected: position (" + std::to_string(sp.position.x) +
                        ", " + std::to_string(sp.position.y) + "), time " + std::to_string(sp.time) +
-                       ", strength " + std::to_string(sp.strength) + " (all must be finite, strength > 0)");
+                       ", strength " + std::to_string(sp.strength) + ": " + why);
             continue;
         }
         Explosion e;
@@ -691,32 +724,35 @@ void EffectsSystem::applySpawns(double time, const glm::dvec2& camera, double ca
         e.strength = sp.strength;
         e.params = explosionParams(sp.strength);
         e.endAmplitude = mDesc.endAmplitude;
-        int count = 0;
-        ecs::Entity weakest;
-        double weakestVis = explosionVisibility(e, time, camera, camHeight); // the newcomer itself
-        bool newcomerWeakest = true;
-        mRegistry.view<Explosion>().each([&](ecs::Entity ent, Explosion& other) {
-            ++count;
-            const double v = explosionVisibility(other, time, camera, camHeight);
-            if (v < weakestVis) {
-                weakestVis = v;
-                weakest = ent;
-                newcomerWeakest = false;
+        const double visibility = explosionVisibility(e, time, camera, camHeight);
+        if (count >= cap) {
+            if (!heapBuilt) {
+                mRegistry.view<Explosion>().each([&](ecs::Entity ent, Explosion& other) {
+                    heap.push_back({explosionVisibility(other, time, camera, camHeight), ent});
+                });
+                std::make_heap(heap.begin(), heap.end(), moreVisible);
+                heapBuilt = true;
             }
-        });
-        if (count >= mDesc.maxExplosions) {
             ++mCounters.droppedExplosions;
             ++mTotalDropped;
-            if (newcomerWeakest || mDesc.maxExplosions == 0) {
+            if (heap.empty() || visibility <= heap.front().visibility) { // the newcomer is the least visible
                 mEvents.enqueue(EffectEnded{EffectKind::Explosion, ecs::Entity{}, time, true});
                 continue;
             }
-            mRegistry.destroy(weakest);
-            mEvents.enqueue(EffectEnded{EffectKind::Explosion, weakest, time, true});
+            std::pop_heap(heap.begin(), heap.end(), moreVisible);
+            mRegistry.destroy(heap.back().entity);
+            mEvents.enqueue(EffectEnded{EffectKind::Explosion, heap.back().entity, time, true});
+            heap.pop_back();
+            --count;
         }
         const ecs::Entity ent = mRegistry.create();
         mRegistry.emplace<Explosion>(ent, e);
         ++mCounters.spawned;
+        ++count;
+        if (heapBuilt) {
+            heap.push_back({visibility, ent});
+            std::push_heap(heap.begin(), heap.end(), moreVisible);
+        }
     }
 }
 

@@ -647,6 +647,49 @@ TEST(EffectsSystem, TenThousandSpawnsInOneSecondStayCapped) {
     EXPECT_LE(std::abs(e.x), EFFECT_HEIGHT_LIMIT);
 }
 
+// The cap's heap keeps exactly what dropping the least visible spawn by spawn keeps: 5000 equal charges at
+// 1..5000 m from the camera, spawned in one frame in a scrambled order under a cap of 100, leave the 100
+// nearest.
+TEST(EffectsSystem, OneFrameStormKeepsTheMostVisible) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsDesc desc;
+    desc.maxExplosions = 100;
+    EffectsSystem fx(reg, events, desc);
+    for (int i = 0; i < 5000; ++i) {
+        const int d = 1 + (i * 2963) % 5000; // 2963 is prime to 5000: every distance once
+        events.enqueue(SpawnExplosion{{static_cast<double>(d), 0.0}, 0.0, 1.0});
+    }
+    events.dispatch();
+    fx.update(0.0, {0.0, 0.0, 0.0});
+    EXPECT_EQ(fx.counters().droppedExplosions, 4900);
+    std::vector<double> xs;
+    reg.view<Explosion>().each([&](ecs::Entity, Explosion& e) { xs.push_back(e.center.x); });
+    std::sort(xs.begin(), xs.end());
+    ASSERT_EQ(xs.size(), 100u);
+    EXPECT_EQ(xs.front(), 1.0);
+    EXPECT_EQ(xs.back(), 100.0);
+}
+
+// Values no scene means are rejected and counted like NaN, interleaved with good ones in one stream.
+TEST(EffectsSystem, HugeSpawnValuesAreRejectedAndCounted) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const double inf = std::numeric_limits<double>::infinity();
+    events.enqueue(SpawnExplosion{{0.0, 0.0}, 0.0, 1.0});
+    events.enqueue(SpawnExplosion{{1e300, 0.0}, 0.0, 1.0});    // beyond MAX_EFFECT_DISTANCE
+    events.enqueue(SpawnExplosion{{0.0, -2e9}, 0.0, 1.0});     // the same
+    events.enqueue(SpawnExplosion{{10.0, 0.0}, 0.0, 1e300});   // beyond MAX_EXPLOSION_STRENGTH
+    events.enqueue(SpawnExplosion{{20.0, 0.0}, 1e12, 1.0});    // starts 30 000 years later
+    events.enqueue(SpawnExplosion{{30.0, 0.0}, -inf, 1.0});    // not finite
+    events.enqueue(SpawnExplosion{{9.9e8, 0.0}, 3599.0, 1e6}); // at the bounds: kept
+    events.dispatch();
+    EXPECT_NO_THROW(fx.update(0.0, {0, 0, 10}));
+    EXPECT_EQ(fx.counters().rejected, 5);
+    EXPECT_EQ(fx.counters().spawned, 2);
+}
+
 TEST(EffectsSystem, BadSpawnDataIsRejectedNotThrown) {
     ecs::Registry reg;
     ecs::EventQueue events;

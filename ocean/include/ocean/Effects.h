@@ -52,6 +52,11 @@ struct EffectEnded {
 
 // ---- The system -----------------------------------------------------------------------------------------
 
+/// Bounds on spawn data: a SpawnExplosion outside them is rejected (EffectCounters::rejected), like NaN.
+inline constexpr double MAX_EFFECT_DISTANCE = 1e9;    ///< metres from the world origin, |x| and |y|
+inline constexpr double MAX_EXPLOSION_STRENGTH = 1e6; ///< 1 = the nominal 500 kg charge
+inline constexpr double MAX_SPAWN_LEAD = 3600.0;      ///< seconds a spawn may start after the frame
+
 struct EffectsDesc {
     int maxExplosions = 1024;   ///< cap; policy: drop the least visible (see EffectsSystem)
     int maxWakes = 256;         ///< cap on trails drawn per frame; the least visible are skipped
@@ -66,7 +71,7 @@ struct EffectCounters {
     int ended = 0;                               ///< effects that faded out this frame
     int droppedExplosions = 0, droppedWakes = 0; ///< dropped by the caps this frame
     long long totalDroppedExplosions = 0;        ///< since the system started
-    int rejected = 0;                            ///< spawn events with bad data (NaN, strength <= 0)
+    int rejected = 0; ///< spawn events with bad data (NaN, strength <= 0, beyond the MAX_* bounds)
 };
 
 /// Turns events into effect components, records ship paths, ends faded effects and applies the caps.
