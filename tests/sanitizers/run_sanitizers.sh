@@ -14,7 +14,6 @@ ROOT=$1
 WHICH=${2:-all}
 JOBS=${PACIFICA_JOBS:-$(nproc 2>/dev/null || echo 2)}
 HERE="$ROOT/tests/sanitizers"
-export MESA_SHADER_CACHE_DISABLE=true
 
 say() { printf '%s\n' "pacifica sanitize: $*" >&2; }
 
@@ -56,6 +55,7 @@ run_address() {
     status=0
     # Label `fuzz` is left out: the fuzzers are clang ASan + UBSan builds of their own, already run by the
     # Release suite; here they would only be built and run a second time.
+    rm -rf "$dir/test-shader-cache" # the tests' shader cache (tests/CMakeLists.txt) starts empty
     ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE fuzz || status=$?
     unset ASAN_OPTIONS LSAN_OPTIONS UBSAN_OPTIONS
     check "$reports" "$status"
