@@ -157,6 +157,42 @@ TEST_F(GlObjectsTest, ReleaseHandsOverTheIdAndAdoptTakesItBack) {
     EXPECT_FALSE(glIsTexture(id)) << "an adopted texture is deleted with its wrapper";
 }
 
+// liveObjects(): every kind goes up by one per created or adopted object and back down when it is deleted,
+// released or moved-from-and-destroyed; borrowed (wrap) objects are not counted.
+TEST_F(GlObjectsTest, LiveObjectsCountCreatesAndDeletesByKind) {
+    using gl::ObjectKind;
+    const gl::LiveObjects before = gl::liveObjects();
+    auto delta = [&](ObjectKind k) { return gl::liveObjects().of(k) - before.of(k); };
+    GLuint hostTexture = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &hostTexture);
+    {
+        gl::Buffer b = gl::Buffer::create(16, nullptr);
+        gl::Texture t = gl::Texture::create2D(GL_RGBA8, 2, 2);
+        gl::Texture borrowed = gl::Texture::wrap(hostTexture, GL_TEXTURE_2D);
+        gl::Framebuffer f = gl::Framebuffer::create();
+        gl::VertexArray v = gl::VertexArray::create();
+        gl::Query q = gl::Query::create(GL_TIME_ELAPSED);
+        gl::Program p = buildSolidProgram("live objects");
+        EXPECT_EQ(delta(ObjectKind::Buffer), 1);
+        EXPECT_EQ(delta(ObjectKind::Texture), 1) << "a wrapped host texture is not counted";
+        EXPECT_EQ(delta(ObjectKind::Framebuffer), 1);
+        EXPECT_EQ(delta(ObjectKind::VertexArray), 1);
+        EXPECT_EQ(delta(ObjectKind::Query), 1);
+        EXPECT_EQ(delta(ObjectKind::Program), 1);
+        EXPECT_EQ(gl::liveObjects().total() - before.total(), 6);
+        gl::Texture moved = std::move(t);
+        EXPECT_EQ(delta(ObjectKind::Texture), 1) << "a move transfers, it creates nothing";
+        const GLuint id = moved.release();
+        EXPECT_EQ(delta(ObjectKind::Texture), 0) << "a released object is the caller's";
+        gl::Texture adopted = gl::Texture::adopt(id, GL_TEXTURE_2D);
+        EXPECT_EQ(delta(ObjectKind::Texture), 1);
+    }
+    EXPECT_EQ(gl::liveObjects().total(), before.total());
+    glDeleteTextures(1, &hostTexture);
+    EXPECT_STREQ(gl::toString(ObjectKind::VertexArray), "vertex_array");
+    EXPECT_STREQ(gl::toString(ObjectKind::Sync), "sync");
+}
+
 TEST_F(GlObjectsTest, BufferCreatedWithDataReadsBack) {
     const std::vector<float> data = {0.5f, -1.f, 3.25f, 1e6f, 7.f, 0.f, -0.f, 42.f};
     const size_t bytes = data.size() * sizeof(float);

@@ -28,6 +28,7 @@
 #include "ocean/RadialGrid.h"
 
 #include "BenchCli.h"
+#include "BenchPlot.h"
 #include "BenchText.h"
 #include <CLI/CLI.hpp>
 
@@ -35,7 +36,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -51,9 +51,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 using namespace pacifica;
 
@@ -606,37 +603,6 @@ void writePlotFiles(const std::string& dir, const std::vector<Result>& rs, const
         throw std::runtime_error("cannot write " + dir + "/accuracy.dat or accuracy.gp");
 }
 
-// Runs `gnuplot accuracy.gp` in dir (fork + chdir + execvp, so no shell quoting is involved). Returns false
-// when gnuplot is not installed; throws when it fails.
-bool runGnuplot(const std::string& dir) {
-    const pid_t pid = fork();
-    if (pid < 0)
-        throw std::runtime_error("cannot start gnuplot: fork failed");
-    if (pid == 0) {
-        if (chdir(dir.c_str()) != 0)
-            _exit(126);
-        execlp("gnuplot", "gnuplot", "accuracy.gp", static_cast<char*>(nullptr));
-        _exit(errno == ENOENT ? 127 : 126);
-    }
-    int status = 0;
-    if (waitpid(pid, &status, 0) != pid)
-        throw std::runtime_error("gnuplot: waitpid failed");
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 127)
-        return false;
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::filesystem::remove(dir + "/accuracy.png"); // gnuplot opens it before it fails: no half plot
-        throw std::runtime_error("gnuplot failed on " + dir + "/accuracy.gp (status " +
-                                 std::to_string(status) + ")");
-    }
-    if (!std::filesystem::exists(dir + "/accuracy.png"))
-        throw std::runtime_error("gnuplot wrote no " + dir + "/accuracy.png");
-    return true;
-}
-
-} // namespace
-
-namespace {
-
 struct Args {
     std::string outDir = "accuracy";
     bool quick = false;
@@ -828,7 +794,7 @@ int main(int argc, char** argv) {
         writeFileAtomically(a.outDir + "/accuracy.md",
                             markdownReport(results, a, frames, timer.clockName(), info.renderer));
         writePlotFiles(a.outDir, results, timer.clockName(), info.renderer);
-        const bool plotted = runGnuplot(a.outDir);
+        const bool plotted = bench::runGnuplot(a.outDir, "accuracy.gp", "accuracy.png");
         std::cout << "wrote " << a.outDir << "/accuracy.csv, accuracy.md" << (plotted ? ", accuracy.png" : "")
                   << " (" << results.size() << " settings, " << info.renderer << ", " << timer.clockName()
                   << ")\n";

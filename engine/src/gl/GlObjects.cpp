@@ -3,11 +3,38 @@
 
 #include <epoxy/gl.h>
 
+#include <atomic>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace pacifica::gl {
+
+namespace {
+std::array<std::atomic<long long>, OBJECT_KIND_COUNT> gLive{};
+} // namespace
+
+const char* toString(ObjectKind kind) noexcept {
+    static constexpr std::array<const char*, OBJECT_KIND_COUNT> NAMES = {
+        "buffer", "texture", "framebuffer", "vertex_array", "program", "query", "sampler", "sync"};
+    const auto i = static_cast<size_t>(kind);
+    return i < NAMES.size() ? NAMES[i] : "unknown";
+}
+
+LiveObjects liveObjects() noexcept {
+    LiveObjects l;
+    for (size_t i = 0; i < gLive.size(); ++i)
+        l.count[i] = gLive[i].load(std::memory_order_relaxed);
+    return l;
+}
+
+void noteCreated(ObjectKind kind) noexcept {
+    gLive[static_cast<size_t>(kind)].fetch_add(1, std::memory_order_relaxed);
+}
+
+void noteDeleted(ObjectKind kind) noexcept {
+    gLive[static_cast<size_t>(kind)].fetch_sub(1, std::memory_order_relaxed);
+}
 
 void BufferDeleter::operator()(GLid id) const {
     glDeleteBuffers(1, &id);

@@ -34,8 +34,10 @@ GLint attachmentParameter(GLuint fbo, GLenum attachment, GLenum pname) {
 } // namespace
 
 ComputeShading::~ComputeShading() {
-    if (mDepthSampler)
+    if (mDepthSampler) {
         glDeleteSamplers(1, &mDepthSampler);
+        gl::noteDeleted(gl::ObjectKind::Sampler);
+    }
 }
 
 bool ComputeShading::attach(unsigned hostFbo, int width, int height, bool displaced) {
@@ -82,6 +84,7 @@ bool ComputeShading::attach(unsigned hostFbo, int width, int height, bool displa
     }
     if (!mDepthSampler) { // the host's depth read as values, whatever comparison its texture has set
         glCreateSamplers(1, &mDepthSampler);
+        gl::noteCreated(gl::ObjectKind::Sampler);
         glSamplerParameteri(mDepthSampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
         glSamplerParameteri(mDepthSampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glSamplerParameteri(mDepthSampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);

@@ -22,8 +22,10 @@ GpuQueries::~GpuQueries() {
 }
 
 void GpuQueries::release(Slot& slot) {
-    if (slot.fence)
+    if (slot.fence) {
         glDeleteSync(static_cast<GLsync>(slot.fence));
+        gl::noteDeleted(gl::ObjectKind::Sync);
+    }
     slot.fence = nullptr;
     slot.state = State::Free;
     slot.ticket = 0;
@@ -81,6 +83,7 @@ int GpuQueries::evaluate(std::uint64_t oceanId, const glm::dvec3& cameraOrigin, 
         // The readback (glGetNamedBufferSubData in take()) sees the shader's writes after this barrier.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         s.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        gl::noteCreated(gl::ObjectKind::Sync);
         s.state = State::InFlight;
         mCounters.evaluated += n;
         ++batches;

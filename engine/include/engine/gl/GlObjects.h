@@ -6,6 +6,8 @@
 // includes GL headers; these types expose ids as plain unsigned ints.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 
@@ -13,6 +15,30 @@ namespace pacifica::gl {
 
 using GLid = unsigned int;
 using GLenumT = unsigned int;
+
+/// The kinds of GL object the layer counts (liveObjects).
+enum class ObjectKind : int { Buffer, Texture, Framebuffer, VertexArray, Program, Query, Sampler, Sync };
+inline constexpr int OBJECT_KIND_COUNT = 8;
+/// "buffer", "texture", ... (the soak benchmark's column names).
+const char* toString(ObjectKind kind) noexcept;
+
+/// GL objects alive in the process by kind: made through this layer (the handles' create/adopt, and the raw
+/// samplers and fences of the ocean, which call noteCreated/noteDeleted) and not yet deleted or released,
+/// summed over every context. Borrowed objects (wrap) are not counted. Always on: one relaxed atomic add
+/// per create or delete, next to a driver call that costs microseconds.
+struct LiveObjects {
+    std::array<long long, OBJECT_KIND_COUNT> count{};
+    long long of(ObjectKind kind) const { return count[static_cast<std::size_t>(kind)]; }
+    long long total() const {
+        long long t = 0;
+        for (long long c : count)
+            t += c;
+        return t;
+    }
+};
+LiveObjects liveObjects() noexcept;
+void noteCreated(ObjectKind kind) noexcept;
+void noteDeleted(ObjectKind kind) noexcept;
 
 /// Owning-or-borrowing handle. Deleter is a stateless functor taking the id.
 template <typename Deleter>
@@ -35,20 +61,27 @@ public:
     GLid id() const { return mId; }
     bool owned() const { return mOwned; }
     explicit operator bool() const { return mId != 0; }
-    /// Gives up ownership; the caller now owns the returned id.
+    /// Gives up ownership; the caller now owns the returned id (no longer counted by liveObjects).
     GLid release() {
+        if (mId && mOwned)
+            noteDeleted(Deleter::KIND);
         mOwned = false;
         return std::exchange(mId, 0);
     }
     void reset() {
-        if (mId && mOwned)
+        if (mId && mOwned) {
             Deleter{}(mId);
+            noteDeleted(Deleter::KIND);
+        }
         mId = 0;
         mOwned = false;
     }
 
 protected:
-    Handle(GLid id, bool owned) : mId(id), mOwned(owned) {}
+    Handle(GLid id, bool owned) : mId(id), mOwned(owned) {
+        if (mId && mOwned)
+            noteCreated(Deleter::KIND);
+    }
 
 private:
     GLid mId = 0;
@@ -56,21 +89,27 @@ private:
 };
 
 struct BufferDeleter {
+    static constexpr ObjectKind KIND = ObjectKind::Buffer;
     void operator()(GLid id) const;
 };
 struct TextureDeleter {
+    static constexpr ObjectKind KIND = ObjectKind::Texture;
     void operator()(GLid id) const;
 };
 struct FramebufferDeleter {
+    static constexpr ObjectKind KIND = ObjectKind::Framebuffer;
     void operator()(GLid id) const;
 };
 struct VertexArrayDeleter {
+    static constexpr ObjectKind KIND = ObjectKind::VertexArray;
     void operator()(GLid id) const;
 };
 struct ProgramDeleter {
+    static constexpr ObjectKind KIND = ObjectKind::Program;
     void operator()(GLid id) const;
 };
 struct QueryDeleter {
+    static constexpr ObjectKind KIND = ObjectKind::Query;
     void operator()(GLid id) const;
 };
 
