@@ -66,7 +66,7 @@ if shutil.which("gnuplot"):
 
 leaky = os.path.join(out, "leaky")
 p = soak(leaky, 60, "--leak-textures-every", "5")
-check(p.returncode == 1, f"a kept texture every 10 frames: exit 1 (got {p.returncode})")
+check(p.returncode == 1, f"a kept texture every 5 frames: exit 1 (got {p.returncode})")
 report = json.load(open(os.path.join(leaky, "soak.json"))) if p.returncode == 1 else {"checks": {}}
 for name in ("gl_objects_do_not_grow", "gl_objects_return_after_drain"):
     check(report["checks"].get(name, {}).get("passed") is False, f"the leak fails {name}")
