@@ -35,8 +35,6 @@ namespace {
 constexpr int N = 256;
 constexpr double ALTITUDE = 2000.0, SUN_ELEVATION_DEG = 50.0;
 
-/// Renders the sea of `desc` (alone) from `camera` at `time` into a w x h scene-linear RGBA image, rows top
-/// down.
 /// Renders `registry`'s sea with `renderer` from `camera` at `time` into `targets` (its size) and returns the
 /// scene-linear RGBA image, rows top down.
 std::vector<float> renderInto(ocean::OceanRenderer& renderer, gl::FrameTargets& targets,
@@ -53,10 +51,18 @@ std::vector<float> renderInto(ocean::OceanRenderer& renderer, gl::FrameTargets& 
     return px;
 }
 
+/// Renders the sea of `desc` (alone) from `camera` at `time` into a w x h scene-linear RGBA image, rows top
+/// down. `surface` is desc's surface where the caller built it already: the surface is most of what an ocean
+/// costs to make (under the sanitizers most of all), and the lighting variants of one sea share it. Null
+/// builds it here.
 std::vector<float> renderSea(const ocean::OceanDesc& desc, const CameraFrame& camera, double time, int w,
-                             int h) {
+                             int h, std::shared_ptr<const ocean::SurfaceModel> surface = nullptr) {
     ecs::Registry registry;
-    registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(desc));
+    if (surface)
+        registry.emplace<ocean::OceanComponent>(registry.create(),
+                                                ocean::OceanComponent{desc, std::move(surface)});
+    else
+        registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(desc));
     ocean::OceanRenderer renderer;
     gl::FrameTargets targets(w, h);
     return renderInto(renderer, targets, registry, camera, time);
@@ -84,10 +90,12 @@ Glitter renderedGlitter(double u, ocean::LightingDesc::Glitter model = ocean::Li
     const double el = SUN_ELEVATION_DEG * M_PI / 180.0;
     const glm::dvec3 sun(0.0, -std::cos(el), std::sin(el)); // in the south
     constexpr float SUN_INTENSITY = 40.0f, SUN_GREEN = ocean::SUN_COLOR[1];
+    ocean::OceanDesc base;
+    base.model = surface;
+    const ocean::OceanDesc seaState = ocean::applySeaState(base, {u, 60.0});
+    const auto built = ocean::makeOcean(seaState).surface; // both renders' (they differ in lighting only)
     auto render = [&](float sunIntensity) {
-        ocean::OceanDesc base;
-        base.model = surface;
-        ocean::OceanDesc d = ocean::applySeaState(base, {u, 60.0});
+        ocean::OceanDesc d = seaState;
         d.lighting.sunDirection = sun;
         d.lighting.sunIntensity = sunIntensity;
         d.lighting.normalTilt = 0.0f; // the surface's own normals
@@ -103,7 +111,7 @@ Glitter renderedGlitter(double u, ocean::LightingDesc::Glitter model = ocean::Li
         cam.headingDeg = 180.0; // toward the sun
         cam.pitchDeg = -SUN_ELEVATION_DEG;
         const CameraFrame camera = makeCameraFrame(cam, static_cast<float>(100.0 * M_PI / 180.0), 1.0f, 1.0f);
-        return std::make_pair(renderSea(d, camera, 17.0, N, N), camera);
+        return std::make_pair(renderSea(d, camera, 17.0, N, N, built), camera);
     };
     const auto [lit, camera] = render(SUN_INTENSITY);
     const auto [unlit, camera2] = render(0.0f);
@@ -508,8 +516,10 @@ CrestGlow crestGlow(double headingDeg) {
         d.lighting.subsurface = subsurface;
         return d;
     };
-    auto render = [&](float subsurface) { return renderSea(describe(subsurface), camera, time, W, H); };
     const std::shared_ptr<const ocean::SurfaceModel> surface = ocean::makeOcean(describe(1.0f)).surface;
+    auto render = [&](float subsurface) {
+        return renderSea(describe(subsurface), camera, time, W, H, surface);
+    };
     const std::vector<float> with = render(1.0f);
     const std::vector<float> without = render(0.0f);
     const glm::mat4 inv = glm::inverse(camera.viewProj);
@@ -595,7 +605,8 @@ struct HorizonBands {
 /// near-field sea (pixels whose ray descends more than 0.8 of the steepest ray's descent), of the sea just
 /// below the horizon (rays 0.3 to 1.5 degrees below the dip of the horizon, acos(R / (R + h))) and of the sky
 /// just above it (0.3 to 1.5 degrees above the dip).
-HorizonBands horizonBands(double altitude, double headingDeg, double pitchDeg) {
+HorizonBands horizonBands(const std::shared_ptr<const ocean::SurfaceModel>& surface, double altitude,
+                          double headingDeg, double pitchDeg) {
     constexpr int W = 240, H = 160;
     ocean::OceanDesc d = ocean::applySeaState({}, {12.0, 60.0});
     const double el = 30.0 * M_PI / 180.0;
@@ -606,7 +617,7 @@ HorizonBands horizonBands(double altitude, double headingDeg, double pitchDeg) {
     cam.pitchDeg = pitchDeg;
     const CameraFrame camera =
         makeCameraFrame(cam, static_cast<float>(60.0 * M_PI / 180.0), static_cast<float>(W) / H, 1.0f);
-    const std::vector<float> px = renderSea(d, camera, 40.0, W, H);
+    const std::vector<float> px = renderSea(d, camera, 40.0, W, H, surface);
     const glm::mat4 inv = glm::inverse(camera.viewProj);
     const double dip = std::acos(ocean::EARTH_RADIUS / (ocean::EARTH_RADIUS + altitude)),
                  band0 = 0.3 * M_PI / 180.0, band1 = 1.5 * M_PI / 180.0;
@@ -647,9 +658,10 @@ TEST_F(LookGl, HorizonSeaLiesBetweenTheNearSeaAndTheSky) {
     // The sweep's pitches, but -28 instead of -35 degrees at 15 km, where the sweep's view ends 1 degree
     // below the horizon's 3.9 degree dip and so shows no sky.
     const double pitches[] = {-3.0, -6.0, -12.0, -20.0, -30.0, -28.0};
+    const auto surface = ocean::makeOcean(ocean::applySeaState({}, {12.0, 60.0})).surface; // every view's sea
     for (int a = 0; a < 6; ++a)
         for (double heading : {90.0, 270.0, 0.0}) {
-            const HorizonBands b = horizonBands(altitudes[a], heading, pitches[a]);
+            const HorizonBands b = horizonBands(surface, altitudes[a], heading, pitches[a]);
             std::printf("%6.0f m heading %3.0f: near sea %.4f, horizon sea %.4f, sky above %.4f\n",
                         altitudes[a], heading, b.nearSea, b.horizonSea, b.skyAbove);
             EXPECT_LE(b.horizonSea, b.skyAbove) << altitudes[a] << " m, heading " << heading;
@@ -682,7 +694,10 @@ void expectWhitecapCoverageFollowsMonahan(ocean::OceanRenderer& renderer, ocean:
         ocean::OceanDesc base = ocean::applySeaState(start, {u, 60.0});
         base.grid.rings = 96;
         base.grid.segments = 192;
-        const auto surface = ocean::makeOcean(base).surface; // the CPU twin, for the prediction
+        // The CPU twin, for the prediction, and the three scenes' surface: they differ only in lighting, so
+        // the renderer keeps one surface's GPU state for all three (a new surface would be rebuilt per
+        // render).
+        const auto surface = ocean::makeOcean(base).surface;
         ecs::Registry scenes[3]; // 0: no foam, 1: the sea state's, 2: foam everywhere
         for (int mode = 0; mode < 3; ++mode) {
             ocean::OceanDesc d = base;
@@ -693,7 +708,9 @@ void expectWhitecapCoverageFollowsMonahan(ocean::OceanRenderer& renderer, ocean:
                 d.lighting.foamHeightStart = -100.0f;
                 d.lighting.foamHeightFull = -99.0f;
             }
-            scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(), ocean::makeOcean(d));
+            ASSERT_NO_THROW(ocean::validateLighting(d.lighting));
+            scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(),
+                                                        ocean::OceanComponent{d, surface});
         }
         double sum = 0.0, predicted = 0.0, sampledSum = 0.0;
         long pixels = 0, glitter = 0, sampled = 0;
@@ -1013,6 +1030,8 @@ RenderedFoam renderedFoam(double altitude, int views, double lag, double windDeg
     constexpr int S = 256;
     constexpr double C = 0.3;
     ocean::OceanDesc base = ocean::applySeaState(ocean::OceanDesc{}, {10.0, windDeg});
+    // The three scenes differ in lighting only: one surface, whose GPU state the renderer then keeps.
+    const auto surface = ocean::makeOcean(base).surface;
     ecs::Registry scenes[3]; // 0: no foam, 1: coverage C everywhere, 2: foam everywhere
     for (int mode = 0; mode < 3; ++mode) {
         ocean::OceanDesc d = base;
@@ -1021,7 +1040,8 @@ RenderedFoam renderedFoam(double altitude, int views, double lag, double windDeg
         d.lighting.foamIntensity = mode == 0 ? 0.0f : 1.0f;
         d.lighting.foamHeightStart = mode == 2 ? -100.0f : -1000.0f;
         d.lighting.foamHeightFull = mode == 2 ? -99.0f : static_cast<float>(1000.0 / C - 1000.0);
-        scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(), ocean::makeOcean(d));
+        EXPECT_NO_THROW(ocean::validateLighting(d.lighting));
+        scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(), ocean::OceanComponent{d, surface});
     }
     ocean::OceanRenderer renderer;
     gl::FrameTargets targets(S, S);
