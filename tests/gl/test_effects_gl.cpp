@@ -114,11 +114,10 @@ protected:
             // Undo the curvature drop the shader applied at the undisplaced point (octaves: = displaced).
             const glm::dvec2 rel = glm::dvec2(glm::vec2(centre - glm::dvec2(cam)) + v.local);
             const double gpu = double(v.position.z) + cam.z + curvatureDrop(glm::length(rel));
-            const double twin = ocean.surface->heightAt(world, frame.time) +
-                                sampleEffectField(effects.view(), layout, world, frame.time).x;
+            const double sea = ocean.surface->heightAt(world, frame.time);
+            const double twin = sea + sampleEffectField(effects.view(), layout, world, frame.time).x;
             worst = std::max(worst, std::abs(gpu - twin));
-            const double analytic =
-                ocean.surface->heightAt(world, frame.time) + effectsAt(effects.view(), world, frame.time).x;
+            const double analytic = sea + effectsAt(effects.view(), world, frame.time).x;
             analyticError = std::max(analyticError, std::abs(gpu - analytic));
         }
         return worst;
