@@ -600,24 +600,34 @@ struct HorizonBands {
     double nearSea, horizonSea, skyAbove; ///< median luminance of each band
 };
 
+/// The look sweep's sea, drawn by one renderer into one 240 x 160 target for every view.
+struct HorizonScene {
+    static constexpr int W = 240, H = 160;
+    ecs::Registry registry;
+    ocean::OceanRenderer renderer;
+    gl::FrameTargets targets{W, H};
+    HorizonScene() {
+        ocean::OceanDesc d = ocean::applySeaState({}, {12.0, 60.0});
+        const double el = 30.0 * M_PI / 180.0;
+        d.lighting.sunDirection = glm::dvec3(std::cos(el), 0.0, std::sin(el));
+        registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(d));
+    }
+};
+
 /// The look sweep's view (tools/data/look_sweep.csv: 12 m/s, sun at azimuth 90, 30 degrees high) from
 /// `altitude` toward `headingDeg`, pitched `pitchDeg`, 60 degree field of view: the median luminance of the
 /// near-field sea (pixels whose ray descends more than 0.8 of the steepest ray's descent), of the sea just
 /// below the horizon (rays 0.3 to 1.5 degrees below the dip of the horizon, acos(R / (R + h))) and of the sky
 /// just above it (0.3 to 1.5 degrees above the dip).
-HorizonBands horizonBands(const std::shared_ptr<const ocean::SurfaceModel>& surface, double altitude,
-                          double headingDeg, double pitchDeg) {
-    constexpr int W = 240, H = 160;
-    ocean::OceanDesc d = ocean::applySeaState({}, {12.0, 60.0});
-    const double el = 30.0 * M_PI / 180.0;
-    d.lighting.sunDirection = glm::dvec3(std::cos(el), 0.0, std::sin(el));
+HorizonBands horizonBands(HorizonScene& scene, double altitude, double headingDeg, double pitchDeg) {
+    constexpr int W = HorizonScene::W, H = HorizonScene::H;
     Pose cam;
     cam.position = {0.0, 0.0, altitude};
     cam.headingDeg = headingDeg;
     cam.pitchDeg = pitchDeg;
     const CameraFrame camera =
         makeCameraFrame(cam, static_cast<float>(60.0 * M_PI / 180.0), static_cast<float>(W) / H, 1.0f);
-    const std::vector<float> px = renderSea(d, camera, 40.0, W, H, surface);
+    const std::vector<float> px = renderInto(scene.renderer, scene.targets, scene.registry, camera, 40.0);
     const glm::mat4 inv = glm::inverse(camera.viewProj);
     const double dip = std::acos(ocean::EARTH_RADIUS / (ocean::EARTH_RADIUS + altitude)),
                  band0 = 0.3 * M_PI / 180.0, band1 = 1.5 * M_PI / 180.0;
@@ -658,10 +668,10 @@ TEST_F(LookGl, HorizonSeaLiesBetweenTheNearSeaAndTheSky) {
     // The sweep's pitches, but -28 instead of -35 degrees at 15 km, where the sweep's view ends 1 degree
     // below the horizon's 3.9 degree dip and so shows no sky.
     const double pitches[] = {-3.0, -6.0, -12.0, -20.0, -30.0, -28.0};
-    const auto surface = ocean::makeOcean(ocean::applySeaState({}, {12.0, 60.0})).surface; // every view's sea
+    HorizonScene scene;
     for (int a = 0; a < 6; ++a)
         for (double heading : {90.0, 270.0, 0.0}) {
-            const HorizonBands b = horizonBands(surface, altitudes[a], heading, pitches[a]);
+            const HorizonBands b = horizonBands(scene, altitudes[a], heading, pitches[a]);
             std::printf("%6.0f m heading %3.0f: near sea %.4f, horizon sea %.4f, sky above %.4f\n",
                         altitudes[a], heading, b.nearSea, b.horizonSea, b.skyAbove);
             EXPECT_LE(b.horizonSea, b.skyAbove) << altitudes[a] << " m, heading " << heading;
