@@ -51,6 +51,14 @@ std::vector<float> renderInto(ocean::OceanRenderer& renderer, gl::FrameTargets& 
     return px;
 }
 
+/// The ocean of `desc` on `surface`, desc's sea built already (a lighting variant of it). makeOcean, which
+/// validates a description, is not called, so the lighting is checked here.
+ocean::OceanComponent onSurface(const ocean::OceanDesc& desc,
+                                std::shared_ptr<const ocean::SurfaceModel> surface) {
+    EXPECT_NO_THROW(ocean::validateLighting(desc.lighting));
+    return ocean::OceanComponent{desc, std::move(surface)};
+}
+
 /// Renders the sea of `desc` (alone) from `camera` at `time` into a w x h scene-linear RGBA image, rows top
 /// down. `surface` is desc's surface where the caller built it already: the surface is most of what an ocean
 /// costs to make (under the sanitizers most of all), and the lighting variants of one sea share it. Null
@@ -59,8 +67,7 @@ std::vector<float> renderSea(const ocean::OceanDesc& desc, const CameraFrame& ca
                              int h, std::shared_ptr<const ocean::SurfaceModel> surface = nullptr) {
     ecs::Registry registry;
     if (surface)
-        registry.emplace<ocean::OceanComponent>(registry.create(),
-                                                ocean::OceanComponent{desc, std::move(surface)});
+        registry.emplace<ocean::OceanComponent>(registry.create(), onSurface(desc, std::move(surface)));
     else
         registry.emplace<ocean::OceanComponent>(registry.create(), ocean::makeOcean(desc));
     ocean::OceanRenderer renderer;
@@ -718,9 +725,7 @@ void expectWhitecapCoverageFollowsMonahan(ocean::OceanRenderer& renderer, ocean:
                 d.lighting.foamHeightStart = -100.0f;
                 d.lighting.foamHeightFull = -99.0f;
             }
-            ASSERT_NO_THROW(ocean::validateLighting(d.lighting));
-            scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(),
-                                                        ocean::OceanComponent{d, surface});
+            scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(), onSurface(d, surface));
         }
         double sum = 0.0, predicted = 0.0, sampledSum = 0.0;
         long pixels = 0, glitter = 0, sampled = 0;
@@ -1050,8 +1055,7 @@ RenderedFoam renderedFoam(double altitude, int views, double lag, double windDeg
         d.lighting.foamIntensity = mode == 0 ? 0.0f : 1.0f;
         d.lighting.foamHeightStart = mode == 2 ? -100.0f : -1000.0f;
         d.lighting.foamHeightFull = mode == 2 ? -99.0f : static_cast<float>(1000.0 / C - 1000.0);
-        EXPECT_NO_THROW(ocean::validateLighting(d.lighting));
-        scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(), ocean::OceanComponent{d, surface});
+        scenes[mode].emplace<ocean::OceanComponent>(scenes[mode].create(), onSurface(d, surface));
     }
     ocean::OceanRenderer renderer;
     gl::FrameTargets targets(S, S);
