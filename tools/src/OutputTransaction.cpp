@@ -135,4 +135,17 @@ void OutputTransaction::commit(const nlohmann::json& summary) {
     mCommitted = true;
 }
 
+void OutputTransaction::publish(const std::vector<std::string>& names) {
+    mCommitted = true; // frames that landed stay, a failure after this point included
+    for (const std::string& n : names) {
+        fs::rename(mStaging / n, mDir / n);
+        std::erase(mNames, n);
+    }
+}
+
+void OutputTransaction::commitChunk(const std::string& name, const nlohmann::json& summary) {
+    mCommitted = true;
+    writeFileAtomically(mDir / name, summary.dump(2) + "\n");
+}
+
 } // namespace pacifica::tools

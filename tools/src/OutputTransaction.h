@@ -31,6 +31,12 @@ public:
     /// Moves every staged file into DIR, then writes summary.json (atomically) last. Files of an earlier run
     /// that get replaced are kept aside until the end, so a failure part-way puts DIR back as it was.
     void commit(const nlohmann::json& summary);
+    /// A chunk of a sharded run (--frames) shares DIR with other chunks and lands frame by frame: publish()
+    /// moves these staged files into DIR now, each by one rename (replacing any there). From the first call
+    /// on, DIR is kept whatever happens: what landed is whole and can be resumed.
+    void publish(const std::vector<std::string>& names);
+    /// Writes DIR/name atomically: a chunk's summary (summary.json stays the one-process run's).
+    void commitChunk(const std::string& name, const nlohmann::json& summary);
     /// Staging folders of dead runs removed when this one started (for the log).
     int staleRemoved() const { return mStaleRemoved; }
 

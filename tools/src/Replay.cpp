@@ -2,6 +2,7 @@
 // what this run wrote. summary.json is written last and atomically.
 #include "Replay.h"
 
+#include "ChunkFrames.h"
 #include "FlightPath.h"
 #include "ImageInputs.h"
 #include "OutputTransaction.h"
@@ -38,6 +39,7 @@
 #include <deque>
 #include <fstream>
 #include <future>
+#include <limits>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -82,6 +84,9 @@ void checkOptions(const ReplayOptions& o) {
         throw UsageError("--max-frames must be >= 1, got " + std::to_string(o.maxFrames));
     if (o.outDir.empty() && !o.video)
         throw UsageError("--out: an output directory is required (or --video FILE alone)");
+    if (o.frames && o.video)
+        throw UsageError("--frames renders a chunk of the run's frames into --out; --video needs the whole "
+                         "run (encode the chunks' PNGs once they are all there)");
 }
 
 /// The frames of a run: frame k is at start + k * speed / fps, from the index (never accumulated), the last
@@ -113,6 +118,10 @@ FramePlan planFrames(const ReplayOptions& o, const ReplayInput& input) {
                          "; shorten --start/--end, lower --fps, raise --speed, or "
                          "allow it with --max-frames");
     p.count = static_cast<long long>(count);
+    if (o.frames && o.frames->last >= p.count)
+        throw UsageError("--frames " + std::to_string(o.frames->first) + "-" +
+                         std::to_string(o.frames->last) + ": the run has " + std::to_string(p.count) +
+                         " frames (0-" + std::to_string(p.count - 1) + ")");
     return p;
 }
 
@@ -201,10 +210,10 @@ public:
             mEncoder.emplace(2);
     }
     /// Frame `frame` of view `view`: its EXR (whose hash goes into viewFrames[view][frame]) and PNG.
-    void frame(size_t view, size_t frame, fs::path exr, fs::path png, int w, int h,
+    void frame(size_t view, size_t frame, long long k, fs::path exr, fs::path png, int w, int h,
                const std::vector<float>& scene, const std::vector<float>& display,
                const capture::Metadata& meta, capture::Compression c) {
-        mPending.push_back({view, frame, mEncoder->submit([=, sceneCopy = scene, displayCopy = display] {
+        mPending.push_back({view, frame, k, mEncoder->submit([=, sceneCopy = scene, displayCopy = display] {
                                 const uint64_t hash =
                                     capture::writeExrHalf(exr, w, h, 4, sceneCopy.data(), meta, c);
                                 capture::writePng8(png, w, h, 4, displayCopy.data(), c);
@@ -212,9 +221,9 @@ public:
                             })});
     }
     /// An extra view's PNG (no hash).
-    void png(size_t view, fs::path path, int w, int h, const std::vector<float>& display,
+    void png(size_t view, long long k, fs::path path, int w, int h, const std::vector<float>& display,
              capture::Compression c) {
-        mPending.push_back({view, std::string::npos, mEncoder->submit([=, displayCopy = display] {
+        mPending.push_back({view, std::string::npos, k, mEncoder->submit([=, displayCopy = display] {
                                 capture::writePng8(path, w, h, 4, displayCopy.data(), c);
                                 return uint64_t{0};
                             })});
@@ -232,9 +241,16 @@ public:
         }
     }
 
+    /// The run's frame index of the oldest image still being written (every image of earlier frames is
+    /// on disk); LLONG_MAX when none is.
+    long long oldestPending() const {
+        return mPending.empty() ? std::numeric_limits<long long>::max() : mPending.front().k;
+    }
+
 private:
     struct Pending {
         size_t view, frame; // viewFrames[view][frame]; frame == npos: an extra view's PNG (no hash)
+        long long k;        // the run's frame index
         std::future<uint64_t> hash;
     };
     std::deque<Pending> mPending;
@@ -302,10 +318,14 @@ private:
     int drawView(size_t vi, const ocean::OceanFrame& frame, const AliveObjects& alive);
     nlohmann::json renderView(long long k, size_t vi, double t, const AliveObjects& alive);
     capture::Metadata frameMetadata(long long k, double t, const Pose& pose, const ReplayView& view) const;
-    nlohmann::json extraViewPasses(size_t vi, const std::string& name, ViewTimes& times);
+    nlohmann::json extraViewPasses(size_t vi, long long k, const std::string& name, ViewTimes& times);
     nlohmann::json passJson(const ViewTimes& times);
     void progress(long long k, double t, Clock::time_point now) const;
     void floatShips(double t, AliveObjects& alive);
+    AliveObjects advance(double t);
+    std::string frameBase(size_t vi, long long k) const;
+    bool keepFrame(long long k);
+    void landFrames();
     nlohmann::json summary(double totalSeconds) const;
 
     const ReplayOptions& o;
@@ -342,6 +362,15 @@ private:
     std::vector<glm::dvec2> hullPoints;
     std::vector<double> hullHeights;
     double firstFrameSeconds = 0.0;
+    // --frames: the frames rendered and kept, the pre-roll's time, and the rendered frames whose images are
+    // still being written (landFrames), with their index in viewFrames per view.
+    long long framesRendered = 0, framesKept = 0;
+    double prerollSeconds = 0.0;
+    struct Landing {
+        long long k;
+        std::vector<size_t> index;
+    };
+    std::deque<Landing> landing;
     const bool tty;
     ReplayRunInfo mInfo;
 };
@@ -394,26 +423,86 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
              colour.configDescription(), &gpuTimer.samples()};
 }
 
+/// Frame k: the simulation advanced to its time, then (unless it is --frames' pre-roll or a frame an
+/// earlier run of the chunk left whole) every view rendered.
 void ReplayRun::renderFrame(long long k) {
     const auto f0 = Clock::now();
     const double t = plan.timeOf(k);
+    const AliveObjects alive = advance(t);
+    if (o.frames && k < o.frames->first) { // the pre-roll: the chunk starts from the one-process run's state
+        prerollSeconds += std::chrono::duration<double>(Clock::now() - f0).count();
+        return;
+    }
+    if (o.frames && writeImages && keepFrame(k)) {
+        ++framesKept;
+        return;
+    }
+    Landing landed{k, {}};
+    for (size_t vi = 0; vi < input.views.size(); ++vi) {
+        nlohmann::json fj = renderView(k, vi, t, alive);
+        landed.index.push_back(viewFrames[vi].size());
+        viewFrames[vi].push_back(std::move(fj));
+    }
+    if (o.frames && writeImages)
+        landing.push_back(std::move(landed));
+    images.collect(false, viewFrames);
+    landFrames();
+    const auto f1 = Clock::now();
+    frameWallMs.push_back(msBetween(f0, f1));
+    if (framesRendered++ == 0)
+        firstFrameSeconds = std::chrono::duration<double>(f1 - t0).count();
+    if (tty)
+        progress(k, t, f1);
+}
+
+/// The simulation at time t, rendered or not: the effects' timeline stepped (wakes extend their paths,
+/// explosions start), the recording's objects at t, the ships floated on the sea.
+AliveObjects ReplayRun::advance(double t) {
     timeline.step(t, input.views.front().camera(t).position);
     AliveObjects alive;
     for (const ReplayObject& obj : objects)
         if (t >= obj.start && t <= obj.end)
             alive.push_back({obj.id, {obj.shape, obj.length, obj.track->poseAt(t)}});
     floatShips(t, alive);
+    return alive;
+}
+
+/// "frame_00012", or "<view>_frame_00012" for a named view.
+std::string ReplayRun::frameBase(size_t vi, long long k) const {
+    const std::string& view = input.views[vi].name;
+    char number[32];
+    std::snprintf(number, sizeof number, "frame_%05lld", k);
+    return view.empty() ? std::string(number) : view + "_" + number;
+}
+
+/// --frames' resume: frame k is kept when every view's sidecar names this run and matches its files; its
+/// summary entries come from the sidecars.
+bool ReplayRun::keepFrame(long long k) {
+    std::vector<nlohmann::json> entries;
     for (size_t vi = 0; vi < input.views.size(); ++vi) {
-        nlohmann::json fj = renderView(k, vi, t, alive);
-        viewFrames[vi].push_back(std::move(fj));
+        std::optional<nlohmann::json> e = keptFrame(o.outDir, frameBase(vi, k), o.runKey);
+        if (!e)
+            return false;
+        entries.push_back(std::move(*e));
     }
-    images.collect(false, viewFrames);
-    const auto f1 = Clock::now();
-    frameWallMs.push_back(msBetween(f0, f1));
-    if (k == 0)
-        firstFrameSeconds = std::chrono::duration<double>(f1 - t0).count();
-    if (tty)
-        progress(k, t, f1);
+    for (size_t vi = 0; vi < input.views.size(); ++vi)
+        viewFrames[vi].push_back(std::move(entries[vi]));
+    return true;
+}
+
+/// --frames: every rendered frame whose images are all written lands in DIR, view by view: its files
+/// renamed in, then its sidecar (ChunkFrames.h). A chunk killed at any point leaves whole frames only.
+void ReplayRun::landFrames() {
+    while (!landing.empty() && landing.front().k < images.oldestPending()) {
+        const Landing& l = landing.front();
+        for (size_t vi = 0; vi < input.views.size(); ++vi) {
+            const nlohmann::json& entry = viewFrames[vi][l.index[vi]];
+            out->publish(entryFiles(entry));
+            writeFileAtomically(o.outDir / sidecarName(frameBase(vi, l.k)),
+                                sidecarText(o.outDir, o.runKey, entry));
+        }
+        landing.pop_front();
+    }
 }
 
 /// The recorded ships ride the sea drawn under them (ocean/Buoyancy.h): the heave, pitch and roll of the
@@ -521,15 +610,14 @@ nlohmann::json ReplayRun::renderView(long long k, size_t vi, double t, const Ali
     target.readDisplay(display);
     times.readEnd = Clock::now();
 
-    char name[96];
-    std::snprintf(name, sizeof name, "%s%sframe_%05lld", view.name.c_str(), view.name.empty() ? "" : "_", k);
-    const std::string exrName = std::string(name) + ".exr", pngName = std::string(name) + ".png";
+    const std::string name = frameBase(vi, k);
+    const std::string exrName = name + ".exr", pngName = name + ".png";
     nlohmann::json fj;
     fj["index"] = k;
     fj["time_s"] = t;
     fj["pose"] = poseJson(pose);
     if (writeImages) {
-        images.frame(vi, viewFrames[vi].size(), out->staged(exrName), out->staged(pngName), view.width,
+        images.frame(vi, viewFrames[vi].size(), k, out->staged(exrName), out->staged(pngName), view.width,
                      view.height, scene, display, frameMetadata(k, t, pose, view), o.imageCompression);
         fj["exr"] = exrName;
         fj["png"] = pngName;
@@ -540,7 +628,7 @@ nlohmann::json ReplayRun::renderView(long long k, size_t vi, double t, const Ali
     }
     if (video && vi == 0)
         video->addFrame(display.data());
-    nlohmann::json extraPngs = extraViewPasses(vi, name, times);
+    nlohmann::json extraPngs = extraViewPasses(vi, k, name, times);
     if (writeImages && !extraViews.empty())
         fj["extra_views"] = std::move(extraPngs);
     times.encodeEnd = Clock::now();
@@ -552,7 +640,7 @@ nlohmann::json ReplayRun::renderView(long long k, size_t vi, double t, const Ali
 }
 
 /// The extra views' tonemaps of view vi (and their PNGs); returns their entries for summary.json.
-nlohmann::json ReplayRun::extraViewPasses(size_t vi, const std::string& name, ViewTimes& times) {
+nlohmann::json ReplayRun::extraViewPasses(size_t vi, long long k, const std::string& name, ViewTimes& times) {
     const ReplayView& view = input.views[vi];
     gl::FrameTargets& target = *targets[vi];
     nlohmann::json extraPngs = nlohmann::json::array();
@@ -564,7 +652,7 @@ nlohmann::json ReplayRun::extraViewPasses(size_t vi, const std::string& name, Vi
         times.extraTonemapMs += msBetween(e0, Clock::now());
         if (writeImages) {
             const std::string png = name + "." + e.suffix + ".png";
-            images.png(vi, out->staged(png), view.width, view.height, display, o.imageCompression);
+            images.png(vi, k, out->staged(png), view.width, view.height, display, o.imageCompression);
             extraPngs.push_back({{"view", e.view}, {"png", png}});
         }
     }
@@ -612,14 +700,24 @@ void ReplayRun::finish() {
     if (tty)
         std::fprintf(stderr, "\n");
     images.collect(true, viewFrames); // every image written (or the first failure thrown) before the summary
+    landFrames();
     if (video)
         video->finish(); // the video is in place only now; a failure before leaves none
     gpuTimer.drain();    // timer queries of the last frames are still in flight on real GPUs
     const double totalSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    if (out)
+    if (out && o.frames)
+        out->commitChunk(chunkSummaryName(*o.frames), summary(totalSeconds));
+    else if (out)
         out->commit(summary(totalSeconds));
-    logInfo("replay: " + std::to_string(plan.count) + " frames in " + std::to_string(totalSeconds) +
-            " s -> " + (o.outDir.empty() ? o.video->string() : o.outDir.string()));
+    if (o.frames)
+        logInfo("replay: frames " + std::to_string(o.frames->first) + "-" + std::to_string(o.frames->last) +
+                ": " + std::to_string(framesRendered) + " rendered, " + std::to_string(framesKept) +
+                " kept (their checksums matched), after a pre-roll of " + std::to_string(o.frames->first) +
+                " frames in " + shortNumber(prerollSeconds) + " s; " + shortNumber(totalSeconds) +
+                " s in all -> " + o.outDir.string());
+    else
+        logInfo("replay: " + std::to_string(plan.count) + " frames in " + std::to_string(totalSeconds) +
+                " s -> " + (o.outDir.empty() ? o.video->string() : o.outDir.string()));
 }
 
 /// summary.json: the run's inputs, GL and OCIO, one entry per view with its frames ("frames" repeats the
@@ -669,8 +767,22 @@ nlohmann::json ReplayRun::summary(double totalSeconds) const {
         {"frame_wall_ms_median", median(frameWallMs)},
         {"time_to_first_frame_s", firstFrameSeconds},
         {"total_s", totalSeconds},
-        {"frames_per_second_overall", static_cast<double>(plan.count) / totalSeconds},
+        {"frames_per_second_overall", static_cast<double>(framesRendered) / totalSeconds},
         {"frames_per_second_steady", 1000.0 / std::max(median(frameWallMs), 1e-9)}};
+    if (o.frames) {
+        char host[256] = {};
+        gethostname(host, sizeof host - 1);
+        s["chunk"] = {{"first", o.frames->first},
+                      {"last", o.frames->last},
+                      {"run_frames", plan.count},
+                      {"preroll_frames", o.frames->first},
+                      {"preroll_s", prerollSeconds},
+                      {"rendered", framesRendered},
+                      {"kept", framesKept},
+                      {"host", host},
+                      {"gl_renderer", context->info().renderer},
+                      {"run_key", o.runKey}};
+    }
     if (passTimer) {
         nlohmann::json medians;
         for (const auto& [name, v] : passSamples)
@@ -713,6 +825,10 @@ long long ReplaySession::frameCount() const {
     return mState->plan.count;
 }
 
+FrameRange ReplaySession::frameRange() const {
+    return mState->o.frames.value_or(FrameRange{0, mState->plan.count - 1});
+}
+
 void ReplaySession::renderFrame(long long k) {
     mState->run->renderFrame(k);
 }
@@ -728,7 +844,7 @@ const ReplayRunInfo& ReplaySession::info() const {
 /// A failure anywhere removes what the run wrote (the session's output transaction is never committed).
 void runReplay(const ReplayOptions& o) {
     ReplaySession session(o);
-    for (long long k = 0; k < session.frameCount(); ++k)
+    for (long long k = 0; k <= session.frameRange().last; ++k)
         session.renderFrame(k);
     session.finish();
 }

@@ -62,6 +62,17 @@ struct ReplayOptions {
     bool events = true;
     /// Draw the recording's aircraft, ships and weapons (ObjectRenderer.h); false: --no-objects.
     bool objects = true;
+    /// --frames I-J: render only frames I..J of the run the other options describe, as a chunk of a sharded
+    /// run (docs/SCALE.md). Frames 0..I-1 are simulated first without rendering (the pre-roll: the effects'
+    /// timeline, the wakes' paths and the ships' sea queries stepped through the same frame times), so frame
+    /// k's pixels equal a one-process run's. Each view frame lands on its own (files renamed into DIR, then
+    /// its sidecar NAME.check.json with the files' checksums and its summary entry); a frame whose sidecar
+    /// has this run's key and matches its files is kept, not rendered again (resume). The chunk's summary is
+    /// DIR/chunk-IIIII-JJJJJ.json; summary.json is left alone. Not with --video.
+    std::optional<FrameRange> frames;
+    /// What a sidecar must name for --frames to keep a frame: the command line less --frames and
+    /// --no-progress (set by the CLI), so a frame of a run with other options is rendered again.
+    std::string runKey;
 };
 
 /// What a replay run renders with, for benchmarks that time its frames.
@@ -81,6 +92,9 @@ public:
     ReplaySession(const ReplaySession&) = delete;
     ReplaySession& operator=(const ReplaySession&) = delete;
     long long frameCount() const;
+    /// --frames' range (or [0, frameCount() - 1]): runReplay() calls renderFrame for 0..last, and frames
+    /// before the first are the pre-roll (simulated, not rendered).
+    FrameRange frameRange() const;
     void renderFrame(long long k);
     void finish();
     const ReplayRunInfo& info() const;

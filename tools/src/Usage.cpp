@@ -25,4 +25,24 @@ void parseSize(const std::string& text, int& width, int& height) {
         throw bad();
 }
 
+FrameRange parseFrameRange(const std::string& text) {
+    auto bad = [&] {
+        return UsageError("--frames: expected I-J, the 0-based first and last frame with 0 <= I <= J (e.g. "
+                          "0-99), or one frame I, got '" +
+                          text + "'");
+    };
+    auto number = [&](const std::string& part) {
+        if (part.empty() || part.size() > 12 || part.find_first_not_of("0123456789") != std::string::npos)
+            throw bad();
+        return std::stoll(part);
+    };
+    const size_t dash = text.find('-');
+    FrameRange r;
+    r.first = number(text.substr(0, dash));
+    r.last = dash == std::string::npos ? r.first : number(text.substr(dash + 1));
+    if (r.last < r.first)
+        throw bad();
+    return r;
+}
+
 } // namespace pacifica::tools

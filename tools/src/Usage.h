@@ -16,4 +16,12 @@ public:
 /// Parses "WxH" (e.g. "640x360", 16 <= W, H <= 8192); throws UsageError naming --size.
 void parseSize(const std::string& text, int& width, int& height);
 
+/// Frames first..last of a run, 0-based and inclusive (--frames I-J).
+struct FrameRange {
+    long long first = 0, last = 0;
+};
+
+/// Parses "I-J" (0 <= I <= J, decimal) or "I" (one frame); throws UsageError naming --frames.
+FrameRange parseFrameRange(const std::string& text);
+
 } // namespace pacifica::tools

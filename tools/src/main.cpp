@@ -1,6 +1,6 @@
 // pacifica: the command-line tool. Subcommands:
 //   replay FLIGHT --out DIR [--fps N] [--size WxH] [--start S --end S] [--display D --view V]
-//          [--ocio-config FILE] [--no-images] [--env FILE] [ocean options: tools/src/OceanOptions.h]
+//          [--ocio-config FILE] [--no-images] [--env FILE] [--frames I-J] [ocean options: OceanOptions.h]
 //   tonemap compare INPUT... --out DIR [--ocio-config FILE]... [--lut3d N] [--max-pixels N]
 //   convert RECORDING OUT.txt.acmi
 // Any failure prints "pacifica: error: ..." naming the file/line/option and exits non-zero, leaving no
@@ -15,6 +15,7 @@
 #include <recording/Recording.h>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <csignal>
 #include <cstdio>
@@ -30,12 +31,13 @@ namespace tools = pacifica::tools;
 struct ReplayCommand {
     CLI::App* app = nullptr;
     tools::ReplayOptions replay;
-    std::string flight, outDir, size = "640x360", ocioConfig, start, end, video, environment;
+    std::string flight, outDir, size = "640x360", ocioConfig, start, end, video, environment, frames;
+    std::string runKey; ///< the command line less --frames and --no-progress (ReplayOptions::runKey)
     std::string imageCompression = "fast";
     std::vector<std::string> views;
     bool noImages = false, noProgress = false, listObjects = false, noEvents = false, noObjects = false;
     CLI::Option *videoOpt = nullptr, *startOpt = nullptr, *endOpt = nullptr, *ocioOpt = nullptr,
-                *envOpt = nullptr;
+                *envOpt = nullptr, *framesOpt = nullptr;
     tools::OceanOptions ocean;
 
     void add(CLI::App& parent);
@@ -100,6 +102,10 @@ void ReplayCommand::addOutputOptions() {
     app->add_flag("--no-events", noEvents,
                   "ignore the flight file's explosions and ships (the plain ocean, for comparisons)");
     app->add_option("--fov", replay.fovYDeg, "vertical field of view, degrees")->default_val(60.0f);
+    framesOpt =
+        app->add_option("--frames", frames,
+                        "render only frames I-J (0-based, inclusive) of the run: a chunk of a sharded "
+                        "run, resumable; its summary is chunk-IIIII-JJJJJ.json (docs/SCALE.md)");
     envOpt =
         app->add_option("--env", environment,
                         "HDR lat-long environment EXR for the sky and reflections (default: procedural)");
@@ -137,6 +143,9 @@ tools::ReplayOptions ReplayCommand::options() const {
                                                      : pacifica::capture::Compression::Fast;
     r.ocean = tools::toOceanDesc(ocean);
     r.progress = !noProgress;
+    if (framesOpt->count())
+        r.frames = tools::parseFrameRange(frames);
+    r.runKey = runKey;
     return r;
 }
 
@@ -213,6 +222,20 @@ struct ConvertCommand {
     }
 };
 
+/// ReplayOptions::runKey: the arguments as a JSON array, less --frames (and its value) and --no-progress,
+/// which differ between the chunks of one run.
+std::string replayRunKey(int argc, char** argv) {
+    std::vector<std::string> kept;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--frames")
+            ++i;
+        else if (a.rfind("--frames=", 0) != 0 && a != "--no-progress")
+            kept.push_back(a);
+    }
+    return nlohmann::json(kept).dump();
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -238,6 +261,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "pacifica: error: %s\nRun with --help for usage.\n", e.what());
         return 2;
     }
+    replay.runKey = replayRunKey(argc, argv);
     try {
         if (convert.app->parsed())
             return convert.run();

@@ -16,6 +16,7 @@
 #include <atomic>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <system_error>
@@ -117,6 +118,25 @@ std::string shortestText(T value) {
 
 uint64_t hashHalfPixels(const uint16_t* halfBits, size_t count) {
     return XXH64(halfBits, count * sizeof(uint16_t), 0);
+}
+
+std::optional<uint64_t> hashFileBytes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return std::nullopt;
+    std::unique_ptr<XXH64_state_t, XXH_errorcode (*)(XXH64_state_t*)> state(XXH64_createState(),
+                                                                            XXH64_freeState);
+    if (!state || XXH64_reset(state.get(), 0) != XXH_OK)
+        return std::nullopt;
+    std::vector<char> block(1 << 20);
+    while (in) {
+        in.read(block.data(), static_cast<std::streamsize>(block.size()));
+        if (in.gcount() > 0)
+            XXH64_update(state.get(), block.data(), static_cast<size_t>(in.gcount()));
+    }
+    if (in.bad())
+        return std::nullopt;
+    return XXH64_digest(state.get());
 }
 
 std::vector<uint16_t> toHalf(const float* data, size_t count) {

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -38,6 +39,9 @@ struct Metadata {
 
 /// XXH64 (seed 0) of the half values' raw bits, in memory order (little-endian on every supported host).
 uint64_t hashHalfPixels(const uint16_t* halfBits, size_t count);
+
+/// XXH64 (seed 0) of a file's bytes, read in blocks; std::nullopt when it cannot be opened or read.
+std::optional<uint64_t> hashFileBytes(const std::filesystem::path& path);
 
 /// Converts floats to IEEE 754 binary16 bits, rounding to nearest, ties to even; out-of-range values become
 /// +-infinity, NaN stays NaN.
