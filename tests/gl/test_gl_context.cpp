@@ -79,6 +79,45 @@ TEST_F(ContextTest, AMissingEglDeviceIsAnErrorListingTheDevices) {
     EXPECT_EQ(info().renderer, reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
 }
 
+TEST_F(ContextTest, ACudaDeviceIsFoundThroughEglNvDeviceCudaOrTheDefaultIsTakenWithANote) {
+    // A chunk of a sharded replay renders on the GPU Slurm gave it (CUDA_VISIBLE_DEVICES): the EGL device
+    // whose EGL_NV_device_cuda index is that one. Where no EGL device is a CUDA device (Mesa only), the
+    // default device is taken and info().device says so; with NVIDIA's EGL, the device named, or an error
+    // listing them.
+    EXPECT_TRUE(
+        contains(messageOf<gl::ContextError>([] { (void)gl::createHeadlessContext({.cudaDevice = "x1"}); }),
+                 "CUDA device 'x1': expected an index or GPU-UUID"));
+    auto zero = gl::createHeadlessContext({.cudaDevice = "0"});
+    const std::string device = zero->info().device;
+    if (contains(device, "no EGL device is a CUDA device")) {
+        EXPECT_EQ(device, "Mesa surfaceless (CUDA device 0 asked for; no EGL device is a CUDA device)");
+        EXPECT_EQ(zero->info().platform, "egl-surfaceless");
+    } else {
+        EXPECT_TRUE(contains(device, ", CUDA device 0")) << device;
+        EXPECT_TRUE(contains(zero->info().vendor, "NVIDIA")) << zero->info().vendor;
+        const std::string missing =
+            messageOf<gl::ContextError>([] { (void)gl::createHeadlessContext({.cudaDevice = "63"}); });
+        EXPECT_TRUE(
+            contains(missing, "CUDA device 63 has no EGL device (the CUDA devices EGL lists: EGL device "))
+            << missing;
+        // The same device by its UUID (GL_DEVICE_UUID_EXT of the context just made).
+        zero->makeCurrent();
+        GLubyte uuid[GL_UUID_SIZE_EXT] = {};
+        glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
+        std::string text = "GPU-";
+        char byte[3];
+        for (int i = 0; i < GL_UUID_SIZE_EXT; ++i) {
+            std::snprintf(byte, sizeof byte, "%02x", uuid[i]);
+            text += std::string(byte) + (i == 3 || i == 5 || i == 7 || i == 9 ? "-" : "");
+        }
+        auto byUuid = gl::createHeadlessContext({.cudaDevice = text});
+        EXPECT_TRUE(contains(byUuid->info().device, ", CUDA device 0 (GPU-")) << byUuid->info().device;
+    }
+    zero.reset();
+    EXPECT_NO_THROW(GlEnvironment::context()->makeCurrent());
+    EXPECT_EQ(info().renderer, reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+}
+
 // ---------------------------------------------------------------------------------------------------------
 
 TEST(EglDisplaySharing, DestroyingOneHeadlessContextKeepsAnotherWorking) {

@@ -8,6 +8,8 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <dlfcn.h>
@@ -89,6 +91,7 @@ public:
         if (!eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, mContext))
             throw ContextError("eglMakeCurrent failed: " + eglErrorName(eglGetError()));
     }
+    void setDevice(const std::string& device) { mInfo.device = device; }
 
 private:
     EGLDisplay mDisplay;
@@ -185,38 +188,100 @@ std::unique_ptr<GlContext> chosenDeviceContext(const char* clientExts, const Con
     EGLContext ctx = makeCoreContext(display, desc.debug, why);
     if (ctx == EGL_NO_CONTEXT)
         throw ContextError(asked + ": " + why);
-    return std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
+    auto context = std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
+    context->setDevice("EGL device " + std::to_string(desc.eglDevice));
+    return context;
+}
+
+/// EGL_NV_device_cuda: each EGL device's CUDA device index, -1 for a device that is not a CUDA device.
+std::vector<long> cudaIndices(const EGLDeviceEXT* devices, EGLint count) {
+    constexpr EGLint CUDA_DEVICE_NV = 0x323A; // EGL_CUDA_DEVICE_NV
+    std::vector<long> ids;
+    for (EGLint i = 0; i < count; ++i) {
+        EGLAttrib id = -1;
+        const bool cuda =
+            hasExtension(eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_NV_device_cuda") &&
+            eglQueryDeviceAttribEXT(devices[i], CUDA_DEVICE_NV, &id);
+        ids.push_back(cuda ? static_cast<long>(id) : -1L);
+    }
+    return ids;
+}
+
+/// "GPU-3f0d7c1a-..." -> the 32 hex digits, lower case ("" when it is not a UUID).
+std::string uuidDigits(const std::string& text) {
+    std::string hex;
+    for (char ch : text.substr(text.rfind("GPU-", 0) == 0 ? 4 : 0))
+        if (std::isxdigit(static_cast<unsigned char>(ch)))
+            hex += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        else if (ch != '-')
+            return "";
+    return hex.size() == 32 ? hex : "";
+}
+
+/// GL_DEVICE_UUID_EXT of the current context (EXT_memory_object) as 32 hex digits, "" without it.
+std::string currentDeviceUuid() {
+    if (!epoxy_has_gl_extension("GL_EXT_memory_object"))
+        return "";
+    GLubyte uuid[GL_UUID_SIZE_EXT] = {};
+    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
+    std::string hex;
+    char byte[3];
+    for (GLubyte b : uuid) {
+        std::snprintf(byte, sizeof byte, "%02x", b);
+        hex += byte;
+    }
+    return hex;
+}
+
+/// ContextDesc::cudaDevice: the EGL device of that CUDA device; nullptr when no EGL device is a CUDA device.
+std::unique_ptr<GlContext> cudaDeviceContext(const char* clientExts, const ContextDesc& desc) {
+    const std::string uuid = uuidDigits(desc.cudaDevice);
+    char* end = nullptr;
+    const long index = uuid.empty() ? std::strtol(desc.cudaDevice.c_str(), &end, 10) : -1;
+    if (uuid.empty() && (desc.cudaDevice.empty() || *end != '\0' || index < 0))
+        throw ContextError("CUDA device '" + desc.cudaDevice + "': expected an index or GPU-UUID");
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (!hasExtension(clientExts, "EGL_EXT_device_enumeration") || !eglQueryDevicesEXT(16, devices, &count))
+        count = 0;
+    const std::vector<long> ids = cudaIndices(devices, count);
+    std::string listed;
+    for (EGLint i = 0; i < count; ++i)
+        if (ids[i] >= 0)
+            listed += (listed.empty() ? "" : ", ") + std::string("EGL device ") + std::to_string(i) +
+                      " = CUDA " + std::to_string(ids[i]);
+    if (listed.empty())
+        return nullptr;
+    for (EGLint i = 0; i < count; ++i) {
+        if (ids[i] < 0 || (uuid.empty() && ids[i] != index))
+            continue;
+        EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+        std::string why;
+        EGLContext ctx =
+            display == EGL_NO_DISPLAY ? EGL_NO_CONTEXT : makeCoreContext(display, desc.debug, why);
+        if (ctx == EGL_NO_CONTEXT)
+            throw ContextError("CUDA device " + desc.cudaDevice + " (EGL device " + std::to_string(i) +
+                               "): " + why);
+        auto context = std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
+        if (!uuid.empty() && currentDeviceUuid() != uuid)
+            continue; // not this one: the context goes
+        context->setDevice("EGL device " + std::to_string(i) + ", CUDA device " + std::to_string(ids[i]) +
+                           (uuid.empty() ? std::string() : " (GPU-" + uuid + ")"));
+        return context;
+    }
+    throw ContextError("CUDA device " + desc.cudaDevice +
+                       " has no EGL device (the CUDA devices EGL lists: " + listed + ")");
 }
 
 } // namespace
 
-std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
-    const char* force = std::getenv("PACIFICA_EGL_PLATFORM");
-    const std::string forced = force ? force : "";
-    if (!forced.empty() && forced != "device" && forced != "surfaceless")
-        throw ContextError("PACIFICA_EGL_PLATFORM must be 'device' or 'surfaceless', got '" + forced + "'");
+namespace {
+
+/// The default choice: the first hardware EGL device that makes a context, else Mesa's surfaceless
+/// platform (PACIFICA_EGL_PLATFORM may force one). Throws ContextError listing why each failed.
+std::unique_ptr<EglContext> defaultHeadlessContext(const char* clientExts, const std::string& forced,
+                                                   bool debug) {
     std::vector<std::string> reasons;
-
-    // libepoxy loads libEGL on the first EGL call and aborts the process when it cannot: look first.
-    if (!dlopen("libEGL.so.1", RTLD_LAZY | RTLD_LOCAL)) { // kept loaded: epoxy opens it next
-        const char* err = dlerror();
-        throw ContextError(std::string("no EGL library: ") + (err ? err : "libEGL.so.1 cannot be loaded") +
-                           "; install libegl1 and a driver (libegl-mesa0)");
-    }
-    const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (!clientExts)
-        throw ContextError("no EGL implementation found (eglQueryString(EGL_NO_DISPLAY) failed: " +
-                           eglErrorName(eglGetError()) + "); install libegl1 and a driver (libegl-mesa0)");
-    if (desc.eglDevice >= 0)
-        return chosenDeviceContext(clientExts, desc);
-    if (!hasExtension(clientExts, "EGL_EXT_platform_device") &&
-        !hasExtension(clientExts, "EGL_MESA_platform_surfaceless"))
-        throw ContextError(
-            "no headless OpenGL 4.5 context: EGL found no driver: neither devices (EGL_EXT_platform_device) "
-            "nor Mesa's surfaceless "
-            "platform are offered, so libglvnd loaded no vendor library; install libegl-mesa0 "
-            "(Mesa) or the NVIDIA driver's EGL, and check __EGL_VENDOR_LIBRARY_FILENAMES/_DIRS");
-
     // 1. A hardware EGL device.
     if (forced != "surfaceless" && hasExtension(clientExts, "EGL_EXT_device_enumeration") &&
         hasExtension(clientExts, "EGL_EXT_platform_device")) {
@@ -231,9 +296,12 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
                 if (display == EGL_NO_DISPLAY)
                     continue;
                 std::string why;
-                EGLContext ctx = makeCoreContext(display, desc.debug, why);
-                if (ctx != EGL_NO_CONTEXT)
-                    return std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
+                EGLContext ctx = makeCoreContext(display, debug, why);
+                if (ctx != EGL_NO_CONTEXT) {
+                    auto context = std::make_unique<EglContext>(display, ctx, "egl-device", debug);
+                    context->setDevice("EGL device " + std::to_string(i));
+                    return context;
+                }
                 reasons.push_back("device " + std::to_string(i) + ": " + why);
             }
         }
@@ -246,9 +314,12 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
             eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (display != EGL_NO_DISPLAY) {
             std::string why;
-            EGLContext ctx = makeCoreContext(display, desc.debug, why);
-            if (ctx != EGL_NO_CONTEXT)
-                return std::make_unique<EglContext>(display, ctx, "egl-surfaceless", desc.debug);
+            EGLContext ctx = makeCoreContext(display, debug, why);
+            if (ctx != EGL_NO_CONTEXT) {
+                auto context = std::make_unique<EglContext>(display, ctx, "egl-surfaceless", debug);
+                context->setDevice("Mesa surfaceless");
+                return context;
+            }
             reasons.push_back("surfaceless: " + why);
         } else {
             reasons.push_back("surfaceless: no display (" + eglErrorName(eglGetError()) + ")");
@@ -260,6 +331,48 @@ std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
     for (const std::string& r : reasons)
         message += "; " + r;
     throw ContextError(message);
+}
+
+} // namespace
+
+std::unique_ptr<GlContext> createHeadlessContext(const ContextDesc& desc) {
+    const char* force = std::getenv("PACIFICA_EGL_PLATFORM");
+    const std::string forced = force ? force : "";
+    if (!forced.empty() && forced != "device" && forced != "surfaceless")
+        throw ContextError("PACIFICA_EGL_PLATFORM must be 'device' or 'surfaceless', got '" + forced + "'");
+
+    // libepoxy loads libEGL on the first EGL call and aborts the process when it cannot: look first.
+    if (!dlopen("libEGL.so.1", RTLD_LAZY | RTLD_LOCAL)) { // kept loaded: epoxy opens it next
+        const char* err = dlerror();
+        throw ContextError(std::string("no EGL library: ") + (err ? err : "libEGL.so.1 cannot be loaded") +
+                           "; install libegl1 and a driver (libegl-mesa0)");
+    }
+    const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!clientExts)
+        throw ContextError("no EGL implementation found (eglQueryString(EGL_NO_DISPLAY) failed: " +
+                           eglErrorName(eglGetError()) + "); install libegl1 and a driver (libegl-mesa0)");
+    if (desc.eglDevice >= 0)
+        return chosenDeviceContext(clientExts, desc);
+    if (!desc.cudaDevice.empty() && hasExtension(clientExts, "EGL_EXT_platform_device"))
+        if (std::unique_ptr<GlContext> c = cudaDeviceContext(clientExts, desc))
+            return c;
+    if (!hasExtension(clientExts, "EGL_EXT_platform_device") &&
+        !hasExtension(clientExts, "EGL_MESA_platform_surfaceless"))
+        throw ContextError(
+            "no headless OpenGL 4.5 context: EGL found no driver: neither devices (EGL_EXT_platform_device) "
+            "nor Mesa's surfaceless "
+            "platform are offered, so libglvnd loaded no vendor library; install libegl-mesa0 "
+            "(Mesa) or the NVIDIA driver's EGL, and check __EGL_VENDOR_LIBRARY_FILENAMES/_DIRS");
+    std::unique_ptr<EglContext> context = defaultHeadlessContext(clientExts, forced, desc.debug);
+    if (!desc.cudaDevice.empty()) { // no EGL device is a CUDA device: nothing can match, so the default
+        logWarning("CUDA device " + desc.cudaDevice +
+                   " asked for, but no EGL device is a CUDA device "
+                   "(EGL_NV_device_cuda): rendering on " +
+                   context->info().device);
+        context->setDevice(context->info().device + " (CUDA device " + desc.cudaDevice +
+                           " asked for; no EGL device is a CUDA device)");
+    }
+    return context;
 }
 
 } // namespace pacifica::gl

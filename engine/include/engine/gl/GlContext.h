@@ -36,7 +36,9 @@ struct ContextInfo {
     std::string vendor;
     std::string renderer;
     std::string version;
-    std::string platform;  ///< "egl-device", "egl-surfaceless" or "glfw"
+    std::string platform; ///< "egl-device", "egl-surfaceless" or "glfw"
+    /// Headless: which device, and why (e.g. "EGL device 1, CUDA device 1 (CUDA_VISIBLE_DEVICES=1)").
+    std::string device;
     bool software = false; ///< llvmpipe/softpipe: GL timer queries are wrong there (docs/PLATFORM.md)
 };
 
@@ -54,6 +56,14 @@ struct ContextDesc {
     /// platform. N >= 0: exactly device N of eglQueryDevicesEXT's list (Mesa's software device included,
     /// which is not necessarily last), no fallback; a missing device is a ContextError listing those there.
     int eglDevice = -1;
+    /// Headless, with eglDevice < 0: the CUDA device to render on, as the first entry of
+    /// CUDA_VISIBLE_DEVICES names it -- an index, or GPU-UUID. The EGL device is found through
+    /// EGL_NV_device_cuda (its EGL_CUDA_DEVICE_NV for an index; for a UUID, GL_DEVICE_UUID_EXT of a context
+    /// on each such device), never by the order of the device list, which CUDA_VISIBLE_DEVICES does not
+    /// change. None matching: a ContextError listing the CUDA devices there are. A machine where no EGL
+    /// device is a CUDA device (no NVIDIA EGL driver): the default choice, with a warning and info().device
+    /// saying so.
+    std::string cudaDevice;
 };
 
 class GlContext {
