@@ -36,6 +36,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <fstream>
 #include <future>
@@ -68,6 +69,12 @@ std::string hex64(uint64_t v) {
 
 using Clock = std::chrono::steady_clock;
 
+/// An environment variable's value, null when unset (summary.json).
+nlohmann::json environment(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
 double msBetween(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
 }
@@ -84,6 +91,8 @@ void checkOptions(const ReplayOptions& o) {
         throw UsageError("--max-frames must be >= 1, got " + std::to_string(o.maxFrames));
     if (o.outDir.empty() && !o.video)
         throw UsageError("--out: an output directory is required (or --video FILE alone)");
+    if (o.eglDevice >= 0 && !o.cudaDevice.empty())
+        throw UsageError("--egl-device and --cuda-device name the device twice: give one");
     if (o.frames && o.video)
         throw UsageError("--frames renders a chunk of the run's frames into --out; --video needs the whole "
                          "run (encode the chunks' PNGs once they are all there)");
@@ -327,6 +336,7 @@ private:
     bool keepFrame(long long k);
     void landFrames();
     nlohmann::json summary(double totalSeconds) const;
+    nlohmann::json chunkJson() const;
 
     const ReplayOptions& o;
     const ReplayInput& input;
@@ -393,7 +403,8 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
     : o(o_), input(input_), plan(plan_), t0(t0_), writeImages(o.writeImages && !o.outDir.empty()),
       oceanDesc(oceanWithEnvironment(o, environmentJson)),
       environmentName(o.environment ? o.environment->filename().string() : "procedural"),
-      colour(replayColour(o)), context(gl::createHeadlessContext({.eglDevice = o.eglDevice})),
+      colour(replayColour(o)),
+      context(gl::createHeadlessContext({.eglDevice = o.eglDevice, .cudaDevice = o.cudaDevice})),
       oceanEntity(addOcean(registry, oceanDesc)), targets(makeTargets(input.views)), tonemapper(colour),
       extraViews(makeExtraViews(o, colour)), gpuTimer(context->info()), effects(registry, events),
       timeline(registry, events, effects), images(writeImages),
@@ -720,6 +731,26 @@ void ReplayRun::finish() {
                 " s -> " + (o.outDir.empty() ? o.video->string() : o.outDir.string()));
 }
 
+/// summary's "chunk" (--frames): the range, the pre-roll, what was rendered and kept, and where.
+nlohmann::json ReplayRun::chunkJson() const {
+    char host[256] = {};
+    gethostname(host, sizeof host - 1);
+    return {{"first", o.frames->first},
+            {"last", o.frames->last},
+            {"run_frames", plan.count},
+            {"preroll_frames", o.frames->first},
+            {"preroll_s", prerollSeconds},
+            {"rendered", framesRendered},
+            {"kept", framesKept},
+            {"host", host},
+            {"gl_renderer", context->info().renderer},
+            {"gl_device", context->info().device},
+            {"cuda_visible_devices", environment("CUDA_VISIBLE_DEVICES")},
+            {"slurm_job_id", environment("SLURM_JOB_ID")},
+            {"slurm_array_task_id", environment("SLURM_ARRAY_TASK_ID")},
+            {"run_key", o.runKey}};
+}
+
 /// summary.json: the run's inputs, GL and OCIO, one entry per view with its frames ("frames" repeats the
 /// first view's, for single-view readers), and the timings.
 nlohmann::json ReplayRun::summary(double totalSeconds) const {
@@ -728,8 +759,11 @@ nlohmann::json ReplayRun::summary(double totalSeconds) const {
     s["flight"] = o.flight.string();
     s["format"] = input.format;
     s["recording"] = input.summary;
-    s["gl"] = {
-        {"vendor", gl.vendor}, {"renderer", gl.renderer}, {"version", gl.version}, {"platform", gl.platform}};
+    s["gl"] = {{"vendor", gl.vendor},
+               {"renderer", gl.renderer},
+               {"version", gl.version},
+               {"platform", gl.platform},
+               {"device", gl.device}};
     s["ocio"] = {{"config", colour.configDescription()},
                  {"input", colour.input().empty() ? std::string("scene_linear") : colour.input()},
                  {"display", colour.selectedDisplay()},
@@ -769,20 +803,8 @@ nlohmann::json ReplayRun::summary(double totalSeconds) const {
         {"total_s", totalSeconds},
         {"frames_per_second_overall", static_cast<double>(framesRendered) / totalSeconds},
         {"frames_per_second_steady", 1000.0 / std::max(median(frameWallMs), 1e-9)}};
-    if (o.frames) {
-        char host[256] = {};
-        gethostname(host, sizeof host - 1);
-        s["chunk"] = {{"first", o.frames->first},
-                      {"last", o.frames->last},
-                      {"run_frames", plan.count},
-                      {"preroll_frames", o.frames->first},
-                      {"preroll_s", prerollSeconds},
-                      {"rendered", framesRendered},
-                      {"kept", framesKept},
-                      {"host", host},
-                      {"gl_renderer", context->info().renderer},
-                      {"run_key", o.runKey}};
-    }
+    if (o.frames)
+        s["chunk"] = chunkJson();
     if (passTimer) {
         nlohmann::json medians;
         for (const auto& [name, v] : passSamples)
@@ -839,6 +861,14 @@ void ReplaySession::finish() {
 
 const ReplayRunInfo& ReplaySession::info() const {
     return mState->run->info();
+}
+
+long long replayFrameCount(const ReplayOptions& o) {
+    checkOptions(o);
+    const ReplayInput input = loadReplayInput(o.flight, o.rigs, o.width, o.height, o.fovYDeg);
+    ReplayOptions whole = o;
+    whole.frames.reset(); // the run's count, whatever chunk the options name
+    return planFrames(whole, input).count;
 }
 
 /// A failure anywhere removes what the run wrote (the session's output transaction is never committed).

@@ -35,6 +35,10 @@ struct ReplayOptions {
     /// --egl-device N: render on EGL device N of eglQueryDevicesEXT's list (gl::ContextDesc::eglDevice);
     /// -1 = the first hardware device, else Mesa's surfaceless platform.
     int eglDevice = -1;
+    /// --cuda-device ID: render on that CUDA device (an index or GPU-UUID, as CUDA_VISIBLE_DEVICES names
+    /// it), found through EGL_NV_device_cuda (gl::ContextDesc::cudaDevice); `pacifica farm chunk` passes the
+    /// first entry of CUDA_VISIBLE_DEVICES. Not with --egl-device.
+    std::string cudaDevice;
     std::string display; ///< empty = the config's default display
     std::string view;    ///< empty = the display's default view
     /// Further views of the same display (--view repeated): the scene is rendered once per frame and
@@ -103,6 +107,10 @@ private:
     struct State;
     std::unique_ptr<State> mState;
 };
+
+/// The number of frames the run these options describe renders, without rendering: the options checked and
+/// the flight read (no GL context, nothing written). Throws as runReplay() does.
+long long replayFrameCount(const ReplayOptions& options);
 
 /// Runs the replay. Throws (FlightError, ColorError, ContextError, CaptureError, UsageError) on failure,
 /// after removing every file this run wrote, so DIR holds no partial output.

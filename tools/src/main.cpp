@@ -3,8 +3,11 @@
 //          [--ocio-config FILE] [--no-images] [--env FILE] [--frames I-J] [ocean options: OceanOptions.h]
 //   tonemap compare INPUT... --out DIR [--ocio-config FILE]... [--lut3d N] [--max-pixels N]
 //   convert RECORDING OUT.txt.acmi
+//   farm run RECORDING... --out RUN [--chunk-frames N] [--engine local|slurm] ... -- REPLAY OPTIONS
+//   farm resume|status RUN; farm chunk RUN I; farm merge RUN (what the engines' tasks run)
 // Any failure prints "pacifica: error: ..." naming the file/line/option and exits non-zero, leaving no
 // partial output behind.
+#include "Farm.h"
 #include "OceanOptions.h"
 #include "Replay.h"
 #include "ReplayInput.h"
@@ -17,6 +20,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -70,6 +74,9 @@ void ReplayCommand::add(CLI::App& parent) {
                     "render on EGL device N (eglQueryDevicesEXT's order, software included; default: the "
                     "first GPU, else Mesa's surfaceless llvmpipe)")
         ->check(CLI::Range(0, 15));
+    app->add_option("--cuda-device", replay.cudaDevice,
+                    "render on this CUDA device (an index or GPU-UUID, as CUDA_VISIBLE_DEVICES names it), "
+                    "found through EGL_NV_device_cuda (docs/SCALE.md)");
     app->add_option("--fps", replay.fps, "frames per simulated second")->default_val(10.0);
     app->add_option("--size", size, "frame size WxH")->default_val("640x360");
     startOpt = app->add_option(
@@ -222,19 +229,129 @@ struct ConvertCommand {
     }
 };
 
-/// ReplayOptions::runKey: the arguments as a JSON array, less --frames (and its value) and --no-progress,
-/// which differ between the chunks of one run.
-std::string replayRunKey(int argc, char** argv) {
+/// ReplayOptions::runKey: the arguments as a JSON array, less what differs between the chunks of one run
+/// and leaves the pixels alone: --frames and --cuda-device (with their values) and --no-progress.
+std::string replayRunKey(const std::vector<std::string>& args) {
     std::vector<std::string> kept;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--frames")
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--frames" || a == "--cuda-device")
             ++i;
-        else if (a.rfind("--frames=", 0) != 0 && a != "--no-progress")
+        else if (a.rfind("--frames=", 0) != 0 && a.rfind("--cuda-device=", 0) != 0 && a != "--no-progress")
             kept.push_back(a);
     }
     return nlohmann::json(kept).dump();
 }
+
+/// tools::ReplayParser: a replay command line (after `pacifica replay`) parsed as the CLI parses it.
+tools::ReplayOptions parseReplayArgs(const std::vector<std::string>& args) {
+    CLI::App app{"pacifica"};
+    ReplayCommand cmd;
+    cmd.add(app);
+    std::vector<std::string> reversed = {"replay"};
+    reversed.insert(reversed.end(), args.begin(), args.end());
+    cmd.runKey = replayRunKey(reversed);
+    std::reverse(reversed.begin(), reversed.end()); // CLI11 takes a vector last argument first
+    try {
+        app.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+        throw tools::UsageError(std::string("the replay options after --: ") + e.what());
+    }
+    if (cmd.listObjects)
+        throw tools::UsageError("the replay options after --: --list-objects renders nothing");
+    return cmd.options();
+}
+
+/// `pacifica farm run|resume|status|chunk|merge` (tools/src/Farm.h); the replay's options follow `--`.
+struct FarmCommand {
+    CLI::App *app = nullptr, *runApp = nullptr, *resumeApp = nullptr, *statusApp = nullptr,
+             *chunkApp = nullptr, *mergeApp = nullptr;
+    tools::FarmOptions farm;
+    std::vector<std::string> recordings;
+    std::string runDir;
+    long long chunkIndex = 0;
+    int resubmit = 0;
+
+    void engineOptions(CLI::App* a) {
+        a->add_option("--engine", farm.engine.name, "local (a pool of processes here) or slurm (sbatch)")
+            ->check(CLI::IsMember({"local", "slurm"}));
+        a->add_option("--workers", farm.engine.workers, "local: chunks at once")->check(CLI::Range(1, 256));
+        a->add_option("--gpus", farm.engine.gpus, "local: worker slot s renders on GPU s % N (CUDA index)")
+            ->check(CLI::Range(0, 64));
+        a->add_option("--retries", farm.engine.retries, "times a failing chunk is run again")
+            ->check(CLI::Range(0, 100));
+        a->add_option("--throttle", farm.engine.throttle, "slurm: array tasks at once (0: no limit)")
+            ->check(CLI::Range(0, 100000));
+        a->add_option("--gpus-per-chunk", farm.engine.gpusPerChunk, "slurm: --gres=gpu:N per chunk")
+            ->check(CLI::Range(0, 16));
+        a->add_option("--partition", farm.engine.partition, "slurm: the partition");
+        a->add_flag("--wait", farm.engine.wait, "slurm: wait for the merge's report.json");
+    }
+    void add(CLI::App& parent) {
+        app = parent.add_subcommand("farm",
+                                    "a replay sharded into chunks on Slurm or a local pool: one summary "
+                                    "per recording, resumable (docs/SCALE.md)");
+        app->require_subcommand(1);
+        runApp =
+            app->add_subcommand("run", "plan and run: RECORDING... --out RUN [options] -- REPLAY OPTIONS");
+        runApp->add_option("recordings", recordings, "recordings (ACMI, IGC, flight CSV)")->required();
+        runApp->add_option("--out", runDir, "the run's folder (plan.json, a folder per recording)")
+            ->required();
+        runApp->add_option("--chunk-frames", farm.chunkFrames, "frames per chunk")->default_val(100);
+        runApp->add_flag("--dry-run", farm.dryRun, "print the plan and the chunks' commands, write nothing");
+        engineOptions(runApp);
+        resumeApp = app->add_subcommand("resume", "run the chunks of RUN that are not done, then merge");
+        resumeApp->add_option("run", runDir, "the run's folder")->required();
+        engineOptions(resumeApp);
+        statusApp = app->add_subcommand("status", "chunks and frames done, and failures, of RUN");
+        statusApp->add_option("run", runDir, "the run's folder")->required();
+        chunkApp = app->add_subcommand("chunk", "run chunk I of RUN (what each engine's task runs)");
+        chunkApp->add_option("run", runDir, "the run's folder")->required();
+        chunkApp->add_option("index", chunkIndex, "the chunk")->required();
+        mergeApp = app->add_subcommand("merge", "merge RUN's chunks (Slurm: resubmit unfinished ones first)");
+        mergeApp->add_option("run", runDir, "the run's folder")->required();
+        mergeApp->add_option("--resubmit", resubmit, "rounds of resubmission left")->default_val(0);
+    }
+    int run(const std::vector<std::string>& replayArgs) {
+        if (runApp->parsed()) {
+            farm.recordings.assign(recordings.begin(), recordings.end());
+            farm.runDir = runDir;
+            farm.replayArgs = replayArgs;
+            farm.exe = std::filesystem::read_symlink("/proc/self/exe");
+            return tools::farmRun(farm, parseReplayArgs);
+        }
+        if (!replayArgs.empty())
+            throw tools::UsageError("farm: only `farm run` takes replay options after --");
+        if (resumeApp->parsed())
+            return tools::farmResume(runDir, [this](tools::FarmEngine& e) {
+                for (const char* name : {"--engine", "--workers", "--gpus", "--retries", "--throttle",
+                                         "--gpus-per-chunk", "--partition", "--wait"})
+                    if (resumeApp->get_option(name)->count() == 0)
+                        continue;
+                    else if (std::string(name) == "--engine")
+                        e.name = farm.engine.name;
+                    else if (std::string(name) == "--workers")
+                        e.workers = farm.engine.workers;
+                    else if (std::string(name) == "--gpus")
+                        e.gpus = farm.engine.gpus;
+                    else if (std::string(name) == "--retries")
+                        e.retries = farm.engine.retries;
+                    else if (std::string(name) == "--throttle")
+                        e.throttle = farm.engine.throttle;
+                    else if (std::string(name) == "--gpus-per-chunk")
+                        e.gpusPerChunk = farm.engine.gpusPerChunk;
+                    else if (std::string(name) == "--partition")
+                        e.partition = farm.engine.partition;
+                    else
+                        e.wait = farm.engine.wait;
+            });
+        if (statusApp->parsed())
+            return tools::farmStatus(runDir);
+        if (chunkApp->parsed())
+            return tools::farmChunk(runDir, chunkIndex);
+        return tools::farmMerge(runDir, resubmit);
+    }
+};
 
 } // namespace
 
@@ -248,8 +365,18 @@ int main(int argc, char** argv) {
     compare.add(app);
     ConvertCommand convert;
     convert.add(app);
+    FarmCommand farm;
+    farm.add(app);
+    // `farm run ... -- REPLAY OPTIONS`: what follows -- is the replay's, not the farm's.
+    std::vector<std::string> args(argv + 1, argv + argc), replayArgs;
+    if (!args.empty() && args[0] == "farm")
+        if (auto dash = std::find(args.begin(), args.end(), "--"); dash != args.end()) {
+            replayArgs.assign(dash + 1, args.end());
+            args.erase(dash, args.end());
+        }
     try {
-        app.parse(argc, argv);
+        std::vector<std::string> reversed(args.rbegin(), args.rend());
+        app.parse(reversed);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::CallForAllHelp& e) {
@@ -261,8 +388,10 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "pacifica: error: %s\nRun with --help for usage.\n", e.what());
         return 2;
     }
-    replay.runKey = replayRunKey(argc, argv);
+    replay.runKey = replayRunKey(args);
     try {
+        if (farm.app->parsed())
+            return farm.run(replayArgs);
         if (convert.app->parsed())
             return convert.run();
         if (compare.app->parsed())
