@@ -101,17 +101,29 @@ TEST_F(ContextTest, ACudaDeviceIsFoundThroughEglNvDeviceCudaOrTheDefaultIsTakenW
             contains(missing, "CUDA device 63 has no EGL device (the CUDA devices EGL lists: EGL device "))
             << missing;
         // The same device by its UUID (GL_DEVICE_UUID_EXT of the context just made).
-        zero->makeCurrent();
-        GLubyte uuid[GL_UUID_SIZE_EXT] = {};
-        glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
-        std::string text = "GPU-";
-        char byte[3];
-        for (int i = 0; i < GL_UUID_SIZE_EXT; ++i) {
-            std::snprintf(byte, sizeof byte, "%02x", uuid[i]);
-            text += std::string(byte) + (i == 3 || i == 5 || i == 7 || i == 9 ? "-" : "");
-        }
-        auto byUuid = gl::createHeadlessContext({.cudaDevice = text});
+        auto uuidOf = [](gl::GlContext& c) {
+            c.makeCurrent();
+            GLubyte uuid[GL_UUID_SIZE_EXT] = {};
+            glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
+            std::string text = "GPU-";
+            char byte[3];
+            for (int i = 0; i < GL_UUID_SIZE_EXT; ++i) {
+                std::snprintf(byte, sizeof byte, "%02x", uuid[i]);
+                text += std::string(byte) + (i == 3 || i == 5 || i == 7 || i == 9 ? "-" : "");
+            }
+            return text;
+        };
+        const std::string uuid0 = uuidOf(*zero);
+        auto byUuid = gl::createHeadlessContext({.cudaDevice = uuid0});
         EXPECT_TRUE(contains(byUuid->info().device, ", CUDA device 0 (GPU-")) << byUuid->info().device;
+        // A second GPU, where there is one, is another device: its own EGL device and UUID.
+        if (contains(missing, "= CUDA 1")) {
+            auto one = gl::createHeadlessContext({.cudaDevice = "1"});
+            EXPECT_TRUE(contains(one->info().device, ", CUDA device 1")) << one->info().device;
+            EXPECT_NE(uuidOf(*one), uuid0);
+            std::printf("CUDA 0: %s, %s; CUDA 1: %s, %s\n", zero->info().device.c_str(), uuid0.c_str(),
+                        one->info().device.c_str(), uuidOf(*one).c_str());
+        }
     }
     zero.reset();
     EXPECT_NO_THROW(GlEnvironment::context()->makeCurrent());

@@ -58,6 +58,14 @@ bool hasExtension(const char* list, const char* name) {
     return false;
 }
 
+/// eglQueryDevicesEXT is there: EGL_EXT_device_enumeration, or EGL_EXT_device_base (enumeration and query in
+/// one), which is what NVIDIA's EGL reports (seen with driver 580: no EGL_EXT_device_enumeration in the
+/// list).
+bool canListDevices(const char* clientExts) {
+    return hasExtension(clientExts, "EGL_EXT_device_enumeration") ||
+           hasExtension(clientExts, "EGL_EXT_device_base");
+}
+
 /// eglInitialize/eglTerminate act on a display shared by every context of the platform: count our users and
 /// terminate only when the last context on a display goes, so destroying one context never breaks another.
 std::map<EGLDisplay, int>& displayUsers() {
@@ -168,8 +176,7 @@ std::string describeDevices(const EGLDeviceEXT* devices, EGLint count) {
 /// ContextDesc::eglDevice >= 0: that device or an error naming what there is.
 std::unique_ptr<GlContext> chosenDeviceContext(const char* clientExts, const ContextDesc& desc) {
     const std::string asked = "EGL device " + std::to_string(desc.eglDevice);
-    if (!hasExtension(clientExts, "EGL_EXT_device_enumeration") ||
-        !hasExtension(clientExts, "EGL_EXT_platform_device"))
+    if (!canListDevices(clientExts) || !hasExtension(clientExts, "EGL_EXT_platform_device"))
         throw ContextError(asked +
                            " was asked for, but this EGL cannot list devices (no EGL_EXT_device_enumeration "
                            "and EGL_EXT_platform_device)");
@@ -242,7 +249,7 @@ std::unique_ptr<GlContext> cudaDeviceContext(const char* clientExts, const Conte
         throw ContextError("CUDA device '" + desc.cudaDevice + "': expected an index or GPU-UUID");
     EGLDeviceEXT devices[16];
     EGLint count = 0;
-    if (!hasExtension(clientExts, "EGL_EXT_device_enumeration") || !eglQueryDevicesEXT(16, devices, &count))
+    if (!canListDevices(clientExts) || !eglQueryDevicesEXT(16, devices, &count))
         count = 0;
     const std::vector<long> ids = cudaIndices(devices, count);
     std::string listed;
@@ -283,7 +290,7 @@ std::unique_ptr<EglContext> defaultHeadlessContext(const char* clientExts, const
                                                    bool debug) {
     std::vector<std::string> reasons;
     // 1. A hardware EGL device.
-    if (forced != "surfaceless" && hasExtension(clientExts, "EGL_EXT_device_enumeration") &&
+    if (forced != "surfaceless" && canListDevices(clientExts) &&
         hasExtension(clientExts, "EGL_EXT_platform_device")) {
         EGLDeviceEXT devices[16];
         EGLint count = 0;
