@@ -27,8 +27,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import test_e2e  # noqa: E402
 import test_faults  # noqa: E402
 from test_e2e import child_env, exr_xxh64  # noqa: E402
+from test_faults import run  # noqa: E402
 
-RUN_TIMEOUT_S = 240
+RUN_TIMEOUT_S = test_faults.RUN_TIMEOUT_S
 STAGING = ".pacifica-staging-"
 VIEWS = ("chase", "orbit")
 
@@ -39,15 +40,6 @@ def run_args(source_dir, out, extra=()):
     return ["replay", acmi, "--rig", "chase:Pacifica Jet,name=chase", "--rig",
             "orbit:Carrier,name=orbit,distance=900,elevation=35,rate=0,azimuth=315", "--start", "218", "--end", "225",
             "--fps", "1", "--size", "160x90", "--no-progress", "--out", out, *extra]
-
-
-def run(exe, args, **kw):
-    cmd = [exe, *args]
-    print("  $ " + " ".join(f"'{a}'" if (" " in a or not a) else a for a in cmd))
-    t = time.monotonic()
-    p = subprocess.run(cmd, env=child_env(None), capture_output=True, text=True, timeout=RUN_TIMEOUT_S, **kw)
-    print(f"    exit {p.returncode} after {time.monotonic() - t:.1f} s")
-    return p
 
 
 def load(c, path):

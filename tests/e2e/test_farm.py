@@ -20,7 +20,6 @@ Cases (chosen with --case, one ctest test each):
 
 Usage: test_farm.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library + OIIO's oiiotool)
 """
-import json
 import os
 import signal
 import stat
@@ -31,6 +30,8 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import test_e2e  # noqa: E402
 from test_e2e import child_env, exr_xxh64  # noqa: E402
+from test_faults import run  # noqa: E402
+from test_chunks import load  # noqa: E402
 
 RUN_TIMEOUT_S = 300
 VIEWS = ("chase", "orbit")
@@ -41,23 +42,6 @@ REPLAY = ["--rig", "chase:Pacifica Jet,name=chase", "--rig",
 
 def sortie(source_dir):
     return os.path.join(source_dir, "tools", "data", "sortie.txt.acmi")
-
-
-def run(exe, args, env=None, **kw):
-    cmd = [exe, *args]
-    print("  $ " + " ".join(f"'{a}'" if (" " in a or not a) else a for a in cmd))
-    t = time.monotonic()
-    p = subprocess.run(cmd, env=child_env(env), capture_output=True, text=True, timeout=RUN_TIMEOUT_S, **kw)
-    print(f"    exit {p.returncode} after {time.monotonic() - t:.1f} s")
-    return p
-
-
-def load(c, path):
-    try:
-        with open(path) as f:
-            return json.load(f)
-    except (OSError, ValueError) as e:
-        c.require(False, f"{path} is valid JSON", str(e))
 
 
 def reference(c, exe, source_dir, tmp):
@@ -106,7 +90,11 @@ def kill_chunk_after_first_frame(c, out, frames, first, deadline_s=RUN_TIMEOUT_S
     while time.monotonic() < deadline:
         pid = replay_pid(frames)
         if pid and all(os.path.exists(s) for s in sidecars):
-            os.kill(pid, signal.SIGKILL)
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:  # it finished between the look and the kill: the checks will say so
+                print(f"    the replay of frames {frames} finished before it could be killed")
+                return False
             print(f"    killed the replay of frames {frames} (pid {pid}) after frame {first} landed")
             return True
         time.sleep(0.005)
