@@ -10,8 +10,8 @@ Cases (chosen with --case, one ctest test each):
           file, PNG bytes), with one entry per chunk (range, host, GPU, wall time); report.json has the bad
           file quarantined with its error and no failed chunk; the exit status is 1 (a recording was
           quarantined). `farm status` counts 2/2 chunks; `farm resume` renders nothing and rewrites nothing.
-          A chunk that always fails (its frames' folder made unwritable) is given up after 1 + --retries
-          attempts and named in report.json with its error.
+          A chunk that always fails (its replay asks for an EGL device that does not exist) is given up after
+          1 + --retries attempts and named in report.json with its error.
   slurm   the same run on a single-node Slurm started for the test (tools/farm/slurm-local.sh, two fake GPUs):
           a job array of the chunks and a merge job after it. Chunk 1 is killed the same way; the merge job
           submits it again and the run completes, equal to the one-process run. Each chunk got one GPU from
@@ -22,7 +22,6 @@ Usage: test_farm.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard li
 """
 import os
 import signal
-import stat
 import subprocess
 import sys
 import time
@@ -68,8 +67,8 @@ def frames_equal(c, out, ref, what):
     c.check(not bad and len(exrs) == 16, what, "; ".join(bad[:6]))
 
 
-def replay_pid(frames):
-    """The pid of the `pacifica replay` process rendering `--frames FRAMES`, or None."""
+def replay_pid(frames, out):
+    """The pid of the `pacifica replay` process rendering `--frames FRAMES` into `out`, or None."""
     for entry in os.listdir("/proc"):
         if not entry.isdigit():
             continue
@@ -78,7 +77,7 @@ def replay_pid(frames):
                 args = f.read().split(b"\0")
         except OSError:
             continue
-        if b"replay" in args and b"--frames" in args and frames.encode() in args:
+        if b"replay" in args and b"--frames" in args and frames.encode() in args and out.encode() in args:
             return int(entry)
     return None
 
@@ -88,7 +87,7 @@ def kill_chunk_after_first_frame(c, out, frames, first, deadline_s=RUN_TIMEOUT_S
     deadline = time.monotonic() + deadline_s
     sidecars = [os.path.join(out, f"{v}_frame_{first:05d}.check.json") for v in VIEWS]
     while time.monotonic() < deadline:
-        pid = replay_pid(frames)
+        pid = replay_pid(frames, out)
         if pid and all(os.path.exists(s) for s in sidecars):
             try:
                 os.kill(pid, signal.SIGKILL)
@@ -156,23 +155,21 @@ def case_local(c, exe, source_dir, tmp):
     changed = [n for n, t in stamps.items() if os.stat(os.path.join(out, n)).st_mtime_ns != t]
     c.check(not changed, "and rewrites no frame or chunk summary", str(changed))
 
-    print("[give up] a chunk that always fails")
+    print("[give up] a chunk that always fails: its replay asks for an EGL device that does not exist")
     run2 = os.path.join(tmp, "failing")
-    os.makedirs(os.path.join(run2, "sortie"))
-    os.chmod(os.path.join(run2, "sortie"), stat.S_IRUSR | stat.S_IXUSR)
-    if os.access(os.path.join(run2, "sortie"), os.W_OK):
-        print("    (running as root: a read-only folder is writable; a file in the folder's place instead)")
-        os.rmdir(os.path.join(run2, "sortie"))
-        with open(os.path.join(run2, "sortie"), "w") as f:
-            f.write("in the way\n")
     p = run(exe, ["farm", "run", sortie(source_dir), "--out", run2, "--chunk-frames", "8", "--retries", "1", "--",
-                  *REPLAY])
+                  *REPLAY, "--egl-device", "15"])
     report = load(c, os.path.join(run2, "report.json"))
     failed = report.get("failed_chunks", [])
     c.check(p.returncode == 1 and p.stderr.count("farm: chunk 0") == 2 and "giving up" in p.stderr,
             "the failing chunk runs 1 + --retries times, then the pool gives up", p.stderr[-800:])
-    c.check(len(failed) == 1 and failed[0]["frames"] == [0, 7] and "pacifica: error: --out" in failed[0]["error"],
-            "report.json names the failed chunk, its frames and the replay's error", str(failed)[:600])
+    c.check(len(failed) == 1 and failed[0]["frames"] == [0, 7] and
+            "pacifica: error: EGL device 15 does not exist" in failed[0]["error"] and
+            "farm: attempt 2 exit 1" in failed[0]["error"],
+            "report.json names the failed chunk, its frames, the replay's error and how its last attempt ended",
+            str(failed)[:600])
+    c.check(report.get("recordings", [{}])[0].get("missing_frames") == [[0, 7]],
+            "report.json: the recording is incomplete, frames 0-7 missing", str(report.get("recordings"))[:400])
 
 
 def slurm_env(slurm_dir):

@@ -90,8 +90,8 @@ TEST_F(ContextTest, ACudaDeviceIsFoundThroughEglNvDeviceCudaOrTheDefaultIsTakenW
     auto zero = gl::createHeadlessContext({.cudaDevice = "0"});
     const std::string device = zero->info().device;
     if (contains(device, "no EGL device is a CUDA device")) {
-        EXPECT_EQ(device, "Mesa surfaceless (CUDA device 0 asked for; no EGL device is a CUDA device)");
-        EXPECT_EQ(zero->info().platform, "egl-surfaceless");
+        EXPECT_TRUE(device.ends_with(" (CUDA device 0 asked for; no EGL device is a CUDA device)")) << device;
+        EXPECT_EQ(device.substr(0, device.find(" (CUDA")), info().device); // the default, as the shared one
     } else {
         EXPECT_TRUE(contains(device, ", CUDA device 0")) << device;
         EXPECT_TRUE(contains(zero->info().vendor, "NVIDIA")) << zero->info().vendor;

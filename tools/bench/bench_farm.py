@@ -62,10 +62,12 @@ def farm(exe, flight, replay, out, workers, chunk, gpus, repeat):
 
 
 def chunk_overheads(s):
-    """Per chunk: its start-up beyond a steady frame (context, shaders, first frame) and its pre-roll, s."""
+    """Per chunk: its start-up beyond a steady frame (context, shaders, first frame; the pre-roll, which the
+    time to the first frame includes, taken out) and its pre-roll, s."""
     start, pre = [], []
     for c in s["chunks"]:
-        start.append(max(0.0, c.get("time_to_first_frame_s", 0.0) - c.get("frame_wall_ms_median", 0.0) / 1000.0))
+        start.append(max(0.0, c.get("time_to_first_frame_s", 0.0) - c.get("frame_wall_ms_median", 0.0) / 1000.0 -
+                         c.get("preroll_s", 0.0)))
         pre.append(c.get("preroll_s", 0.0))
     return statistics.mean(start), statistics.mean(pre)
 

@@ -203,7 +203,8 @@ std::string recordingName(const fs::path& path, const std::vector<PlannedRecordi
 Plan makePlan(const FarmOptions& o, const ReplayParser& parseReplay) {
     Plan p{o.runDir, o.exe, o.replayArgs, o.chunkFrames, o.engine, {}, {}};
     for (const fs::path& path : o.recordings) {
-        PlannedRecording r{fs::absolute(path), recordingName(path, p.recordings), 0, {}};
+        PlannedRecording r{
+            fs::weakly_canonical(fs::absolute(path)), recordingName(path, p.recordings), 0, {}};
         std::vector<std::string> args = {r.path.string()};
         args.insert(args.end(), o.replayArgs.begin(), o.replayArgs.end());
         args.insert(args.end(), {"--out", (o.runDir / r.name).string()});
@@ -329,9 +330,9 @@ void runLocal(const Plan& p, const std::vector<long long>& indices) {
 
 // ---- Slurm ----
 
-/// Runs a command, returns its stdout; throws naming it when it fails.
+/// Runs a command, returns its stdout (its stderr goes to ours); throws naming it when it fails.
 std::string capture(const std::string& command) {
-    FILE* f = popen((command + " 2>&1").c_str(), "r");
+    FILE* f = popen(command.c_str(), "r");
     if (!f)
         throw std::runtime_error("farm: cannot run " + command);
     std::string out;
@@ -364,7 +365,12 @@ std::pair<std::string, std::string> submitSlurm(const Plan& p, const std::vector
         array += " --gres=gpu:" + std::to_string(p.engine.gpusPerChunk);
     array += " --output=" + shellQuote((p.runDir / "logs" / "chunk-%5a.log").string()) + " " +
              shellQuote((dir / "chunk.sh").string());
-    auto jobId = [](std::string out) { return out.substr(0, out.find_first_of(";\n")); };
+    auto jobId = [](const std::string& out) { // --parsable: "ID" or "ID;CLUSTER"
+        const std::string id = out.substr(0, out.find_first_of(";\n"));
+        if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+            throw std::runtime_error("farm: sbatch printed no job id: '" + out + "'");
+        return id;
+    };
     const std::string arrayId = jobId(capture(array));
     const std::string mergeId =
         jobId(capture(common + " --job-name=pacifica-merge --dependency=afterany:" + arrayId +
@@ -536,13 +542,16 @@ int farmRun(const FarmOptions& o, const ReplayParser& parseReplay) {
             throw UsageError("farm run: the replay options after -- must not set " +
                              a.substr(0, a.find('=')) + " (the farm sets --out and --frames per chunk)");
     FarmOptions abs = o;
-    abs.runDir = fs::absolute(o.runDir);
+    abs.runDir = fs::weakly_canonical(fs::absolute(o.runDir));
     Plan p = makePlan(abs, parseReplay);
     if (o.dryRun) {
         printPlan(p);
         return 0;
     }
     fs::create_directories(p.runDir / "logs");
+    for (const PlannedRecording& r : p.recordings) // made here, so no chunk takes it for its own
+        if (r.error.empty())
+            fs::create_directories(p.runDir / r.name);
     writeFileAtomically(planPath(p.runDir), planJson(p).dump(2) + "\n");
     std::vector<long long> all;
     for (const Chunk& c : p.chunks)
@@ -556,7 +565,7 @@ int farmRun(const FarmOptions& o, const ReplayParser& parseReplay) {
 }
 
 int farmResume(const fs::path& runDir, const std::function<void(FarmEngine&)>& adjust) {
-    Plan p = loadPlan(fs::absolute(runDir));
+    Plan p = loadPlan(fs::weakly_canonical(fs::absolute(runDir)));
     adjust(p.engine);
     checkEngine(p.engine);
     writeFileAtomically(planPath(p.runDir), planJson(p).dump(2) + "\n");
@@ -571,7 +580,7 @@ int farmResume(const fs::path& runDir, const std::function<void(FarmEngine&)>& a
 }
 
 int farmStatus(const fs::path& runDir) {
-    const Plan p = loadPlan(fs::absolute(runDir));
+    const Plan p = loadPlan(fs::weakly_canonical(fs::absolute(runDir)));
     std::map<size_t, std::pair<long long, long long>> done; // recording -> (chunks done, frames done)
     for (const Chunk& c : p.chunks)
         if (finishedChunk(p, c)) {
@@ -597,15 +606,15 @@ int farmStatus(const fs::path& runDir) {
 }
 
 int farmChunk(const fs::path& runDir, long long index) {
-    const Plan p = loadPlan(fs::absolute(runDir));
+    const Plan p = loadPlan(fs::weakly_canonical(fs::absolute(runDir)));
     if (index < 0 || index >= static_cast<long long>(p.chunks.size()))
         throw UsageError("farm chunk: no chunk " + std::to_string(index) + " in " +
                          planPath(runDir).string() + " (0-" + std::to_string(p.chunks.size() - 1) + ")");
     std::vector<std::string> args = chunkArgs(p, p.chunks[static_cast<size_t>(index)]);
     const char* cuda = std::getenv("CUDA_VISIBLE_DEVICES");
-    bool hasDevice = false;
+    bool hasDevice = false; // a device named in the replay's options wins over the engine's
     for (const std::string& a : p.replayArgs)
-        hasDevice = hasDevice || a.rfind("--egl-device", 0) == 0;
+        hasDevice = hasDevice || a.rfind("--egl-device", 0) == 0 || a.rfind("--cuda-device", 0) == 0;
     if (cuda && *cuda && !hasDevice)
         args.insert(args.end(), {"--cuda-device", std::string(cuda).substr(0, std::string(cuda).find(','))});
     std::vector<char*> argv = {const_cast<char*>(p.exe.c_str())};
@@ -618,7 +627,7 @@ int farmChunk(const fs::path& runDir, long long index) {
 }
 
 int farmMerge(const fs::path& runDir, int resubmitRounds) {
-    const Plan p = loadPlan(fs::absolute(runDir));
+    const Plan p = loadPlan(fs::weakly_canonical(fs::absolute(runDir)));
     const std::vector<long long> todo = unfinished(p);
     if (p.engine.name == "slurm" && !todo.empty() && resubmitRounds > 0) {
         logWarning("farm: chunks " + joinIndices(todo) + " did not finish; submitting them again (" +

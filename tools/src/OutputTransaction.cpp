@@ -41,7 +41,7 @@ void OutputTransaction::checkWritable(const fs::path& dir) {
         throw UsageError("--out: " + what + " is not writable: " + std::strerror(errno));
 }
 
-OutputTransaction::OutputTransaction(fs::path dir) : mDir(std::move(dir)) {
+OutputTransaction::OutputTransaction(fs::path dir, bool shared) : mDir(std::move(dir)) {
     checkWritable(mDir);
     std::error_code ec;
     if (!fs::exists(mDir, ec)) {
@@ -54,14 +54,19 @@ OutputTransaction::OutputTransaction(fs::path dir) : mDir(std::move(dir)) {
         fs::create_directories(mDir, ec);
         if (ec)
             throw UsageError("--out: cannot create directory '" + mDir.string() + "': " + ec.message());
+        if (shared)
+            mCreatedRoot.clear(); // other processes may be writing into it already
     }
     removeStaleStaging();
     const std::string name = STAGING_PREFIX + std::to_string(getpid());
     mStaging = mDir / name;
     mLock = mDir / (name + LOCK_SUFFIX);
     // The lock first, then the folder: a staging folder without a locked lock file belongs to a dead run.
-    mLockFd = open(mLock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (mLockFd < 0 || flock(mLockFd, LOCK_EX | LOCK_NB) != 0)
+    // The lock file is locked under another name and renamed into place, so a run cleaning up dead runs'
+    // folders at the same moment never finds it unlocked.
+    const fs::path unlocked = mDir / (name + ".locking");
+    mLockFd = open(unlocked.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (mLockFd < 0 || flock(mLockFd, LOCK_EX | LOCK_NB) != 0 || rename(unlocked.c_str(), mLock.c_str()) != 0)
         throw UsageError("--out: cannot lock '" + mLock.string() + "': " + std::strerror(errno));
     fs::remove_all(mStaging, ec); // a dead run with this pid
     fs::create_directory(mStaging, ec);
@@ -74,6 +79,15 @@ void OutputTransaction::removeStaleStaging() {
     std::vector<fs::path> stale;
     for (const fs::directory_entry& e : fs::directory_iterator(mDir, ec)) {
         const std::string n = e.path().filename().string();
+        if (n.rfind(STAGING_PREFIX, 0) == 0 &&
+            n.ends_with(".locking")) { // killed before its lock was in place
+            const int fd = open(e.path().c_str(), O_RDWR | O_CLOEXEC);
+            if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0)
+                fs::remove(e.path(), ec);
+            if (fd >= 0)
+                close(fd);
+            continue;
+        }
         if (n.rfind(STAGING_PREFIX, 0) != 0 || n.size() <= std::strlen(LOCK_SUFFIX) ||
             n.compare(n.size() - std::strlen(LOCK_SUFFIX), std::string::npos, LOCK_SUFFIX) != 0)
             continue;
@@ -143,9 +157,10 @@ void OutputTransaction::publish(const std::vector<std::string>& names) {
     }
 }
 
-void OutputTransaction::commitChunk(const std::string& name, const nlohmann::json& summary) {
+void OutputTransaction::land(const std::string& name, const std::string& text) {
     mCommitted = true;
-    writeFileAtomically(mDir / name, summary.dump(2) + "\n");
+    writeFileAtomically(mStaging / name, text); // its temporary, if killed, stays inside the staging folder
+    fs::rename(mStaging / name, mDir / name);
 }
 
 } // namespace pacifica::tools

@@ -20,8 +20,10 @@ namespace pacifica::tools {
 class OutputTransaction {
 public:
     /// Creates DIR if missing, removes the staging folders of runs into DIR that died, and makes this run's.
-    /// Throws UsageError naming DIR when it cannot be written (checkWritable).
-    explicit OutputTransaction(std::filesystem::path dir);
+    /// Throws UsageError naming DIR when it cannot be written (checkWritable). `shared`: DIR is shared with
+    /// other processes writing into it at the same time (the chunks of a sharded run, --frames): it is never
+    /// removed, not even when this process created it and fails before anything landed.
+    explicit OutputTransaction(std::filesystem::path dir, bool shared = false);
     ~OutputTransaction();
     OutputTransaction(const OutputTransaction&) = delete;
     OutputTransaction& operator=(const OutputTransaction&) = delete;
@@ -32,11 +34,12 @@ public:
     /// that get replaced are kept aside until the end, so a failure part-way puts DIR back as it was.
     void commit(const nlohmann::json& summary);
     /// A chunk of a sharded run (--frames) shares DIR with other chunks and lands frame by frame: publish()
-    /// moves these staged files into DIR now, each by one rename (replacing any there). From the first call
-    /// on, DIR is kept whatever happens: what landed is whole and can be resumed.
+    /// moves these staged files into DIR now, each by one rename (replacing any there).
     void publish(const std::vector<std::string>& names);
-    /// Writes DIR/name atomically: a chunk's summary (summary.json stays the one-process run's).
-    void commitChunk(const std::string& name, const nlohmann::json& summary);
+    /// Writes `text` into the staging folder, then renames it to DIR/name: a frame's sidecar or a chunk's
+    /// summary appears whole or not at all, and a process killed while writing it leaves its temporary in
+    /// its own staging folder (removed by the next run), never in DIR.
+    void land(const std::string& name, const std::string& text);
     /// Staging folders of dead runs removed when this one started (for the log).
     int staleRemoved() const { return mStaleRemoved; }
 

@@ -422,7 +422,7 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
     if (o.events)
         scheduleEvents(timeline, input, plan.start);
     if (!o.outDir.empty()) {
-        out.emplace(o.outDir);
+        out.emplace(o.outDir, o.frames.has_value()); // a chunk shares DIR with the run's other chunks
         if (out->staleRemoved() > 0)
             logInfo("replay: removed " + std::to_string(out->staleRemoved()) + " staging folder(s) of " +
                     "earlier runs into " + o.outDir.string() + " that did not finish (killed)");
@@ -509,8 +509,7 @@ void ReplayRun::landFrames() {
         for (size_t vi = 0; vi < input.views.size(); ++vi) {
             const nlohmann::json& entry = viewFrames[vi][l.index[vi]];
             out->publish(entryFiles(entry));
-            writeFileAtomically(o.outDir / sidecarName(frameBase(vi, l.k)),
-                                sidecarText(o.outDir, o.runKey, entry));
+            out->land(sidecarName(frameBase(vi, l.k)), sidecarText(o.outDir, o.runKey, entry));
         }
         landing.pop_front();
     }
@@ -717,7 +716,7 @@ void ReplayRun::finish() {
     gpuTimer.drain();    // timer queries of the last frames are still in flight on real GPUs
     const double totalSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (out && o.frames)
-        out->commitChunk(chunkSummaryName(*o.frames), summary(totalSeconds));
+        out->land(chunkSummaryName(*o.frames), summary(totalSeconds).dump(2) + "\n");
     else if (out)
         out->commit(summary(totalSeconds));
     if (o.frames)

@@ -74,8 +74,9 @@ struct ReplayOptions {
     /// has this run's key and matches its files is kept, not rendered again (resume). The chunk's summary is
     /// DIR/chunk-IIIII-JJJJJ.json; summary.json is left alone. Not with --video.
     std::optional<FrameRange> frames;
-    /// What a sidecar must name for --frames to keep a frame: the command line less --frames and
-    /// --no-progress (set by the CLI), so a frame of a run with other options is rendered again.
+    /// What a sidecar must name for --frames to keep a frame: the command line less --frames, --cuda-device
+    /// and --no-progress, as spelled (set by the CLI), so a frame of a run with other options is rendered
+    /// again. It does not cover the inputs' contents, the build or the GPU (docs/SCALE.md).
     std::string runKey;
 };
 
