@@ -13,6 +13,9 @@ if(PACIFICA_WITH_GLFW)
 endif()
 
 if(PACIFICA_WITH_OIIO)
+    find_package(OpenEXR CONFIG REQUIRED) # capture's OpenEXR files (engine/capture/OpenExr.h)
+endif()
+if(PACIFICA_WITH_OIIO AND NOT PACIFICA_CAPTURE_OPENEXR)
     find_package(OpenImageIO CONFIG REQUIRED)
     # Debian 12's OpenImageIO targets list /usr/include/opencv4, which only exists with libopencv-dev.
     foreach(tgt OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)

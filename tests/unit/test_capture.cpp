@@ -1,7 +1,10 @@
 // Unit tests for pacifica::capture: half-float EXR round trips with metadata, the frame hash (what it covers
 // and that it moves when one pixel does), float->half rounding, 8-bit PNG quantisation and clamping, atomic
-// writes (no temp files left behind, nothing written on failure) and error messages that name the file.
+// writes (no temp files left behind, nothing written on failure) and error messages that name the file; the
+// OpenEXR-only backend (engine/capture/OpenExr.h) and the build's readImage()/writeExrHalf() read each
+// other's files with the same pixels, attributes and compression.
 #include <engine/capture/Capture.h>
+#include <engine/capture/OpenExr.h>
 
 #include <gtest/gtest.h>
 
@@ -10,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <random>
 #include <string>
@@ -271,6 +275,113 @@ TEST_F(CaptureTest, ReadingAMissingFileThrowsNamingIt) {
         ADD_FAILURE() << "expected CaptureError";
     } catch (const CaptureError& e) {
         EXPECT_EQ(std::string(e.what()).rfind(file.string() + ": cannot open image", 0), 0u) << e.what();
+    }
+}
+
+// The OpenEXR-only backend's file, read by this build's readImage() (OpenImageIO in the default build):
+// the same half values, metadata and compression name as writeExrHalf() gives.
+TEST_F(CaptureTest, OpenExrBackendFileReadsBackLikeCapturesOwn) {
+    const int w = 7, h = 5, c = 4;
+    const std::vector<float> px = testPattern(w, h, c);
+    const std::vector<uint16_t> halves = pacifica::capture::toHalf(px.data(), px.size());
+    Metadata meta;
+    meta.strings.push_back({"flight", "batumi.acmi"});
+    meta.numbers.push_back({"time_s", 1e6 + 0.25});
+    const fs::path file = mDir / "openexr.exr";
+    pacifica::capture::openexr::writeHalf(file, file, w, h, c, halves.data(), meta,
+                                          pacifica::capture::Compression::Small);
+    EXPECT_TRUE(pacifica::capture::openexr::isOpenExr(file));
+
+    const Image img = pacifica::capture::readImage(file);
+    ASSERT_EQ(img.width, w);
+    ASSERT_EQ(img.height, h);
+    ASSERT_EQ(img.channels, c);
+    EXPECT_EQ(pacifica::capture::toHalf(img.pixels.data(), img.pixels.size()), halves);
+    EXPECT_EQ(img.attributes.at("pacifica:flight"), "batumi.acmi");
+    EXPECT_EQ(std::stod(img.attributes.at("pacifica:time_s")), 1e6 + 0.25);
+    EXPECT_EQ(img.attributes.at("compression"), "zip");
+}
+
+// writeExrHalf()'s file read by the OpenEXR-only backend, RGB and RGBA, both compression levels.
+TEST_F(CaptureTest, OpenExrBackendReadsCapturesFiles) {
+    for (const int c : {3, 4}) {
+        for (const auto level :
+             {pacifica::capture::Compression::Small, pacifica::capture::Compression::Fast}) {
+            const int w = 9,
+                      h = 300; // 300 rows: more than one band of rows when read, and several ZIP blocks
+            const std::vector<float> px = testPattern(w, h, c);
+            Metadata meta;
+            meta.numbers.push_back({"pi", 3.141592653589793});
+            const fs::path file = mDir / ("capture-" + std::to_string(c) + ".exr");
+            const uint64_t hash = pacifica::capture::writeExrHalf(file, w, h, c, px.data(), meta, level);
+
+            const Image img = pacifica::capture::openexr::read(file);
+            ASSERT_EQ(img.width, w);
+            ASSERT_EQ(img.height, h);
+            ASSERT_EQ(img.channels, c);
+            const std::vector<uint16_t> back =
+                pacifica::capture::toHalf(img.pixels.data(), img.pixels.size());
+            EXPECT_EQ(pacifica::capture::hashHalfPixels(back.data(), back.size()), hash);
+            EXPECT_EQ(std::stod(img.attributes.at("pacifica:pi")), 3.141592653589793);
+            EXPECT_EQ(img.attributes.at("compression"), "zip");
+        }
+    }
+}
+
+// The two backends compress alike: the same zlib level gives files within 3 % of each other's size (they
+// differ only in header attributes), and level 1 is larger than level 6 for both.
+TEST_F(CaptureTest, OpenExrBackendCompressesAtCapturesLevels) {
+    const int w = 256, h = 128, c = 4;
+    std::vector<float> px(static_cast<size_t>(w * h * c));
+    for (size_t i = 0; i < px.size(); ++i) // smooth with a little noise, like a rendered sea
+        px[i] = 0.5f + 0.4f * std::sin(0.01f * static_cast<float>(i)) + 0.001f * static_cast<float>(i % 7);
+    const std::vector<uint16_t> halves = pacifica::capture::toHalf(px.data(), px.size());
+    for (const auto level : {pacifica::capture::Compression::Small, pacifica::capture::Compression::Fast}) {
+        const fs::path mine = mDir / "mine.exr";
+        const fs::path theirs = mDir / "theirs.exr";
+        pacifica::capture::openexr::writeHalf(mine, mine, w, h, c, halves.data(), {}, level);
+        pacifica::capture::writeExrHalf(theirs, w, h, c, px.data(), {}, level);
+        const double ratio = double(fs::file_size(mine)) / double(fs::file_size(theirs));
+        EXPECT_NEAR(ratio, 1.0, 0.03) << fs::file_size(mine) << " vs " << fs::file_size(theirs);
+    }
+    const fs::path small = mDir / "small.exr";
+    const fs::path fast = mDir / "fast.exr";
+    pacifica::capture::openexr::writeHalf(small, small, w, h, c, halves.data(), {},
+                                          pacifica::capture::Compression::Small);
+    pacifica::capture::openexr::writeHalf(fast, fast, w, h, c, halves.data(), {},
+                                          pacifica::capture::Compression::Fast);
+    EXPECT_GT(fs::file_size(fast), fs::file_size(small));
+}
+
+// Bad files: not an EXR, truncated, a directory in the way; each a CaptureError naming the file.
+TEST_F(CaptureTest, OpenExrBackendRefusesBadFilesNamingThem) {
+    const std::vector<float> px = testPattern(64, 64, 4);
+    const fs::path good = mDir / "good.exr";
+    pacifica::capture::writeExrHalf(good, 64, 64, 4, px.data(), {});
+    const fs::path cut = mDir / "cut.exr";
+    fs::copy_file(good, cut);
+    fs::resize_file(cut, fs::file_size(good) / 2);
+    const fs::path text = mDir / "text.exr";
+    { std::ofstream(text) << "not an image\n"; }
+    for (const fs::path& file : {cut, text, mDir / "missing.exr"}) {
+        try {
+            pacifica::capture::openexr::read(file);
+            ADD_FAILURE() << "expected CaptureError for " << file;
+        } catch (const CaptureError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(file.string() + ": cannot read the OpenEXR file: ", 0), 0u)
+                << e.what();
+            EXPECT_EQ(e.file(), file);
+        }
+    }
+    EXPECT_TRUE(pacifica::capture::openexr::isOpenExr(cut));
+    EXPECT_FALSE(pacifica::capture::openexr::isOpenExr(text));
+    try {
+        const std::vector<uint16_t> halves = pacifica::capture::toHalf(px.data(), px.size());
+        pacifica::capture::openexr::writeHalf(mDir / "no-dir" / "x.exr", good, 64, 64, 4, halves.data(), {},
+                                              pacifica::capture::Compression::Small);
+        ADD_FAILURE() << "expected CaptureError";
+    } catch (const CaptureError& e) {
+        EXPECT_EQ(e.file(), good); // reported under the final name, not the temp file's
     }
 }
 

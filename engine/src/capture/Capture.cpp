@@ -1,13 +1,18 @@
-// Capture implementation: OpenImageIO for the file formats, Imath for float->half, xxHash for frame hashes.
+// Capture implementation: OpenImageIO for the file formats (or, built with PACIFICA_CAPTURE_OPENEXR, the
+// OpenEXR library alone: engine/capture/OpenExr.h), Imath for float->half, xxHash for frame hashes.
 // Every OIIO call's failure is checked and its geterror() text is carried into the CaptureError (an
 // ImageOutput destroyed with an unread error would print it to stderr instead). Each write goes to
 // ".<name>.tmp-<pid>-<n>" next to the final file and is renamed into place only after close() succeeded;
 // rename within one directory is atomic on POSIX, so readers never see a partial image.
 #include <engine/capture/Capture.h>
 
+#include <engine/capture/OpenExr.h>
+
 #include <Imath/half.h>
-#include <OpenImageIO/imageio.h>
 #include <xxhash.h>
+#if !PACIFICA_CAPTURE_OPENEXR
+#include <OpenImageIO/imageio.h>
+#endif
 
 #include <unistd.h>
 
@@ -75,6 +80,17 @@ void checkArguments(const fs::path& path, const char* function, int width, int h
     }
 }
 
+#if PACIFICA_CAPTURE_OPENEXR
+// Renames the finished temp file onto `path`.
+void commitRename(TempFile& temp, const fs::path& path) {
+    std::error_code ec;
+    fs::rename(temp.path(), path, ec);
+    if (ec) {
+        throw CaptureError(path, "cannot rename " + temp.path().string() + " into place: " + ec.message());
+    }
+    temp.commit();
+}
+#else
 // Writes `data` (already in the spec's pixel format) through the named OIIO plugin to a temp file, then
 // renames it onto `path`.
 void writeAtomically(const fs::path& path, const char* formatName, const OIIO::ImageSpec& spec,
@@ -113,6 +129,7 @@ std::string shortestText(T value) {
     const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), value);
     return std::string(buf.data(), res.ptr);
 }
+#endif
 
 } // namespace
 
@@ -151,10 +168,20 @@ uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, 
                       const float* pixelsTopDown, const Metadata& metadata, Compression compression) {
     checkArguments(path, "writeExrHalf()", width, height, channels, 3, 4, pixelsTopDown);
 
+    const size_t count =
+        static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
+    // Convert once and hand the writer the half bits themselves, so the hash is of exactly what lands in the
+    // file.
+    const std::vector<uint16_t> halves = toHalf(pixelsTopDown, count);
+#if PACIFICA_CAPTURE_OPENEXR
+    TempFile temp(path);
+    openexr::writeHalf(temp.path(), path, width, height, channels, halves.data(), metadata, compression);
+    commitRename(temp, path);
+#else
     // The default channel names for 3 and 4 channels are R,G,B(,A), with A as the alpha channel.
     OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::HALF);
-    // ZIP (lossless zlib) at zlib's default level 6, or at level 1 (Compression::Fast: 22 vs 35 ms and 1.11x
-    // the bytes for a 640x360 RGBA frame on this project's machine, docs/PERFORMANCE.md).
+    // ZIP (lossless zlib) at OpenEXR's default level 4, or at level 1 (Compression::Fast: 22 vs 35 ms and
+    // 1.11x the bytes for a 640x360 RGBA frame on this project's machine, docs/PERFORMANCE.md).
     spec.attribute("compression", compression == Compression::Fast ? "zip:1" : "zip");
     for (const auto& [name, value] : metadata.strings) {
         spec.attribute("pacifica:" + name, value);
@@ -162,15 +189,24 @@ uint64_t writeExrHalf(const std::filesystem::path& path, int width, int height, 
     for (const auto& [name, value] : metadata.numbers) {
         spec.attribute("pacifica:" + name, OIIO::TypeDesc::DOUBLE, &value);
     }
-
-    // Convert once and hand OIIO the half bits themselves, so the hash is of exactly what lands in the file.
-    const size_t count =
-        static_cast<size_t>(width) * static_cast<size_t>(height) * static_cast<size_t>(channels);
-    const std::vector<uint16_t> halves = toHalf(pixelsTopDown, count);
     writeAtomically(path, "openexr", spec, halves.data());
+#endif
     return hashHalfPixels(halves.data(), halves.size());
 }
 
+#if PACIFICA_CAPTURE_OPENEXR
+Image readImage(const std::filesystem::path& path) {
+    if (!openexr::isOpenExr(path)) {
+        std::error_code ec;
+        if (!fs::exists(path, ec))
+            throw CaptureError(path, "cannot open image: no such file");
+        throw CaptureError(path,
+                           "cannot read this image: this build reads OpenEXR files only (configured with "
+                           "PACIFICA_CAPTURE_OPENEXR=ON, without OpenImageIO)");
+    }
+    return openexr::read(path);
+}
+#else
 Image readImage(const std::filesystem::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {
@@ -229,5 +265,6 @@ Image readImage(const std::filesystem::path& path) {
     in->geterror();
     return image;
 }
+#endif
 
 } // namespace pacifica::capture

@@ -21,9 +21,9 @@ private:
     std::filesystem::path mFile;
 };
 
-/// How hard the lossless writers compress: zlib's default level 6 (Small) or level 1 (Fast: a 640x360
-/// RGBA frame's EXR in 22 instead of 35 ms and 1.11x the bytes, its PNG in 13 instead of 45 ms and 1.26x;
-/// docs/PERFORMANCE.md). Pixels are identical either way.
+/// How hard the lossless writers compress: zlib's default level 6 for PNG and OpenEXR's default level 4 for
+/// EXR (Small), or level 1 (Fast: a 640x360 RGBA frame's EXR in 22 instead of 35 ms and 1.11x the bytes, its
+/// PNG in 13 instead of 45 ms and 1.26x; docs/PERFORMANCE.md). Pixels are identical either way.
 enum class Compression { Small, Fast };
 
 /// Writes an 8-bit PNG from display-encoded (already sRGB) values with 1 to 4 interleaved channels, top row
