@@ -14,7 +14,9 @@ Cases (chosen with --case, one ctest test each):
                exactly as it was and no staging or temporary file left; a folder the run had to create is gone.
   read-only    the output folder on a read-only file system (a tmpfs mounted read-only in a private mount
                namespace, `unshare -rm`): refused before a GL context is made, naming the file system.
-  no-gpu       --egl-device naming a device that does not exist (the devices listed), EGL with no vendor
+  no-gpu       --egl-device naming a device that does not exist (the devices listed) or neither a number nor
+               'auto', --egl-device auto (the first GPU of CUDA_VISIBLE_DEVICES=1,0, which is CUDA device 0; on
+               llvmpipe the default device with the summary saying CUDA device 0 was asked for), EGL with no vendor
                library (__EGL_VENDOR_LIBRARY_FILENAMES to nothing), and no libEGL at all (/dev/null bound over it
                in a private mount namespace): each one 'pacifica: error:' line, a non-zero exit, no output.
   bad-ocio     $OCIO naming a missing file, and a file that is not an OCIO config: one error naming $OCIO and
@@ -247,6 +249,35 @@ def case_no_gpu(c, exe, source_dir, tmp):
             {"__EGL_VENDOR_LIBRARY_FILENAMES": os.path.join(tmp, "no-such-vendor.json")})
     one_clear_error(c, "EGL without a vendor library", p, ["EGL found no driver", "libegl-mesa0"])
     c.check(not os.path.exists(out), "no vendor library: no output folder", "")
+
+    # --egl-device auto: the first GPU of CUDA_VISIBLE_DEVICES, found as --cuda-device finds it; where no EGL
+    # device is a CUDA device (llvmpipe) the default device, with a warning and the summary saying so.
+    out = os.path.join(tmp, "auto")
+    p = run(exe, ["replay", *slice_args(source_dir, out, 1), "--egl-device", "auto"], {"CUDA_VISIBLE_DEVICES": "1,0"})
+    c.check(p.returncode == 0, "--egl-device auto with CUDA_VISIBLE_DEVICES=1,0: renders", p.stderr[-400:])
+    if p.returncode == 0:
+        with open(os.path.join(out, "summary.json")) as f:
+            device = json.load(f)["gl"]["device"]
+        c.check("CUDA device 0 " in device or device.endswith("CUDA device 0"),
+                "--egl-device auto: the summary's device is CUDA device 0 (the first visible GPU: CUDA renumbers them "
+                "from 0), or says it was asked for",
+                device)
+    # A GPU-UUID there is passed on as it is (UUIDs do not depend on CUDA_VISIBLE_DEVICES).
+    uuid = "GPU-00000000-1111-2222-3333-444444444444"
+    out = os.path.join(tmp, "auto-uuid")
+    p = run(exe, ["replay", *slice_args(source_dir, out, 1), "--egl-device", "auto"], {"CUDA_VISIBLE_DEVICES": uuid})
+    if p.returncode == 0:
+        with open(os.path.join(out, "summary.json")) as f:
+            device = json.load(f)["gl"]["device"]
+        c.check(f"CUDA device {uuid} asked for" in device, "--egl-device auto with a UUID: asked for by that UUID",
+                device)
+    else:  # a machine with NVIDIA's EGL: no GPU has that UUID, which is an error naming it
+        one_clear_error(c, "--egl-device auto with an unknown UUID", p, [uuid])
+    p = run(exe, ["replay", *slice_args(source_dir, os.path.join(tmp, "e"), 1), "--egl-device", "gpu"])
+    one_clear_error(c, "--egl-device gpu", p, ["--egl-device", "gpu"])
+    p = run(exe, ["replay", *slice_args(source_dir, os.path.join(tmp, "f"), 1), "--egl-device", "auto",
+                  "--cuda-device", "0"])
+    one_clear_error(c, "--egl-device auto --cuda-device 0", p, ["name the device twice"])
 
     lib = lib_egl()
     c.require(bool(lib), "ldconfig knows libEGL.so.1", "")

@@ -611,12 +611,12 @@ int farmChunk(const fs::path& runDir, long long index) {
         throw UsageError("farm chunk: no chunk " + std::to_string(index) + " in " +
                          planPath(runDir).string() + " (0-" + std::to_string(p.chunks.size() - 1) + ")");
     std::vector<std::string> args = chunkArgs(p, p.chunks[static_cast<size_t>(index)]);
-    const char* cuda = std::getenv("CUDA_VISIBLE_DEVICES");
+    const std::string cuda = visibleCudaDevice();
     bool hasDevice = false; // a device named in the replay's options wins over the engine's
     for (const std::string& a : p.replayArgs)
         hasDevice = hasDevice || a.rfind("--egl-device", 0) == 0 || a.rfind("--cuda-device", 0) == 0;
-    if (cuda && *cuda && !hasDevice)
-        args.insert(args.end(), {"--cuda-device", std::string(cuda).substr(0, std::string(cuda).find(','))});
+    if (!cuda.empty() && !hasDevice)
+        args.insert(args.end(), {"--cuda-device", cuda});
     std::vector<char*> argv = {const_cast<char*>(p.exe.c_str())};
     for (std::string& a : args)
         argv.push_back(a.data());

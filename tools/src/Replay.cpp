@@ -91,7 +91,7 @@ void checkOptions(const ReplayOptions& o) {
         throw UsageError("--max-frames must be >= 1, got " + std::to_string(o.maxFrames));
     if (o.outDir.empty() && !o.video)
         throw UsageError("--out: an output directory is required (or --video FILE alone)");
-    if (o.eglDevice >= 0 && !o.cudaDevice.empty())
+    if ((o.eglDevice >= 0 || o.eglDeviceAuto) && !o.cudaDevice.empty())
         throw UsageError("--egl-device and --cuda-device name the device twice: give one");
     if (o.frames && o.video)
         throw UsageError("--frames renders a chunk of the run's frames into --out; --video needs the whole "
@@ -404,7 +404,8 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
       oceanDesc(oceanWithEnvironment(o, environmentJson)),
       environmentName(o.environment ? o.environment->filename().string() : "procedural"),
       colour(replayColour(o)),
-      context(gl::createHeadlessContext({.eglDevice = o.eglDevice, .cudaDevice = o.cudaDevice})),
+      context(gl::createHeadlessContext(
+          {.eglDevice = o.eglDevice, .cudaDevice = o.eglDeviceAuto ? visibleCudaDevice() : o.cudaDevice})),
       oceanEntity(addOcean(registry, oceanDesc)), targets(makeTargets(input.views)), tonemapper(colour),
       extraViews(makeExtraViews(o, colour)), gpuTimer(context->info()), effects(registry, events),
       timeline(registry, events, effects), images(writeImages),
@@ -758,11 +759,8 @@ nlohmann::json ReplayRun::summary(double totalSeconds) const {
     s["flight"] = o.flight.string();
     s["format"] = input.format;
     s["recording"] = input.summary;
-    s["gl"] = {{"vendor", gl.vendor},
-               {"renderer", gl.renderer},
-               {"version", gl.version},
-               {"platform", gl.platform},
-               {"device", gl.device}};
+    s["gl"] = {{"vendor", gl.vendor},     {"renderer", gl.renderer}, {"version", gl.version},
+               {"platform", gl.platform}, {"device", gl.device},     {"uuid", gl.uuid}};
     s["ocio"] = {{"config", colour.configDescription()},
                  {"input", colour.input().empty() ? std::string("scene_linear") : colour.input()},
                  {"display", colour.selectedDisplay()},
@@ -860,6 +858,17 @@ void ReplaySession::finish() {
 
 const ReplayRunInfo& ReplaySession::info() const {
     return mState->run->info();
+}
+
+std::string visibleCudaDevice() {
+    const char* v = std::getenv("CUDA_VISIBLE_DEVICES");
+    const std::string first = std::string(v ? v : "").substr(0, std::string(v ? v : "").find(','));
+    // An index there is the GPU's number before the variable applies; CUDA, and NVIDIA's EGL with it, number
+    // the visible GPUs from 0, so the first one is CUDA device 0 of this process (seen on 2x H200:
+    // CUDA_VISIBLE_DEVICES=1 leaves EGL device 1 as CUDA device 0). A GPU-UUID names it either way.
+    if (first.empty() || first.rfind("GPU-", 0) == 0)
+        return first;
+    return "0";
 }
 
 long long replayFrameCount(const ReplayOptions& o) {

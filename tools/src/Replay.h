@@ -35,9 +35,14 @@ struct ReplayOptions {
     /// --egl-device N: render on EGL device N of eglQueryDevicesEXT's list (gl::ContextDesc::eglDevice);
     /// -1 = the first hardware device, else Mesa's surfaceless platform.
     int eglDevice = -1;
-    /// --cuda-device ID: render on that CUDA device (an index or GPU-UUID, as CUDA_VISIBLE_DEVICES names
-    /// it), found through EGL_NV_device_cuda (gl::ContextDesc::cudaDevice); `pacifica farm chunk` passes the
-    /// first entry of CUDA_VISIBLE_DEVICES. Not with --egl-device.
+    /// --egl-device auto: the device the environment gives this process -- the first entry of
+    /// CUDA_VISIBLE_DEVICES (visibleCudaDevice()), found as --cuda-device finds it -- else eglDevice -1's
+    /// choice. What a process under a job scheduler (Slurm's GPU GRES) wants.
+    bool eglDeviceAuto = false;
+    /// --cuda-device ID: render on that CUDA device (an index in this process's CUDA numbering, which
+    /// CUDA_VISIBLE_DEVICES renumbers from 0, or a GPU-UUID), found through EGL_NV_device_cuda
+    /// (gl::ContextDesc::cudaDevice); `pacifica farm chunk` passes visibleCudaDevice(). Not with
+    /// --egl-device.
     std::string cudaDevice;
     std::string display; ///< empty = the config's default display
     std::string view;    ///< empty = the display's default view
@@ -108,6 +113,11 @@ private:
     struct State;
     std::unique_ptr<State> mState;
 };
+
+/// The GPU a job scheduler gave this process, as --cuda-device names it: "" when CUDA_VISIBLE_DEVICES is
+/// unset or empty; its first entry when that is a GPU-UUID; else "0", since CUDA (and NVIDIA's EGL with it)
+/// numbers the visible GPUs from 0 (CUDA_VISIBLE_DEVICES=1: the second GPU is CUDA device 0).
+std::string visibleCudaDevice();
 
 /// The number of frames the run these options describe renders, without rendering: the options checked and
 /// the flight read (no GL context, nothing written). Throws as runReplay() does.

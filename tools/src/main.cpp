@@ -70,12 +70,20 @@ void ReplayCommand::add(CLI::App& parent) {
         ->default_val(1.0);
     app->add_option("--max-frames", replay.maxFrames, "refuse runs with more frames than this")
         ->default_val(100000);
-    app->add_option("--egl-device", replay.eglDevice,
-                    "render on EGL device N (eglQueryDevicesEXT's order, software included; default: the "
-                    "first GPU, else Mesa's surfaceless llvmpipe)")
-        ->check(CLI::Range(0, 15));
+    app->add_option_function<std::string>(
+           "--egl-device",
+           [this](const std::string& v) {
+               replay.eglDeviceAuto = v == "auto";
+               if (!replay.eglDeviceAuto)
+                   replay.eglDevice = std::stoi(v);
+           },
+           "render on EGL device N (eglQueryDevicesEXT's order, software included), or auto: the first GPU "
+           "of CUDA_VISIBLE_DEVICES, as --cuda-device (default: the first GPU, else Mesa's surfaceless "
+           "llvmpipe)")
+        ->type_name("N|auto")
+        ->check(CLI::IsMember({"auto"}) | CLI::Range(0, 15));
     app->add_option("--cuda-device", replay.cudaDevice,
-                    "render on this CUDA device (an index or GPU-UUID, as CUDA_VISIBLE_DEVICES names it), "
+                    "render on this CUDA device (an index as CUDA numbers the visible GPUs, or a GPU-UUID), "
                     "found through EGL_NV_device_cuda (docs/SCALE.md)");
     app->add_option("--fps", replay.fps, "frames per simulated second")->default_val(10.0);
     app->add_option("--size", size, "frame size WxH")->default_val("640x360");

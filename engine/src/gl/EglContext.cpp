@@ -225,21 +225,6 @@ std::string uuidDigits(const std::string& text) {
     return hex.size() == 32 ? hex : "";
 }
 
-/// GL_DEVICE_UUID_EXT of the current context (EXT_memory_object) as 32 hex digits, "" without it.
-std::string currentDeviceUuid() {
-    if (!epoxy_has_gl_extension("GL_EXT_memory_object"))
-        return "";
-    GLubyte uuid[GL_UUID_SIZE_EXT] = {};
-    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
-    std::string hex;
-    char byte[3];
-    for (GLubyte b : uuid) {
-        std::snprintf(byte, sizeof byte, "%02x", b);
-        hex += byte;
-    }
-    return hex;
-}
-
 /// ContextDesc::cudaDevice: the EGL device of that CUDA device; nullptr when no EGL device is a CUDA device.
 std::unique_ptr<GlContext> cudaDeviceContext(const char* clientExts, const ContextDesc& desc) {
     const std::string uuid = uuidDigits(desc.cudaDevice);
@@ -257,27 +242,40 @@ std::unique_ptr<GlContext> cudaDeviceContext(const char* clientExts, const Conte
         if (ids[i] >= 0)
             listed += (listed.empty() ? "" : ", ") + std::string("EGL device ") + std::to_string(i) +
                       " = CUDA " + std::to_string(ids[i]);
-    if (listed.empty())
+    if (listed.empty() && uuid.empty())
         return nullptr;
+    // A UUID is looked for on every device: NVIDIA's EGL gives no device a CUDA index when
+    // CUDA_VISIBLE_DEVICES holds a GPU-UUID (seen on 2x H200), and the UUID does not depend on it.
     for (EGLint i = 0; i < count; ++i) {
-        if (ids[i] < 0 || (uuid.empty() && ids[i] != index))
+        if (uuid.empty() && ids[i] != index)
             continue;
         EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
         std::string why;
         EGLContext ctx =
             display == EGL_NO_DISPLAY ? EGL_NO_CONTEXT : makeCoreContext(display, desc.debug, why);
+        if (ctx == EGL_NO_CONTEXT && !uuid.empty())
+            continue; // a device that makes no context is not the one asked for
         if (ctx == EGL_NO_CONTEXT)
             throw ContextError("CUDA device " + desc.cudaDevice + " (EGL device " + std::to_string(i) +
                                "): " + why);
         auto context = std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
-        if (!uuid.empty() && currentDeviceUuid() != uuid)
+        if (!uuid.empty() && uuidDigits(context->info().uuid) != uuid)
             continue; // not this one: the context goes
-        context->setDevice("EGL device " + std::to_string(i) + ", CUDA device " + std::to_string(ids[i]) +
+        context->setDevice("EGL device " + std::to_string(i) +
+                           (ids[i] >= 0 ? ", CUDA device " + std::to_string(ids[i]) : std::string()) +
                            (uuid.empty() ? std::string() : " (GPU-" + uuid + ")"));
         return context;
     }
-    throw ContextError("CUDA device " + desc.cudaDevice +
-                       " has no EGL device (the CUDA devices EGL lists: " + listed + ")");
+    if (listed.empty())
+        return nullptr; // no NVIDIA EGL: the default device, with the caller's warning
+    // NVIDIA's EGL numbers CUDA devices as CUDA does, after CUDA_VISIBLE_DEVICES: with
+    // CUDA_VISIBLE_DEVICES=1 the second GPU is CUDA device 0 and the first has none (seen on 2x H200).
+    const char* visible = std::getenv("CUDA_VISIBLE_DEVICES");
+    throw ContextError(
+        "CUDA device " + desc.cudaDevice + " has no EGL device (the CUDA devices EGL lists: " + listed +
+        (visible ? std::string("; CUDA_VISIBLE_DEVICES=") + visible + " numbers the visible GPUs from 0"
+                 : std::string()) +
+        ")");
 }
 
 } // namespace

@@ -15,6 +15,7 @@
 #endif
 #endif
 #ifdef PACIFICA_LEAK_CHECKS
+#include <cstdio>
 #include <cstring>
 #include <dlfcn.h>
 #include <link.h>
@@ -60,12 +61,34 @@ void keepDriverLoadedForLeakChecks() noexcept {
 #endif
 }
 
+namespace {
+
+/// GL_DEVICE_UUID_EXT of the current context in nvidia-smi's form (ContextInfo::uuid), "" without it.
+std::string deviceUuid() {
+    if (!epoxy_has_gl_extension("GL_EXT_memory_object"))
+        return "";
+    GLubyte uuid[GL_UUID_SIZE_EXT] = {};
+    glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
+    std::string text = "GPU-";
+    char byte[3];
+    for (int i = 0; i < GL_UUID_SIZE_EXT; ++i) {
+        if (i == 4 || i == 6 || i == 8 || i == 10)
+            text += '-';
+        std::snprintf(byte, sizeof byte, "%02x", uuid[i]);
+        text += byte;
+    }
+    return text;
+}
+
+} // namespace
+
 void GlContext::initialiseInfo(const std::string& platform, bool debug) {
     keepDriverLoadedForLeakChecks();
     mInfo.vendor = str(GL_VENDOR);
     mInfo.renderer = str(GL_RENDERER);
     mInfo.version = str(GL_VERSION);
     mInfo.platform = platform;
+    mInfo.uuid = deviceUuid();
     mInfo.software = isSoftwareRenderer(mInfo.renderer);
     logInfo("GL context (" + platform + "): GL_VENDOR=" + mInfo.vendor + ", GL_RENDERER=" + mInfo.renderer +
             ", GL_VERSION=" + mInfo.version);

@@ -39,6 +39,9 @@ struct ContextInfo {
     std::string platform; ///< "egl-device", "egl-surfaceless" or "glfw"
     /// Headless: which device, and why (e.g. "EGL device 1, CUDA device 1 (CUDA_VISIBLE_DEVICES=1)").
     std::string device;
+    /// GL_DEVICE_UUID_EXT (EXT_memory_object) as nvidia-smi writes a GPU's UUID,
+    /// "GPU-xxxxxxxx-xxxx-xxxx-xxxx-xxxxxxxxxxxx"; "" where the driver does not report it.
+    std::string uuid;
     bool software = false; ///< llvmpipe/softpipe: GL timer queries are wrong there (docs/PLATFORM.md)
 };
 
@@ -56,13 +59,14 @@ struct ContextDesc {
     /// platform. N >= 0: exactly device N of eglQueryDevicesEXT's list (Mesa's software device included,
     /// which is not necessarily last), no fallback; a missing device is a ContextError listing those there.
     int eglDevice = -1;
-    /// Headless, with eglDevice < 0: the CUDA device to render on, as the first entry of
-    /// CUDA_VISIBLE_DEVICES names it -- an index, or GPU-UUID. The EGL device is found through
-    /// EGL_NV_device_cuda (its EGL_CUDA_DEVICE_NV for an index; for a UUID, GL_DEVICE_UUID_EXT of a context
-    /// on each such device), never by the order of the device list, which CUDA_VISIBLE_DEVICES does not
-    /// change. None matching: a ContextError listing the CUDA devices there are. A machine where no EGL
-    /// device is a CUDA device (no NVIDIA EGL driver): the default choice, with a warning and info().device
-    /// saying so.
+    /// Headless, with eglDevice < 0: the CUDA device to render on -- an index as CUDA numbers the devices
+    /// this process sees (CUDA_VISIBLE_DEVICES=1 makes the second GPU device 0; NVIDIA's EGL follows it), or
+    /// a GPU-UUID. The EGL device is found through EGL_NV_device_cuda's EGL_CUDA_DEVICE_NV for an index, and
+    /// through GL_DEVICE_UUID_EXT of a context on each device for a UUID (NVIDIA's EGL gives no device a CUDA
+    /// index when CUDA_VISIBLE_DEVICES holds UUIDs), never by the order of the device list, which
+    /// CUDA_VISIBLE_DEVICES does not change. None matching: a ContextError listing the CUDA
+    /// devices there are. A machine where no EGL device is a CUDA device (no NVIDIA EGL driver): the default
+    /// choice, with a warning and info().device saying so.
     std::string cudaDevice;
 };
 
