@@ -9,7 +9,9 @@ Cases (chosen with --case, one ctest test each):
           frames per view in order, each equal to a one-process run's (EXR pixel hash recomputed from the
           file, PNG bytes), with one entry per chunk (range, host, GPU, wall time); report.json has the bad
           file quarantined with its error and no failed chunk; the exit status is 1 (a recording was
-          quarantined). `farm status` counts 2/2 chunks; `farm resume` renders nothing and rewrites nothing.
+          quarantined). With --video mp4, a video per view; the first decodes to the frames of the one-process
+          run's --video (ffmpeg framemd5). `farm status` counts 2/2 chunks; `farm resume` renders nothing and
+          rewrites nothing (the videos included).
           A chunk that always fails (its replay asks for an EGL device that does not exist) is given up after
           1 + --retries attempts and named in report.json with its error.
   slurm   the same run on a single-node Slurm started for the test (tools/farm/slurm-local.sh, two fake GPUs):
@@ -45,7 +47,8 @@ def sortie(source_dir):
 
 def reference(c, exe, source_dir, tmp):
     ref = os.path.join(tmp, "one-process")
-    p = run(exe, ["replay", sortie(source_dir), *REPLAY, "--no-progress", "--out", ref])
+    p = run(exe, ["replay", sortie(source_dir), *REPLAY, "--no-progress", "--out", ref, "--video",
+                  os.path.join(ref, "one-process.mp4")])
     c.require(p.returncode == 0, "the one-process run exits 0", p.stderr[-1500:])
     return ref
 
@@ -118,6 +121,28 @@ def check_merged(c, run_dir, ref, one):
     return s
 
 
+def decoded_frames(path):
+    """ffmpeg's MD5 of every decoded frame of a video."""
+    p = subprocess.run(["ffmpeg", "-v", "error", "-i", path, "-f", "framemd5", "-"], capture_output=True, text=True)
+    return [line.rsplit(",", 1)[1].strip() for line in p.stdout.splitlines() if line and not line.startswith("#")]
+
+
+def check_videos(c, run_dir, ref, rec):
+    """--video mp4: one H.264 video per view of the 8 frames; the first view's decodes to the same frames as the
+    one-process run's --video (both encode the same 8-bit display pixels once)."""
+    out = os.path.join(run_dir, "sortie")
+    files = {v["view"]: v["file"] for v in rec.get("videos", [])}
+    c.check(sorted(files) == sorted(VIEWS) and all(os.path.isfile(f) for f in files.values()),
+            "--video mp4: report.json names a video per view, and they exist", str(rec)[:600])
+    for v in VIEWS:
+        frames = decoded_frames(os.path.join(out, v + ".mp4"))
+        c.check(len(frames) == 8, f"{v}.mp4 decodes to 8 frames", str(len(frames)))
+    one = decoded_frames(os.path.join(ref, "one-process.mp4"))
+    c.check(len(one) == 8 and decoded_frames(os.path.join(out, VIEWS[0] + ".mp4")) == one,
+            f"{VIEWS[0]}.mp4 decodes to the one-process run's --video frames (ffmpeg framemd5)", str(one[:2]))
+    c.check(not [n for n in os.listdir(out) if ".tmp" in n], "no temporary video left", str(os.listdir(out)))
+
+
 def case_local(c, exe, source_dir, tmp):
     ref = reference(c, exe, source_dir, tmp)
     one = load(c, os.path.join(ref, "summary.json"))
@@ -126,7 +151,7 @@ def case_local(c, exe, source_dir, tmp):
         f.write("this is not a flight\n")
     run_dir = os.path.join(tmp, "run")
     cmd = [exe, "farm", "run", sortie(source_dir), bad, "--out", run_dir, "--chunk-frames", "4", "--workers", "2",
-           "--", *REPLAY]
+           "--video", "mp4", "--", *REPLAY]
     print("  $ " + " ".join(cmd))
     proc = subprocess.Popen(cmd, env=child_env(None), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     kill_chunk_after_first_frame(c, os.path.join(run_dir, "sortie"), "4-7", 4)
@@ -143,6 +168,7 @@ def case_local(c, exe, source_dir, tmp):
     c.check(q.get("state") == "quarantined" and "not-a-recording.txt.acmi" in q.get("error", ""),
             "report.json: the bad file is quarantined with an error naming it", str(q))
     check_merged(c, run_dir, ref, one)
+    check_videos(c, run_dir, ref, recs.get("sortie", {}))
 
     print("[status, resume] nothing left to render")
     p = run(exe, ["farm", "status", run_dir])

@@ -2,6 +2,7 @@
 #include "Farm.h"
 
 #include "ChunkFrames.h"
+#include "VideoWriter.h"
 #include "engine/AtomicFile.h"
 #include "engine/Log.h"
 #include "engine/Stats.h"
@@ -9,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -50,6 +52,8 @@ struct Plan {
     FarmEngine engine;
     std::vector<PlannedRecording> recordings;
     std::vector<Chunk> chunks;
+    std::string video;     ///< FarmOptions::video
+    double videoFps = 0.0; ///< the replay's --fps: the video's frame rate, as a one-process --video
     fs::path out(const Chunk& c) const { return runDir / recordings[c.recording].name; }
 };
 
@@ -101,6 +105,8 @@ json planJson(const Plan& p) {
             {"exe", p.exe.string()},
             {"replay_args", p.replayArgs},
             {"chunk_frames", p.chunkFrames},
+            {"video", p.video},
+            {"video_fps", p.videoFps},
             {"engine", engineJson(p.engine)},
             {"recordings", std::move(recs)},
             {"chunks", std::move(chunks)}};
@@ -119,6 +125,8 @@ Plan loadPlan(const fs::path& runDir) {
         p.replayArgs = j.at("replay_args").get<std::vector<std::string>>();
         p.chunkFrames = j.at("chunk_frames").get<long long>();
         p.engine = engineFrom(j.at("engine"));
+        p.video = j.value("video", std::string());
+        p.videoFps = j.value("video_fps", 0.0);
         for (const json& r : j.at("recordings"))
             p.recordings.push_back({r.at("path").get<std::string>(), r.at("name").get<std::string>(),
                                     r.at("frames").get<long long>(), r.value("quarantined", std::string())});
@@ -201,7 +209,7 @@ std::string recordingName(const fs::path& path, const std::vector<PlannedRecordi
 /// Reads and counts every recording; a recording that cannot be is quarantined with its error. Bad replay
 /// options (the same for every recording) are a UsageError.
 Plan makePlan(const FarmOptions& o, const ReplayParser& parseReplay) {
-    Plan p{o.runDir, o.exe, o.replayArgs, o.chunkFrames, o.engine, {}, {}};
+    Plan p{o.runDir, o.exe, o.replayArgs, o.chunkFrames, o.engine, {}, {}, o.video, 0.0};
     for (const fs::path& path : o.recordings) {
         PlannedRecording r{
             fs::weakly_canonical(fs::absolute(path)), recordingName(path, p.recordings), 0, {}};
@@ -209,6 +217,11 @@ Plan makePlan(const FarmOptions& o, const ReplayParser& parseReplay) {
         args.insert(args.end(), o.replayArgs.begin(), o.replayArgs.end());
         args.insert(args.end(), {"--out", (o.runDir / r.name).string()});
         const ReplayOptions ro = parseReplay(args); // throws on bad options: nothing is planned
+        if (!o.video.empty() && !ro.writeImages)
+            throw UsageError(
+                "farm run --video: the video is encoded from the chunks' PNGs, which --no-images "
+                "does not write");
+        p.videoFps = ro.fps;
         try {
             r.frames = replayFrameCount(ro);
         } catch (const std::exception& e) {
@@ -436,10 +449,58 @@ json mergedSummary(const std::vector<json>& parts) {
     return s;
 }
 
+/// A view's name as a file name: letters, digits, '-' and '_' kept, anything else '_'.
+std::string fileSlug(const std::string& name) {
+    std::string out;
+    for (char ch : name)
+        out += std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' ? ch : '_';
+    return out.empty() ? std::string("view") : out;
+}
+
+/// FarmOptions::video for a whole recording: one video per view from its frames' PNGs, in frame order, each
+/// encoded once (ffmpeg decodes the PNGs); a video newer than all its frames is kept. Records the videos, or
+/// the error, in the report's entry `rj`; returns false when one could not be made (the frames stay).
+bool encodeVideos(const Plan& p, const PlannedRecording& rec, const json& merged, json& rj) {
+    json videos = json::array();
+    try {
+        for (const json& view : merged.at("views")) {
+            const fs::path target =
+                p.runDir / rec.name / (fileSlug(view.at("name").get<std::string>()) + "." + p.video);
+            std::vector<fs::path> pngs;
+            for (const json& f : view.at("frames"))
+                pngs.push_back(p.runDir / rec.name / f.at("png").get<std::string>());
+            json entry = {{"view", view.at("name")}, {"file", target.string()}, {"frames", pngs.size()}};
+            // Up to date (a resume that rendered nothing): newer than every frame, so it is left alone.
+            std::error_code ec;
+            const auto made = fs::last_write_time(target, ec);
+            bool current = !ec;
+            for (const fs::path& png : pngs)
+                current = current && fs::last_write_time(png, ec) <= made && !ec;
+            if (current) {
+                videos.push_back(std::move(entry));
+                continue;
+            }
+            VideoWriter video(target, view.at("size").at(0).get<int>(), view.at("size").at(1).get<int>(),
+                              p.videoFps, VideoWriter::Input::Png);
+            for (const fs::path& png : pngs)
+                video.addPng(png);
+            video.finish();
+            videos.push_back(std::move(entry));
+            logInfo("farm: " + std::to_string(video.frames()) + " frames -> " + target.string());
+        }
+    } catch (const std::exception& e) {
+        rj["video_error"] = e.what();
+        logError("farm: " + rec.name + ": no video: " + e.what());
+        return false;
+    }
+    rj["videos"] = std::move(videos);
+    return true;
+}
+
 /// RUN/<recording>/summary.json for every whole recording, and RUN/report.json. Returns whether all are.
 bool writeMerged(const Plan& p) {
     json recs = json::array(), failed = json::array();
-    bool whole = true;
+    bool whole = true, videosFailed = false;
     for (size_t r = 0; r < p.recordings.size(); ++r) {
         const PlannedRecording& rec = p.recordings[r];
         json j = {{"name", rec.name}, {"path", rec.path.string()}, {"frames", rec.frames}};
@@ -468,8 +529,12 @@ bool writeMerged(const Plan& p) {
         }
         j["state"] = missing.empty() ? "whole" : "incomplete";
         j["missing_frames"] = std::move(missing);
-        if (j["state"] == "whole")
-            writeFileAtomically(p.runDir / rec.name / "summary.json", mergedSummary(parts).dump(2) + "\n");
+        if (j["state"] == "whole") {
+            const json merged = mergedSummary(parts);
+            writeFileAtomically(p.runDir / rec.name / "summary.json", merged.dump(2) + "\n");
+            if (!p.video.empty() && !encodeVideos(p, rec, merged, j))
+                videosFailed = true;
+        }
         whole = whole && j["state"] == "whole";
         recs.push_back(std::move(j));
     }
@@ -487,7 +552,7 @@ bool writeMerged(const Plan& p) {
                                                        {"failed_chunks", std::move(failed)}}
                                                           .dump(2) +
                                                       "\n");
-    return whole;
+    return whole && !videosFailed;
 }
 
 int finishRun(const Plan& p, const std::vector<long long>& indices) {

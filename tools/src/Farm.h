@@ -36,6 +36,9 @@ struct FarmOptions {
     std::vector<std::string> replayArgs;
     long long chunkFrames = 100;
     FarmEngine engine;
+    /// "mp4" or "mov": after the merge, a video per view of each whole recording, RUN/<name>/<view>.<ext>,
+    /// encoded once from the PNGs the chunks wrote (VideoWriter's codecs); "" for none.
+    std::string video;
     bool dryRun = false;       ///< print the plan, write nothing
     std::filesystem::path exe; ///< this program, run by every chunk
 };
@@ -51,8 +54,8 @@ int farmResume(const std::filesystem::path& runDir, const std::function<void(Far
 /// `farm status RUN`: chunks and frames done per recording, failures from the last merge. Returns 0.
 int farmStatus(const std::filesystem::path& runDir);
 /// `farm chunk RUN I`: runs chunk I's replay command in this process's place (exec). With
-/// CUDA_VISIBLE_DEVICES set (Slurm's GRES, the local pool's --gpus) the replay renders on that CUDA device
-/// (--cuda-device). Returns only on failure.
+/// CUDA_VISIBLE_DEVICES set (Slurm's GRES, the local pool's --gpus) the replay renders on its first GPU
+/// (--cuda-device visibleCudaDevice()). Returns only on failure.
 int farmChunk(const std::filesystem::path& runDir, long long index);
 /// `farm merge RUN`: with Slurm and `resubmitRounds` > 0, chunks that did not finish are submitted again
 /// (their indices) with another merge after them; otherwise writes RUN/<recording>/summary.json for every

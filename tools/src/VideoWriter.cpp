@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -60,7 +62,7 @@ std::string VideoWriter::findFfmpeg(const fs::path& target) {
                      "(./pacifica deps does) or set PACIFICA_FFMPEG");
 }
 
-VideoWriter::VideoWriter(const fs::path& target, int width, int height, double fps)
+VideoWriter::VideoWriter(const fs::path& target, int width, int height, double fps, Input input)
     : mTarget(target), mWidth(width), mHeight(height) {
     const std::string ffmpeg = findFfmpeg(target);
     const std::string ext = lowerExt(target);
@@ -78,10 +80,11 @@ VideoWriter::VideoWriter(const fs::path& target, int width, int height, double f
                                             : "-c:v prores_ks -profile:v 3 -pix_fmt yuv422p10le";
     // Odd sizes: H.264 4:2:0 needs even dimensions, so pad by one pixel when needed.
     const std::string pad = ext == ".mp4" ? " -vf " + shellQuote("pad=ceil(iw/2)*2:ceil(ih/2)*2") : "";
-    const std::string cmd = shellQuote(ffmpeg) + " -nostdin -hide_banner -loglevel error -y -f rawvideo " +
-                            "-pix_fmt rgb24 -s " + std::to_string(width) + "x" + std::to_string(height) +
-                            " -r " + rate + " -i - -an" + pad + " " + codec + " " +
-                            shellQuote(mTemp.string());
+    const std::string in = input == Input::Png ? std::string("-f image2pipe -framerate ") + rate + " -c:v png"
+                                               : "-f rawvideo -pix_fmt rgb24 -s " + std::to_string(width) +
+                                                     "x" + std::to_string(height) + " -r " + rate;
+    const std::string cmd = shellQuote(ffmpeg) + " -nostdin -hide_banner -loglevel error -y " + in +
+                            " -i - -an" + pad + " " + codec + " " + shellQuote(mTemp.string());
     mPipe = popen(cmd.c_str(), "w");
     if (!mPipe)
         throw VideoError("--video: cannot start ffmpeg (" + ffmpeg + ")");
@@ -93,6 +96,18 @@ VideoWriter::~VideoWriter() {
         pclose(mPipe);
     std::error_code ec;
     fs::remove(mTemp, ec); // after a successful finish() it was renamed away: nothing to remove
+}
+
+void VideoWriter::addPng(const fs::path& png) {
+    std::ifstream in(png, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof())
+        throw VideoError("video: cannot read the frame " + png.string());
+    if (bytes.size() < 8 || bytes.compare(1, 3, "PNG") != 0)
+        throw VideoError("video: " + png.string() + " is not a PNG file");
+    if (std::fwrite(bytes.data(), 1, bytes.size(), mPipe) != bytes.size())
+        throw VideoError("video: ffmpeg stopped reading frames (see its message above)");
+    ++mFrames;
 }
 
 void VideoWriter::addFrame(const float* rgba) {

@@ -23,8 +23,13 @@ public:
     /// started.
     static std::string findFfmpeg(const std::filesystem::path& target);
 
+    /// What the frames are: display-encoded RGBA floats (addFrame) or PNG files, decoded by ffmpeg (addPng):
+    /// the farm's video, encoded once from the frames its chunks wrote.
+    enum class Input { Rgba, Png };
+
     /// Starts ffmpeg writing width x height frames at fps into a temporary file beside target.
-    VideoWriter(const std::filesystem::path& target, int width, int height, double fps);
+    VideoWriter(const std::filesystem::path& target, int width, int height, double fps,
+                Input input = Input::Rgba);
     ~VideoWriter();
     VideoWriter(const VideoWriter&) = delete;
     VideoWriter& operator=(const VideoWriter&) = delete;
@@ -32,6 +37,9 @@ public:
     /// One frame of display-encoded RGBA floats, rows top-down (FrameTargets::readDisplay), clamped to 8
     /// bits.
     void addFrame(const float* rgba);
+    /// One frame as a PNG file of the video's size (Input::Png), passed to ffmpeg as it is. VideoError naming
+    /// the file when it cannot be read.
+    void addPng(const std::filesystem::path& png);
     /// Waits for ffmpeg and renames the video into place. VideoError (with ffmpeg's exit status) on failure.
     void finish();
     int frames() const { return mFrames; }

@@ -307,6 +307,12 @@ struct FarmCommand {
             ->required();
         runApp->add_option("--chunk-frames", farm.chunkFrames, "frames per chunk")->default_val(100);
         runApp->add_flag("--dry-run", farm.dryRun, "print the plan and the chunks' commands, write nothing");
+        runApp
+            ->add_option(
+                "--video", farm.video,
+                "mp4 (H.264) or mov (ProRes): a video per view of each recording, RUN/NAME/VIEW.EXT, "
+                "encoded once from the chunks' PNGs after the merge")
+            ->check(CLI::IsMember({"mp4", "mov"}));
         engineOptions(runApp);
         resumeApp = app->add_subcommand("resume", "run the chunks of RUN that are not done, then merge");
         resumeApp->add_option("run", runDir, "the run's folder")->required();
