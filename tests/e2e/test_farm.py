@@ -11,7 +11,8 @@ Cases (chosen with --case, one ctest test each):
           file quarantined with its error and no failed chunk; the exit status is 1 (a recording was
           quarantined). With --video mp4, a video per view; the first decodes to the frames of the one-process
           run's --video (ffmpeg framemd5). `farm status` counts 2/2 chunks; `farm resume` renders nothing and
-          rewrites nothing (the videos included).
+          rewrites nothing (the videos included). A chunk summary whose run key is another run's is not
+          counted, and resume runs that chunk again, keeping its frames.
           A chunk that always fails (its replay asks for an EGL device that does not exist) is given up after
           1 + --retries attempts and named in report.json with its error.
   slurm   the same run on a single-node Slurm started for the test (tools/farm/slurm-local.sh, two fake GPUs):
@@ -22,6 +23,7 @@ Cases (chosen with --case, one ctest test each):
 
 Usage: test_farm.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard library + OIIO's oiiotool)
 """
+import json
 import os
 import signal
 import subprocess
@@ -180,6 +182,23 @@ def case_local(c, exe, source_dir, tmp):
     c.check("nothing to render" in p.stderr, "farm resume renders nothing", p.stderr[-600:])
     changed = [n for n, t in stamps.items() if os.stat(os.path.join(out, n)).st_mtime_ns != t]
     c.check(not changed, "and rewrites no frame or chunk summary", str(changed))
+
+    print("[stale chunk summary] a chunk summary of other options is not this run's")
+    summary1 = os.path.join(out, "chunk-00004-00007.json")
+    with open(summary1) as f:
+        s1 = json.load(f)
+    s1["chunk"]["run_key"] = '["replay", "other options"]'
+    with open(summary1, "w") as f:
+        json.dump(s1, f)
+    p = run(exe, ["farm", "status", run_dir])
+    c.check("sortie: 1/2 chunks, 4/8 frames done" in p.stdout, "farm status no longer counts that chunk",
+            p.stdout[-400:])
+    p = run(exe, ["farm", "resume", run_dir])
+    s1 = load(c, summary1)
+    c.check("1 of 2 chunks to run" in p.stderr and s1.get("chunk", {}).get("kept") == 4 and
+            s1.get("chunk", {}).get("rendered") == 0,
+            "farm resume runs it again, which keeps its 4 frames (their sidecars name this run)",
+            p.stderr[-400:] + str(s1.get("chunk"))[:300])
 
     print("[give up] a chunk that always fails: its replay asks for an EGL device that does not exist")
     run2 = os.path.join(tmp, "failing")

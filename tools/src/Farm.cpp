@@ -43,6 +43,9 @@ struct PlannedRecording {
     std::string name; ///< folder under RUN
     long long frames = 0;
     std::string error; ///< non-empty: quarantined (it could not be read or planned)
+    /// ReplayOptions::runKey of its chunks: a chunk summary naming another (a stale run's, other options)
+    /// is not this run's. Empty in plans written before it was kept: not checked.
+    std::string runKey;
 };
 
 struct Plan {
@@ -93,7 +96,7 @@ FarmEngine engineFrom(const json& j) {
 json planJson(const Plan& p) {
     json recs = json::array(), chunks = json::array();
     for (const PlannedRecording& r : p.recordings) {
-        json j = {{"path", r.path.string()}, {"name", r.name}, {"frames", r.frames}};
+        json j = {{"path", r.path.string()}, {"name", r.name}, {"frames", r.frames}, {"run_key", r.runKey}};
         if (!r.error.empty())
             j["quarantined"] = r.error;
         recs.push_back(std::move(j));
@@ -129,7 +132,8 @@ Plan loadPlan(const fs::path& runDir) {
         p.videoFps = j.value("video_fps", 0.0);
         for (const json& r : j.at("recordings"))
             p.recordings.push_back({r.at("path").get<std::string>(), r.at("name").get<std::string>(),
-                                    r.at("frames").get<long long>(), r.value("quarantined", std::string())});
+                                    r.at("frames").get<long long>(), r.value("quarantined", std::string()),
+                                    r.value("run_key", std::string())});
         for (const json& c : j.at("chunks")) {
             const Chunk ch{c.at("index").get<long long>(), c.at("recording").get<size_t>(),
                            c.at("first").get<long long>(), c.at("last").get<long long>()};
@@ -152,7 +156,7 @@ std::vector<std::string> chunkArgs(const Plan& p, const Chunk& c) {
     return a;
 }
 
-/// The chunk's summary when it finished: every frame of its range rendered or kept.
+/// The chunk's summary when it finished: every frame of its range rendered or kept, by this run's options.
 std::optional<json> finishedChunk(const Plan& p, const Chunk& c) {
     std::ifstream in(p.out(c) / chunkSummaryName({c.first, c.last}));
     if (!in)
@@ -161,7 +165,9 @@ std::optional<json> finishedChunk(const Plan& p, const Chunk& c) {
     if (s.is_discarded() || !s.contains("chunk") || !s["chunk"].is_object())
         return std::nullopt;
     const json& ch = s["chunk"];
-    if (ch.value("first", -1LL) != c.first || ch.value("last", -1LL) != c.last ||
+    const std::string& key = p.recordings[c.recording].runKey;
+    if ((!key.empty() && ch.value("run_key", std::string()) != key) || ch.value("first", -1LL) != c.first ||
+        ch.value("last", -1LL) != c.last ||
         ch.value("rendered", 0LL) + ch.value("kept", 0LL) != c.last - c.first + 1)
         return std::nullopt;
     return s;
@@ -212,11 +218,12 @@ Plan makePlan(const FarmOptions& o, const ReplayParser& parseReplay) {
     Plan p{o.runDir, o.exe, o.replayArgs, o.chunkFrames, o.engine, {}, {}, o.video, 0.0};
     for (const fs::path& path : o.recordings) {
         PlannedRecording r{
-            fs::weakly_canonical(fs::absolute(path)), recordingName(path, p.recordings), 0, {}};
+            fs::weakly_canonical(fs::absolute(path)), recordingName(path, p.recordings), 0, {}, {}};
         std::vector<std::string> args = {r.path.string()};
         args.insert(args.end(), o.replayArgs.begin(), o.replayArgs.end());
         args.insert(args.end(), {"--out", (o.runDir / r.name).string()});
         const ReplayOptions ro = parseReplay(args); // throws on bad options: nothing is planned
+        r.runKey = ro.runKey; // what its chunks' command lines give (the same recording, options and --out)
         if (!o.video.empty() && !ro.writeImages)
             throw UsageError(
                 "farm run --video: the video is encoded from the chunks' PNGs, which --no-images "
