@@ -40,6 +40,7 @@ import zlib
 import random
 import resource
 import shutil
+import socket
 import signal
 import subprocess
 import sys
@@ -52,6 +53,9 @@ from test_e2e import child_env, exr_xxh64  # noqa: E402
 
 RUN_TIMEOUT_S = 240
 STAGING = ".pacifica-staging-"
+# This host's staging folders: ".pacifica-staging-<host>-<pid>" (tools/src/OutputTransaction.cpp's hostPrefix).
+HOST_STAGING = STAGING + "".join(ch if ch.isascii() and (ch.isalnum() or ch in "._") else "_"
+                                 for ch in (socket.gethostname() or "host")) + "-"
 
 
 def sortie(source_dir):
@@ -137,7 +141,7 @@ def folder_state(out):
 def staged_files(out, pid):
     """Image files the run `pid` has finished writing into its staging folder (its temporaries are hidden)."""
     try:
-        return sum(1 for f in os.listdir(os.path.join(out, STAGING + str(pid))) if not f.startswith("."))
+        return sum(1 for f in os.listdir(os.path.join(out, HOST_STAGING + str(pid))) if not f.startswith("."))
     except OSError:
         return 0
 

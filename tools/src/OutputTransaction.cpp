@@ -4,6 +4,7 @@
 #include "Usage.h"
 #include "engine/AtomicFile.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -19,6 +20,18 @@ namespace {
 
 constexpr const char* STAGING_PREFIX = ".pacifica-staging-";
 constexpr const char* LOCK_SUFFIX = ".lock";
+
+/// ".pacifica-staging-<host>-": this host's staging folders. Their locks are flock()s, which a network file
+/// system may keep per host: another host's folder may belong to a live run, so only this host's are judged.
+std::string hostPrefix() {
+    char name[256] = {};
+    if (gethostname(name, sizeof name - 1) != 0 || name[0] == '\0')
+        std::strcpy(name, "host");
+    std::string host;
+    for (const char* c = name; *c; ++c)
+        host += std::isalnum(static_cast<unsigned char>(*c)) || *c == '.' || *c == '_' ? *c : '_';
+    return STAGING_PREFIX + host + "-";
+}
 
 } // namespace
 
@@ -58,7 +71,7 @@ OutputTransaction::OutputTransaction(fs::path dir, bool shared) : mDir(std::move
             mCreatedRoot.clear(); // other processes may be writing into it already
     }
     removeStaleStaging();
-    const std::string name = STAGING_PREFIX + std::to_string(getpid());
+    const std::string name = hostPrefix() + std::to_string(getpid());
     mStaging = mDir / name;
     mLock = mDir / (name + LOCK_SUFFIX);
     // The lock first, then the folder: a staging folder without a locked lock file belongs to a dead run.
@@ -76,11 +89,10 @@ OutputTransaction::OutputTransaction(fs::path dir, bool shared) : mDir(std::move
 
 void OutputTransaction::removeStaleStaging() {
     std::error_code ec;
-    std::vector<fs::path> stale;
+    const std::string prefix = hostPrefix();
     for (const fs::directory_entry& e : fs::directory_iterator(mDir, ec)) {
         const std::string n = e.path().filename().string();
-        if (n.rfind(STAGING_PREFIX, 0) == 0 &&
-            n.ends_with(".locking")) { // killed before its lock was in place
+        if (n.rfind(prefix, 0) == 0 && n.ends_with(".locking")) { // killed before its lock was in place
             const int fd = open(e.path().c_str(), O_RDWR | O_CLOEXEC);
             if (fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0)
                 fs::remove(e.path(), ec);
@@ -88,7 +100,7 @@ void OutputTransaction::removeStaleStaging() {
                 close(fd);
             continue;
         }
-        if (n.rfind(STAGING_PREFIX, 0) != 0 || n.size() <= std::strlen(LOCK_SUFFIX) ||
+        if (n.rfind(prefix, 0) != 0 || n.size() <= std::strlen(LOCK_SUFFIX) ||
             n.compare(n.size() - std::strlen(LOCK_SUFFIX), std::string::npos, LOCK_SUFFIX) != 0)
             continue;
         const int fd = open(e.path().c_str(), O_RDWR | O_CLOEXEC);

@@ -5,8 +5,9 @@
 //
 // A run killed outright (kill -9, power loss) cannot clean up: its staging folder stays behind with the
 // frames it had written, DIR itself holds only whole files of earlier commits. Each staging folder has a lock
-// file beside it (DIR/.pacifica-staging-PID.lock, flock held for the run's life, released by the kernel when
-// the process dies), and the next run into DIR removes every staging folder whose lock is free.
+// file beside it (DIR/.pacifica-staging-HOST-PID.lock, flock held for the run's life, released by the kernel
+// when the process dies), and the next run into DIR on the same host removes every staging folder of that
+// host whose lock is free (another host's lock may not show here on a network file system).
 #pragma once
 
 #include <nlohmann/json.hpp>
