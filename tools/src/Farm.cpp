@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -417,7 +418,7 @@ int waitForReport(const Plan& p) {
     }
     std::ifstream in(report);
     const json r = json::parse(in, nullptr, false);
-    return !r.is_discarded() && r.value("whole", false) ? 0 : 1;
+    return !r.is_discarded() && r.value("whole", false) && r.value("videos_ok", true) ? 0 : 1;
 }
 
 // ---- the merge ----
@@ -470,9 +471,13 @@ std::string fileSlug(const std::string& name) {
 bool encodeVideos(const Plan& p, const PlannedRecording& rec, const json& merged, json& rj) {
     json videos = json::array();
     try {
+        std::vector<std::string> taken;
         for (const json& view : merged.at("views")) {
-            const fs::path target =
-                p.runDir / rec.name / (fileSlug(view.at("name").get<std::string>()) + "." + p.video);
+            std::string slug = fileSlug(view.at("name").get<std::string>());
+            if (std::find(taken.begin(), taken.end(), slug) != taken.end()) // "a b" and "a_b"
+                slug += "-" + std::to_string(taken.size());
+            taken.push_back(slug);
+            const fs::path target = p.runDir / rec.name / (slug + "." + p.video);
             std::vector<fs::path> pngs;
             for (const json& f : view.at("frames"))
                 pngs.push_back(p.runDir / rec.name / f.at("png").get<std::string>());
@@ -554,6 +559,7 @@ bool writeMerged(const Plan& p) {
             " recording(s) whole, " + std::to_string(quarantined) + " quarantined, " +
             std::to_string(failed.size()) + " chunk(s) failed -> " + (p.runDir / "report.json").string());
     writeFileAtomically(p.runDir / "report.json", json{{"whole", whole},
+                                                       {"videos_ok", !videosFailed},
                                                        {"engine", p.engine.name},
                                                        {"recordings", std::move(recs)},
                                                        {"failed_chunks", std::move(failed)}}

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <iterator>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -88,7 +87,8 @@ VideoWriter::VideoWriter(const fs::path& target, int width, int height, double f
     mPipe = popen(cmd.c_str(), "w");
     if (!mPipe)
         throw VideoError("--video: cannot start ffmpeg (" + ffmpeg + ")");
-    mRow.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
+    if (input == Input::Rgba)
+        mRow.resize(static_cast<size_t>(width) * static_cast<size_t>(height) * 3);
 }
 
 VideoWriter::~VideoWriter() {
@@ -99,14 +99,16 @@ VideoWriter::~VideoWriter() {
 }
 
 void VideoWriter::addPng(const fs::path& png) {
-    std::ifstream in(png, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!in.good() && !in.eof())
-        throw VideoError("video: cannot read the frame " + png.string());
+    std::ifstream in(png, std::ios::binary | std::ios::ate);
+    std::string bytes(in ? static_cast<size_t>(in.tellg()) : 0, '\0');
+    in.seekg(0);
+    if (!in || !in.read(bytes.data(), static_cast<std::streamsize>(bytes.size())))
+        throw VideoError("video " + mTarget.string() + ": cannot read the frame " + png.string());
     if (bytes.size() < 8 || bytes.compare(1, 3, "PNG") != 0)
-        throw VideoError("video: " + png.string() + " is not a PNG file");
+        throw VideoError("video " + mTarget.string() + ": " + png.string() + " is not a PNG file");
     if (std::fwrite(bytes.data(), 1, bytes.size(), mPipe) != bytes.size())
-        throw VideoError("video: ffmpeg stopped reading frames (see its message above)");
+        throw VideoError("video " + mTarget.string() + ": ffmpeg stopped reading frames at " + png.string() +
+                         " (see its message above)");
     ++mFrames;
 }
 

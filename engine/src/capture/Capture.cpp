@@ -19,8 +19,10 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -200,6 +202,8 @@ Image readImage(const std::filesystem::path& path) {
         std::error_code ec;
         if (!fs::exists(path, ec))
             throw CaptureError(path, "cannot open image: no such file");
+        if (!std::ifstream(path, std::ios::binary))
+            throw CaptureError(path, std::string("cannot open image: ") + std::strerror(errno));
         throw CaptureError(path,
                            "cannot read this image: this build reads OpenEXR files only (configured with "
                            "PACIFICA_CAPTURE_OPENEXR=ON, without OpenImageIO)");
@@ -213,8 +217,7 @@ Image readImage(const std::filesystem::path& path) {
         throw CaptureError(path, "cannot open image: " + OIIO::geterror());
     }
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 ||
-        int64_t(spec.width) * int64_t(spec.height) * int64_t(spec.nchannels) > MAX_READ_SAMPLES)
+    if (!samplesWithinLimit(spec.width, spec.height, spec.nchannels))
         throw CaptureError(
             path, "the header declares " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
                       " pixels of " + std::to_string(spec.nchannels) + " channels; at most " +

@@ -12,6 +12,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
@@ -107,8 +108,8 @@ void writeHalf(const fs::path& file, const fs::path& reportAs, int width, int he
     try {
         Imf::Header header(width, height);
         header.compression() = Imf::ZIP_COMPRESSION;
-        // zlib level 4 (OpenEXR's default, which OpenImageIO's "zip" keeps) or 1 ("zip:1"), whatever the
-        // process-wide default (Imf::setDefaultZipCompressionLevel) says.
+        // zlib level 4 (OpenEXR's default, which OpenImageIO's "zip" keeps) or 1 ("zip:1"), regardless of
+        // the process-wide default (Imf::setDefaultZipCompressionLevel).
         header.zipCompressionLevel() = compression == Compression::Fast ? 1 : 4;
         for (int c = 0; c < channels; ++c)
             header.channels().insert(RGBA[static_cast<size_t>(c)], Imf::Channel(Imf::HALF));
@@ -125,9 +126,22 @@ void writeHalf(const fs::path& file, const fs::path& reportAs, int width, int he
         for (int c = 0; c < channels; ++c)
             frame.insert(RGBA[static_cast<size_t>(c)],
                          Imf::Slice(Imf::HALF, base + sizeof(uint16_t) * static_cast<size_t>(c), pixel, row));
-        Imf::OutputFile out(file.c_str(), header);
-        out.setFrameBuffer(frame);
-        out.writePixels(height);
+        // The stream is ours: OutputFile's destructor writes the line-offset table and swallows any error
+        // doing so, so the stream's state after it is the only word on whether the file is whole.
+        std::ofstream os(file, std::ios::binary | std::ios::trunc);
+        if (!os)
+            throw CaptureError(reportAs, "cannot open " + file.string() + " for writing");
+        {
+            Imf::StdOFStream stream(os, file.c_str());
+            Imf::OutputFile out(stream, header);
+            out.setFrameBuffer(frame);
+            out.writePixels(height);
+        }
+        os.close();
+        if (!os)
+            throw CaptureError(reportAs, "cannot finish writing " + file.string() + " (disk full?)");
+    } catch (const CaptureError&) {
+        throw;
     } catch (const std::exception& e) {
         throw CaptureError(reportAs, std::string("cannot write the OpenEXR file: ") + e.what());
     }
@@ -148,7 +162,7 @@ Image read(const fs::path& file) {
         const int64_t height = int64_t(window.max.y) - window.min.y + 1;
         const std::vector<std::string> names = channelOrder(in.header().channels());
         const auto channels = static_cast<int64_t>(names.size());
-        if (width <= 0 || height <= 0 || channels <= 0 || width * height * channels > MAX_READ_SAMPLES)
+        if (!samplesWithinLimit(width, height, channels))
             throw CaptureError(file, "the header declares " + std::to_string(width) + " x " +
                                          std::to_string(height) + " pixels of " + std::to_string(channels) +
                                          " channels; at most " + std::to_string(MAX_READ_SAMPLES) +

@@ -242,12 +242,20 @@ std::unique_ptr<GlContext> cudaDeviceContext(const char* clientExts, const Conte
         if (ids[i] >= 0)
             listed += (listed.empty() ? "" : ", ") + std::string("EGL device ") + std::to_string(i) +
                       " = CUDA " + std::to_string(ids[i]);
-    if (listed.empty() && uuid.empty())
+    bool nvidia = false; // NVIDIA's EGL is there, though it may give no device a CUDA index (below)
+    for (EGLint i = 0; i < count; ++i)
+        nvidia =
+            nvidia || hasExtension(eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_NV_device_cuda");
+    if (listed.empty() && (uuid.empty() || !nvidia))
         return nullptr;
-    // A UUID is looked for on every device: NVIDIA's EGL gives no device a CUDA index when
+    // A UUID is looked for on every hardware device: NVIDIA's EGL gives no device a CUDA index when
     // CUDA_VISIBLE_DEVICES holds a GPU-UUID (seen on 2x H200), and the UUID does not depend on it.
+    std::string uuids; // what the devices asked said, for the error
     for (EGLint i = 0; i < count; ++i) {
         if (uuid.empty() && ids[i] != index)
+            continue;
+        if (!uuid.empty() &&
+            hasExtension(eglQueryDeviceStringEXT(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
             continue;
         EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
         std::string why;
@@ -259,15 +267,19 @@ std::unique_ptr<GlContext> cudaDeviceContext(const char* clientExts, const Conte
             throw ContextError("CUDA device " + desc.cudaDevice + " (EGL device " + std::to_string(i) +
                                "): " + why);
         auto context = std::make_unique<EglContext>(display, ctx, "egl-device", desc.debug);
-        if (!uuid.empty() && uuidDigits(context->info().uuid) != uuid)
+        if (!uuid.empty() && uuidDigits(context->info().uuid) != uuid) {
+            uuids += (uuids.empty() ? "" : ", ") + std::string("EGL device ") + std::to_string(i) + " = " +
+                     context->info().uuid;
             continue; // not this one: the context goes
+        }
         context->setDevice("EGL device " + std::to_string(i) +
                            (ids[i] >= 0 ? ", CUDA device " + std::to_string(ids[i]) : std::string()) +
                            (uuid.empty() ? std::string() : " (GPU-" + uuid + ")"));
         return context;
     }
-    if (listed.empty())
-        return nullptr; // no NVIDIA EGL: the default device, with the caller's warning
+    if (!uuid.empty())
+        throw ContextError("CUDA device " + desc.cudaDevice + " is none of the EGL devices' GPUs (" +
+                           (uuids.empty() ? std::string("none made a context") : uuids) + ")");
     // NVIDIA's EGL numbers CUDA devices as CUDA does, after CUDA_VISIBLE_DEVICES: with
     // CUDA_VISIBLE_DEVICES=1 the second GPU is CUDA device 0 and the first has none (seen on 2x H200).
     const char* visible = std::getenv("CUDA_VISIBLE_DEVICES");

@@ -67,6 +67,10 @@ namespace {
 std::string deviceUuid() {
     if (!epoxy_has_gl_extension("GL_EXT_memory_object"))
         return "";
+    GLint devices = 0;
+    glGetIntegerv(GL_NUM_DEVICE_UUIDS_EXT, &devices);
+    if (devices < 1)
+        return "";
     GLubyte uuid[GL_UUID_SIZE_EXT] = {};
     glGetUnsignedBytei_vEXT(GL_DEVICE_UUID_EXT, 0, uuid);
     std::string text = "GPU-";

@@ -70,8 +70,16 @@ struct Image {
 /// memory is allocated.
 inline constexpr int64_t MAX_READ_SAMPLES = int64_t(16384) * 8192 * 4;
 
-/// Reads any image OpenImageIO understands (first subimage, all channels) as float. 8-bit files read as
-/// value / 255. Throws CaptureError naming the file (also for more than MAX_READ_SAMPLES samples).
+/// Whether a header's width x height x channels is positive and at most MAX_READ_SAMPLES, checked factor by
+/// factor so that no product overflows (a header may declare 2^31 x 2^31).
+constexpr bool samplesWithinLimit(int64_t width, int64_t height, int64_t channels) {
+    return width > 0 && height > 0 && channels > 0 && width <= MAX_READ_SAMPLES &&
+           height <= MAX_READ_SAMPLES / width && channels <= MAX_READ_SAMPLES / (width * height);
+}
+
+/// Reads any image OpenImageIO understands (first subimage, all channels) as float; built with
+/// PACIFICA_CAPTURE_OPENEXR, OpenEXR files only (engine/capture/OpenExr.h). 8-bit files read as value / 255.
+/// Throws CaptureError naming the file (also for more than MAX_READ_SAMPLES samples).
 Image readImage(const std::filesystem::path& path);
 
 } // namespace pacifica::capture

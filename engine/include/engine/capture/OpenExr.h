@@ -30,7 +30,8 @@ bool isOpenExr(const std::filesystem::path& file);
 /// Reads an OpenEXR file (scanline or tiled, its first part) as float, top row first. Channels come in the
 /// order R, G, B, A when the file has R, G and B, otherwise in the file's (alphabetical) order. Attributes:
 /// string, double, float and int ones as text, and "compression" as OpenImageIO names it ("zip", "piz", ...).
-/// Refuses more than MAX_READ_SAMPLES samples before allocating pixels; throws CaptureError naming `file`.
+/// Refuses more than MAX_READ_SAMPLES samples before allocating pixel memory (OpenEXR has read the header and
+/// its line-offset table by then); throws CaptureError naming `file`.
 Image read(const std::filesystem::path& file);
 
 } // namespace pacifica::capture::openexr
