@@ -8,7 +8,9 @@ Cases (chosen with --case, one ctest test each):
            view frame's EXR pixel hash, recomputed from the file, and every PNG's bytes equal the one-process
            run's; the last chunk's explosion started in the chunk before it (its pre-roll). Then: a chunk run
            again keeps all its frames (nothing rewritten), a chunk with one PNG damaged renders that frame
-           only and restores it, a chunk with other options (--fov) renders all its frames again, and bad
+           only and restores it, a chunk with other options (--fov) renders all its frames again, so does a
+           chunk whose recording (a copy) was edited in place since its frames were rendered or that another
+           build of the program runs, and bad
            ranges (J < I, past the run's end, text, with --video) are refused naming --frames.
   kill     a chunk of 8 frames killed with SIGKILL once its third frame has landed, then run again: the folder
            holds only whole frames with their sidecars in between, the second run keeps what landed, renders
@@ -18,6 +20,7 @@ Usage: test_chunks.py --case CASE PACIFICA_EXE SOURCE_DIR     (python3 standard 
 """
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -151,6 +154,31 @@ def case_chunks(c, exe, source_dir, tmp):
             "a chunk with other options keeps nothing", str(ch) + p.stderr[-500:])
     c.check(exr_xxh64(out, [names(7)["chase"] + ".exr"]) != exr_xxh64(ref, [names(7)["chase"] + ".exr"]),
             "and its frame is the new run's (another field of view)")
+
+    print("[edited input] a copy of the recording, changed in place after a chunk: the chunk keeps nothing")
+    copy = os.path.join(tmp, "copy.txt.acmi")
+    shutil.copyfile(os.path.join(source_dir, "tools", "data", "sortie.txt.acmi"), copy)
+    edited = os.path.join(tmp, "edited")
+    args = run_args(source_dir, edited, ["--frames", "7-7"])
+    args[1] = copy
+    p = run(exe, args)
+    c.require(p.returncode == 0, "the chunk on the copy exits 0", p.stderr[-500:])
+    with open(copy, "a") as f:
+        f.write("// edited after the first run\n")
+    p = run(exe, args)
+    ch = chunk_summary(c, edited, 7, 7).get("chunk", {})
+    c.check(p.returncode == 0 and ch.get("kept") == 0 and ch.get("rendered") == 1,
+            "a chunk whose recording changed keeps nothing (the key holds the input's XXH64)",
+            str(ch) + p.stderr[-500:])
+    rebuilt = os.path.join(tmp, "pacifica-rebuilt")  # another build: the same program with one byte more
+    shutil.copy2(exe, rebuilt)
+    with open(rebuilt, "ab") as f:
+        f.write(b"\0")
+    p = run(rebuilt, args)
+    ch = chunk_summary(c, edited, 7, 7).get("chunk", {})
+    c.check(p.returncode == 0 and ch.get("kept") == 0 and ch.get("rendered") == 1,
+            "a chunk run by another build keeps nothing (the key holds the program's XXH64)",
+            str(ch) + p.stderr[-500:])
 
     print("[bad ranges] refused before anything is written")
     bad_out = os.path.join(tmp, "bad")

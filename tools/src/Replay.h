@@ -79,9 +79,11 @@ struct ReplayOptions {
     /// has this run's key and matches its files is kept, not rendered again (resume). The chunk's summary is
     /// DIR/chunk-IIIII-JJJJJ.json; summary.json is left alone. Not with --video.
     std::optional<FrameRange> frames;
-    /// What a sidecar must name for --frames to keep a frame: the command line less --frames, --cuda-device
-    /// and --no-progress, as spelled (set by the CLI), so a frame of a run with other options is rendered
-    /// again. It does not cover the inputs' contents, the build or the GPU (docs/SCALE.md).
+    /// What a sidecar must name for --frames to keep a frame (set by the CLI): the command line less
+    /// --frames,
+    /// --cuda-device and --no-progress, as spelled, with the XXH64 of the program's bytes and of every input
+    /// file (recording, --env, OCIO config, --height-map), so a frame of a run with other options, another
+    /// build or edited inputs is rendered again. It does not cover the GPU or driver (docs/SCALE.md).
     std::string runKey;
 };
 

@@ -13,6 +13,7 @@
 #include "ReplayInput.h"
 #include "TonemapCompare.h"
 #include "engine/AtomicFile.h"
+#include "engine/capture/Capture.h"
 
 #include <recording/AcmiWriter.h>
 #include <recording/Recording.h>
@@ -23,7 +24,9 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,7 +39,7 @@ struct ReplayCommand {
     CLI::App* app = nullptr;
     tools::ReplayOptions replay;
     std::string flight, outDir, size = "640x360", ocioConfig, start, end, video, environment, frames;
-    std::string runKey; ///< the command line less --frames and --no-progress (ReplayOptions::runKey)
+    std::string runKey; ///< the command line less --frames, --cuda-device and --no-progress (replayRunKey)
     std::string imageCompression = "fast";
     std::vector<std::string> views;
     bool noImages = false, noProgress = false, listObjects = false, noEvents = false, noObjects = false;
@@ -126,6 +129,38 @@ void ReplayCommand::addOutputOptions() {
                         "HDR lat-long environment EXR for the sky and reflections (default: procedural)");
 }
 
+/// XXH64 of a file's bytes as 16 hex digits; null when it cannot be read (the run fails on it later).
+nlohmann::json fileHash(const std::filesystem::path& path) {
+    const std::optional<uint64_t> h = pacifica::capture::hashFileBytes(path);
+    if (!h)
+        return nullptr;
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(*h));
+    return text;
+}
+
+/// ReplayOptions::runKey: the command line's key (replayRunKey) with what the command line does not show --
+/// this program's bytes (a rebuilt pacifica renders again) and every input file's (the recording, --env,
+/// --ocio-config or $OCIO, --height-map), so a chunk never keeps frames of another build or another input.
+std::string runKeyWithContents(const std::string& argsKey, const tools::ReplayOptions& r,
+                               const std::vector<std::string>& heightMaps) {
+    nlohmann::json inputs = nlohmann::json::object();
+    const auto add = [&inputs](const std::filesystem::path& p) { inputs[p.string()] = fileHash(p); };
+    add(r.flight);
+    if (r.environment)
+        add(*r.environment);
+    if (r.ocioConfig)
+        add(*r.ocioConfig);
+    else if (const char* env = std::getenv("OCIO"); env && *env)
+        add(env);
+    for (const std::string& h : heightMaps)
+        add(h);
+    return nlohmann::json{{"args", nlohmann::json::parse(argsKey)},
+                          {"program", fileHash("/proc/self/exe")},
+                          {"inputs", std::move(inputs)}}
+        .dump();
+}
+
 tools::ReplayOptions ReplayCommand::options() const {
     tools::ReplayOptions r = replay;
     r.flight = flight;
@@ -160,7 +195,7 @@ tools::ReplayOptions ReplayCommand::options() const {
     r.progress = !noProgress;
     if (framesOpt->count())
         r.frames = tools::parseFrameRange(frames);
-    r.runKey = runKey;
+    r.runKey = runKeyWithContents(runKey, r, ocean.heightMaps);
     return r;
 }
 
