@@ -11,15 +11,11 @@
 namespace pacifica::tools {
 namespace fs = std::filesystem;
 
-namespace {
-
 std::string hex64(uint64_t v) {
     char buf[17];
     std::snprintf(buf, sizeof buf, "%016" PRIx64, v);
     return buf;
 }
-
-} // namespace
 
 std::string sidecarName(const std::string& frameBase) {
     return frameBase + ".check.json";

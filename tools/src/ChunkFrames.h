@@ -9,12 +9,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace pacifica::tools {
+
+/// A 64-bit hash as 16 lower-case hex digits (the summaries' and sidecars' XXH64s).
+std::string hex64(uint64_t v);
 
 /// "frame_00012" -> "frame_00012.check.json".
 std::string sidecarName(const std::string& frameBase);

@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -457,14 +456,6 @@ json mergedSummary(const std::vector<json>& parts) {
     return s;
 }
 
-/// A view's name as a file name: letters, digits, '-' and '_' kept, anything else '_'.
-std::string fileSlug(const std::string& name) {
-    std::string out;
-    for (char ch : name)
-        out += std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' ? ch : '_';
-    return out.empty() ? std::string("view") : out;
-}
-
 /// FarmOptions::video for a whole recording: one video per view from its frames' PNGs, in frame order, each
 /// encoded once (ffmpeg decodes the PNGs); a video newer than all its frames is kept. Records the videos, or
 /// the error, in the report's entry `rj`; returns false when one could not be made (the frames stay).
@@ -474,7 +465,9 @@ bool encodeVideos(const Plan& p, const PlannedRecording& rec, const json& merged
         std::vector<std::string> taken;
         for (const json& view : merged.at("views")) {
             std::string slug = fileSlug(view.at("name").get<std::string>());
-            if (std::find(taken.begin(), taken.end(), slug) != taken.end()) // "a b" and "a_b"
+            if (slug.empty())
+                slug = "view";
+            if (std::find(taken.begin(), taken.end(), slug) != taken.end()) // "a b" and "a-b"
                 slug += "-" + std::to_string(taken.size());
             taken.push_back(slug);
             const fs::path target = p.runDir / rec.name / (slug + "." + p.video);

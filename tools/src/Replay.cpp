@@ -61,12 +61,6 @@ std::string shortNumber(double v) {
     return buf;
 }
 
-std::string hex64(uint64_t v) {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-    return buf;
-}
-
 using Clock = std::chrono::steady_clock;
 
 /// An environment variable's value, null when unset (summary.json).
@@ -179,9 +173,7 @@ std::vector<ExtraView> makeExtraViews(const ReplayOptions& o, const color::Color
     for (const std::string& v : o.extraViews) {
         color::ColorPipeline other = colour;
         other.select(colour.selectedDisplay(), v); // an unknown view: ColorError listing the valid ones
-        std::string suffix;
-        for (char c : v)
-            suffix += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
+        const std::string suffix = fileSlug(v);
         for (const ExtraView& e : extraViews)
             if (e.suffix == suffix)
                 throw std::runtime_error("--view '" + v + "' is given twice");

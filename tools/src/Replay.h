@@ -83,7 +83,8 @@ struct ReplayOptions {
     /// --frames,
     /// --cuda-device and --no-progress, as spelled, with the XXH64 of the program's bytes and of every input
     /// file (recording, --env, OCIO config, --height-map), so a frame of a run with other options, another
-    /// build or edited inputs is rendered again. It does not cover the GPU or driver (docs/SCALE.md).
+    /// build or edited inputs is rendered again (the hashes are read only for --frames and the farm's plan,
+    /// which use the key). It does not cover the GPU or driver (docs/SCALE.md).
     std::string runKey;
 };
 

@@ -68,13 +68,6 @@ std::string lower(std::string s) {
     return s;
 }
 
-std::string slug(const std::string& s) {
-    std::string out;
-    for (char c : s)
-        out += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
-    return out;
-}
-
 /// NaN -> 0, +Inf -> 65504 (the largest half), -Inf -> 0: what the transforms see (the census counts them).
 void sanitise(std::vector<float>& rgb) {
     for (float& v : rgb)
@@ -861,9 +854,9 @@ std::vector<std::pair<fs::path, std::string>> argumentImages(const std::string& 
         files.emplace_back(p, p.stem().string());
         return files;
     }
-    const fs::path renderDir = out / "renders" / slug(p.stem().string());
+    const fs::path renderDir = out / "renders" / fileSlug(p.stem().string());
     for (const fs::path& f : renderFlight(p, renderDir, framesPerFolder))
-        files.emplace_back(f, slug(p.stem().string()) + "-" + f.stem().string());
+        files.emplace_back(f, fileSlug(p.stem().string()) + "-" + f.stem().string());
     return files;
 }
 
@@ -876,7 +869,7 @@ std::vector<Input> collectInputs(const TonemapCompareOptions& o, const fs::path&
     const std::string staged = out.string() + "/";
     for (const std::string& arg : o.inputs)
         for (const auto& [file, name] : argumentImages(arg, out, o.framesPerFolder)) {
-            inputs.push_back(fromImage(file, slug(name), o.maxPixels));
+            inputs.push_back(fromImage(file, fileSlug(name), o.maxPixels));
             if (inputs.back().source.rfind(staged, 0) == 0)
                 inputs.back().source = (o.outDir / inputs.back().source.substr(staged.size())).string();
         }

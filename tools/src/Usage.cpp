@@ -1,6 +1,8 @@
 // Usage: the CLI's shared option parsing (Usage.h).
 #include "Usage.h"
 
+#include <cctype>
+
 namespace pacifica::tools {
 
 void parseSize(const std::string& text, int& width, int& height) {
@@ -43,6 +45,13 @@ FrameRange parseFrameRange(const std::string& text) {
     if (r.last < r.first)
         throw bad();
     return r;
+}
+
+std::string fileSlug(const std::string& name) {
+    std::string out;
+    for (char c : name)
+        out += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::tolower(c)) : '-';
+    return out;
 }
 
 } // namespace pacifica::tools

@@ -24,4 +24,8 @@ struct FrameRange {
 /// Parses "I-J" (0 <= I <= J, decimal) or "I" (one frame); throws UsageError naming --frames.
 FrameRange parseFrameRange(const std::string& text);
 
+/// A name given on the command line (an OCIO view, a rig, an input image) as part of an output file name:
+/// letters and digits lower-cased, anything else '-' ("ACES 1.0 - SDR Video" -> "aces-1-0---sdr-video").
+std::string fileSlug(const std::string& name);
+
 } // namespace pacifica::tools

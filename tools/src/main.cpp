@@ -7,6 +7,7 @@
 //   farm resume|status RUN; farm chunk RUN I; farm merge RUN (what the engines' tasks run)
 // Any failure prints "pacifica: error: ..." naming the file/line/option and exits non-zero, leaving no
 // partial output behind.
+#include "ChunkFrames.h"
 #include "Farm.h"
 #include "OceanOptions.h"
 #include "Replay.h"
@@ -40,6 +41,9 @@ struct ReplayCommand {
     tools::ReplayOptions replay;
     std::string flight, outDir, size = "640x360", ocioConfig, start, end, video, environment, frames;
     std::string runKey; ///< the command line less --frames, --cuda-device and --no-progress (replayRunKey)
+    /// The run key with the program's and the inputs' hashes (runKeyWithContents) even without --frames:
+    /// the farm's plan, which must name what its chunks will. A plain run does not read them for nothing.
+    bool keyWithContents = false;
     std::string imageCompression = "fast";
     std::vector<std::string> views;
     bool noImages = false, noProgress = false, listObjects = false, noEvents = false, noObjects = false;
@@ -132,11 +136,7 @@ void ReplayCommand::addOutputOptions() {
 /// XXH64 of a file's bytes as 16 hex digits; null when it cannot be read (the run fails on it later).
 nlohmann::json fileHash(const std::filesystem::path& path) {
     const std::optional<uint64_t> h = pacifica::capture::hashFileBytes(path);
-    if (!h)
-        return nullptr;
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(*h));
-    return text;
+    return h ? nlohmann::json(tools::hex64(*h)) : nlohmann::json(nullptr);
 }
 
 /// ReplayOptions::runKey: the command line's key (replayRunKey) with what the command line does not show --
@@ -195,7 +195,7 @@ tools::ReplayOptions ReplayCommand::options() const {
     r.progress = !noProgress;
     if (framesOpt->count())
         r.frames = tools::parseFrameRange(frames);
-    r.runKey = runKeyWithContents(runKey, r, ocean.heightMaps);
+    r.runKey = r.frames || keyWithContents ? runKeyWithContents(runKey, r, ocean.heightMaps) : runKey;
     return r;
 }
 
@@ -294,6 +294,7 @@ tools::ReplayOptions parseReplayArgs(const std::vector<std::string>& args) {
     std::vector<std::string> reversed = {"replay"};
     reversed.insert(reversed.end(), args.begin(), args.end());
     cmd.runKey = replayRunKey(reversed);
+    cmd.keyWithContents = true;
     std::reverse(reversed.begin(), reversed.end()); // CLI11 takes a vector last argument first
     try {
         app.parse(reversed);

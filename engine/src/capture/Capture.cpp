@@ -82,8 +82,7 @@ void checkArguments(const fs::path& path, const char* function, int width, int h
     }
 }
 
-#if PACIFICA_CAPTURE_OPENEXR
-// Renames the finished temp file onto `path`.
+// Renames the finished temp file onto `path` (both backends' last step).
 void commitRename(TempFile& temp, const fs::path& path) {
     std::error_code ec;
     fs::rename(temp.path(), path, ec);
@@ -92,7 +91,8 @@ void commitRename(TempFile& temp, const fs::path& path) {
     }
     temp.commit();
 }
-#else
+
+#if !PACIFICA_CAPTURE_OPENEXR
 // Writes `data` (already in the spec's pixel format) through the named OIIO plugin to a temp file, then
 // renames it onto `path`.
 void writeAtomically(const fs::path& path, const char* formatName, const OIIO::ImageSpec& spec,
@@ -116,13 +116,7 @@ void writeAtomically(const fs::path& path, const char* formatName, const OIIO::I
         throw CaptureError(path, "cannot finish writing " + temp.path().string() + ": " + out->geterror());
     }
     out.reset();
-
-    std::error_code ec;
-    fs::rename(temp.path(), path, ec);
-    if (ec) {
-        throw CaptureError(path, "cannot rename " + temp.path().string() + " into place: " + ec.message());
-    }
-    temp.commit();
+    commitRename(temp, path);
 }
 
 template <class T>
