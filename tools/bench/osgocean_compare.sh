@@ -8,20 +8,26 @@
 #
 #   tools/bench/osgocean_compare.sh --source DIR [--out DIR] [--frames N] [--rounds N]
 #
-#   --source DIR  an osgOcean checkout (its CMakeLists.txt and resources/); or $OSGOCEAN_SOURCE; without
+#   --source DIR  an osgOcean checkout or an extracted archive of it (its CMakeLists.txt and resources/;
+#                 commit f235e99 is the one measured in docs/PERFORMANCE.md); or $OSGOCEAN_SOURCE; without
 #                 either, `apt-get source osgocean` where apt has deb-src entries. Debian 12 packages
-#                 OpenSceneGraph but not osgOcean, and this project's machines reach no GitHub: there the
-#                 script prints the recipe and exits 3, and the issue's figures stand as the baseline.
-#   --out DIR     results (default out/osgocean-compare): osgocean-RUN.txt (ms per frame), pacifica-RUN/,
-#                 compare.md (medians per round and the ratios)
+#                 OpenSceneGraph but not osgOcean: without a source the script prints the recipe, exits 3.
+#   --out DIR     results (default out/osgocean-compare): osgocean-RUN.txt (ms per frame), osgocean-RUN.png
+#                 and .look (the example's last timed frame), pacifica-RUN/, compare.md (medians per
+#                 round and the ratios)
 #   --frames N    timed frames per run (default 30, after 10 warm-up frames); --rounds N (default 3)
 #   --bench EXE   a built pacifica-bench-frame (default: `./pacifica build`, then build/tools/...)
 #   --skip-install  do not check or install the Debian packages (they are there, or the source needs none)
 #
 # The example's window is fixed at 1024x768 and its camera at (0, 0, 20) looking along +y with OSG's
 # default 30 deg vertical field of view; Pacifica's bench views the sea from 20 m, 3 deg down, 60 deg, at
-# the same size. Exit: 0 compared, 1 missing packages (not root), 2 bad arguments or a failed build or
-# run, 3 no osgOcean source.
+# the same size. The example runs in OUT/osgocean-run/, whose resources/ links the source's resources/ and
+# demo/ as the example's install rules lay them out (the sky cube maps are only in demo/textures/), and
+# Debian's OpenSceneGraph, which has no debug libraries, gets its release ones for the example's
+# `debug ${OSG*_LIBRARY_DEBUG}` links. Each run keeps the example's last timed frame (osgocean-RUN.png)
+# and its luma statistics (osgocean-RUN.look); a nearly black frame or one without a sky fails the run.
+# Exit: 0 compared, 1 missing packages (not root), 2 bad arguments or a failed build or run, 3 no
+# osgOcean source, 4 the example drew a wrong frame.
 set -eu
 
 ROOT=$(CDPATH= cd -- "$(dirname -- "$0")/../.." && pwd)
@@ -32,7 +38,9 @@ FRAMES=30
 ROUNDS=3
 BENCH=""
 INSTALL=1
-PACKAGES="libopenscenegraph-dev libfftw3-dev cmake g++ xvfb xauth"
+PACKAGES="libopenscenegraph-dev libfftw3-dev zlib1g-dev cmake g++ xvfb xauth"
+MIN_MEAN=10        # the shot's mean luma (0-255) below which the frame counts as black
+MIN_SKY_STDDEV=2   # the top quarter's luma standard deviation below which it counts as one flat colour
 
 say() { printf '%s\n' "osgocean_compare: $*" >&2; }
 fail() { say "$1"; exit "${2:-2}"; }
@@ -59,12 +67,13 @@ recipe() {
     cat >&2 <<'RECIPE'
 The comparison recipe (docs/PERFORMANCE.md, "osgOcean"), for a machine with the source:
   1. git clone https://github.com/kbale/osgocean   (or any copy of it)
-  2. sudo apt-get install libopenscenegraph-dev libfftw3-dev cmake g++ xvfb xauth
+  2. sudo apt-get install libopenscenegraph-dev libfftw3-dev zlib1g-dev cmake g++ xvfb xauth
   3. tools/bench/osgocean_compare.sh --source osgocean
      It builds osgOcean with -DUSE_FFTW3F=ON (FFTSS is not packaged), builds swap_timer.so, and alternates
-     `xvfb-run ... LIBGL_ALWAYS_SOFTWARE=1 LD_PRELOAD=swap_timer.so oceanExample` (run from the source's
-     directory, where its resources/ are) with `pacifica-bench-frame --size 1024x768 --only low,medium,high`.
-Until it runs, the issue's figures stand: osgOcean all effects 50.1 / 114.9 ms at 640x360 / 1280x720.
+     `xvfb-run ... LIBGL_ALWAYS_SOFTWARE=1 LD_PRELOAD=swap_timer.so oceanExample` (run from a folder whose
+     resources/ merges the source's resources/ and demo/) with
+     `pacifica-bench-frame --size 1024x768 --only low,medium,high`.
+The last run (docs/PERFORMANCE.md, "osgOcean"): osgOcean all effects 102.8-125.3 ms at 1024x768 on llvmpipe.
 RECIPE
 }
 
@@ -104,18 +113,62 @@ fi
 # 3. Builds: osgOcean, the frame timer, Pacifica's bench.
 mkdir -p "$OUT"
 OUT=$(CDPATH= cd -- "$OUT" && pwd)
-cmake -S "$SOURCE" -B "$OUT/osgocean-build" -DCMAKE_BUILD_TYPE=Release -DUSE_FFTSS=OFF -DUSE_FFTW3F=ON \
-    -DENABLE_EXAMPLE=ON >"$OUT/osgocean-build.log" 2>&1 &&
-    cmake --build "$OUT/osgocean-build" -j "$(nproc)" >>"$OUT/osgocean-build.log" 2>&1 ||
+# osgOcean's CMake files link `debug ${OSGSHADOW_LIBRARY_DEBUG}` and the like, and Debian's OpenSceneGraph has
+# no debug libraries: the first configure stops on those NOTFOUND variables. Each is given its release
+# library (what the cache found as X_LIBRARY_RELEASE; a Release build never links the debug one anyway).
+configure() {
+    cmake -S "$SOURCE" -B "$OUT/osgocean-build" -DCMAKE_BUILD_TYPE=Release -DUSE_FFTSS=OFF -DUSE_FFTW3F=ON \
+        -DENABLE_EXAMPLE=ON "$@" >>"$OUT/osgocean-build.log" 2>&1
+}
+: >"$OUT/osgocean-build.log"
+if ! configure; then
+    cache="$OUT/osgocean-build/CMakeCache.txt"
+    [ -f "$cache" ] || fail "configuring osgOcean failed: see $OUT/osgocean-build.log"
+    fixes=$(sed -n 's/^\([A-Z0-9_]*\)_LIBRARY_DEBUG:FILEPATH=.*-NOTFOUND$/\1/p' "$cache" | while read -r lib; do
+        release=$(sed -n "s/^${lib}_LIBRARY_RELEASE:FILEPATH=//p" "$cache")
+        case "$release" in '' | *-NOTFOUND) ;; *) printf ' -D%s_LIBRARY_DEBUG=%s' "$lib" "$release" ;; esac
+    done)
+    [ -n "$fixes" ] || fail "configuring osgOcean failed: see $OUT/osgocean-build.log"
+    say "no debug OpenSceneGraph libraries: linking the release ones in their place"
+    # shellcheck disable=SC2086 # one -D per word; the library paths hold no spaces (CMake's own cache lines)
+    configure $fixes || fail "configuring osgOcean failed: see $OUT/osgocean-build.log"
+fi
+cmake --build "$OUT/osgocean-build" -j "$(nproc)" >>"$OUT/osgocean-build.log" 2>&1 ||
     fail "building osgOcean failed: see $OUT/osgocean-build.log"
 EXAMPLE=$(find "$OUT/osgocean-build" -type f -name oceanExample -perm -u+x | head -n 1)
 [ -n "$EXAMPLE" ] || fail "the build made no oceanExample: see $OUT/osgocean-build.log"
-cc -O2 -shared -fPIC "$HERE/osgocean/swap_timer.c" -o "$OUT/swap_timer.so" -ldl ||
+cc -O2 -shared -fPIC "$HERE/osgocean/swap_timer.c" -o "$OUT/swap_timer.so" -ldl -lz -lm ||
     fail "building swap_timer.so failed"
+# The example reads everything relative to its working directory under resources/ (textures/sky_clear/,
+# island/, shaders/), the layout its install rules make from the source's resources/ and demo/ folders; the
+# sky cube maps live only in demo/textures/. The run folder merges both as links, leaving the source as it is.
+RUN="$OUT/osgocean-run"
+rm -rf "$RUN"
+mkdir -p "$RUN/resources"
+cp -rs "$SOURCE/resources/." "$RUN/resources/" || fail "cannot link $SOURCE/resources into $RUN"
+if [ -d "$SOURCE/demo" ]; then
+    cp -rs "$SOURCE/demo/." "$RUN/resources/" || fail "cannot link $SOURCE/demo into $RUN/resources"
+fi
 if [ -z "$BENCH" ]; then
     "$ROOT/pacifica" build >"$OUT/pacifica-build.log" 2>&1 || fail "building Pacifica failed: see $OUT/pacifica-build.log"
     BENCH="${PACIFICA_BUILD_DIR:-$ROOT/build}/tools/pacifica-bench-frame"
 fi
+
+# What the example drew in a run's last timed frame (swap_timer's shot line): a frame that is nearly black,
+# or whose top quarter -- the sky, from the example's camera 20 m up looking at the horizon -- is one flat
+# colour (no sky cube map: missing textures leave the clear colour), fails the run, so a frame that draws
+# less cannot pass as a faster one.
+look() {
+    stats=$(sed -n 's/^swap_timer: shot //p' "$OUT/osgocean-$1.log")
+    [ -n "$stats" ] && [ -s "$OUT/osgocean-$1.png" ] || fail "oceanExample's run $1 left no shot: see $OUT/osgocean-$1.log"
+    verdict=$(echo "$stats" | awk -v min_mean="$MIN_MEAN" -v min_sky="$MIN_SKY_STDDEV" '{
+        for (i = 1; i < NF; ++i) v[$i] = $(i + 1)
+        if (v["mean"] < min_mean) printf "nearly black (mean luma %s < %s)", v["mean"], min_mean
+        else if (v["top_stddev"] < min_sky) printf "no sky (top quarter luma stddev %s < %s)", v["top_stddev"], min_sky
+    }')
+    [ -z "$verdict" ] || fail "oceanExample's run $1 drew a wrong frame, $verdict: see $OUT/osgocean-$1.png" 4
+    echo "$stats" >"$OUT/osgocean-$1.look"
+}
 
 # 4. Alternating runs in one session.
 rm -f "$OUT/compare.md.part"
@@ -130,11 +183,14 @@ rm -f "$OUT/compare.md.part"
 round=1
 while [ "$round" -le "$ROUNDS" ]; do
     rm -f "$OUT/osgocean-$round.txt"
-    (cd "$SOURCE" && xvfb-run -a -f "$OUT/Xauthority" -s "-screen 0 1280x1024x24" env LIBGL_ALWAYS_SOFTWARE=1 \
+    rm -f "$OUT/osgocean-$round.png"
+    (cd "$RUN" && xvfb-run -a -f "$OUT/Xauthority" -s "-screen 0 1280x1024x24" env LIBGL_ALWAYS_SOFTWARE=1 \
         LD_PRELOAD="$OUT/swap_timer.so" SWAP_TIMER_OUT="$OUT/osgocean-$round.txt" SWAP_TIMER_WARMUP=10 \
-        SWAP_TIMER_FRAMES="$FRAMES" "$EXAMPLE" >"$OUT/osgocean-$round.log" 2>&1) ||
+        SWAP_TIMER_FRAMES="$FRAMES" SWAP_TIMER_SHOT="$OUT/osgocean-$round.png" "$EXAMPLE" \
+        >"$OUT/osgocean-$round.log" 2>&1) ||
         fail "oceanExample failed: see $OUT/osgocean-$round.log"
     [ -s "$OUT/osgocean-$round.txt" ] || fail "oceanExample ended before $FRAMES timed frames: see $OUT/osgocean-$round.log"
+    look "$round"
     rm -rf "$OUT/pacifica-$round"
     "$BENCH" --size 1024x768 --frames "$FRAMES" --only low,medium,high --out "$OUT/pacifica-$round" \
         >"$OUT/pacifica-$round.log" 2>&1 || fail "pacifica-bench-frame failed: see $OUT/pacifica-$round.log"

@@ -1,9 +1,14 @@
 /* glx_spin.c: a GLX program that clears and swaps until it is stopped -- the stand-in for osgOcean's
- * example in the test of swap_timer.c (tests/CMakeLists.txt, osgocean_swap_timer): like the example it
- * never ends by itself and calls glXSwapBuffers through the dynamic linker. */
+ * example in the tests of swap_timer.c and osgocean_compare.sh (tests/e2e/test_osgocean_compare.py): like
+ * the example it never ends by itself and calls glXSwapBuffers through the dynamic linker.
+ * Frame k of its 320x180 window: the top-left quarter white, the rest the colour (k mod 256, 51, 102)/255.
+ * GLX_SPIN_DRAW=flat draws only the colour (a frame with no "sky"), GLX_SPIN_DRAW=black only black: what
+ * the comparison's look at the example's frame must refuse. */
 #include <GL/gl.h>
 #include <GL/glx.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 int main(void) {
     Display* dpy = XOpenDisplay(NULL);
@@ -25,9 +30,21 @@ int main(void) {
     XMapWindow(dpy, win);
     GLXContext ctx = glXCreateContext(dpy, visual, NULL, True);
     glXMakeCurrent(dpy, win, ctx);
+    const char* draw = getenv("GLX_SPIN_DRAW");
+    int flat = draw && strcmp(draw, "flat") == 0, black = draw && strcmp(draw, "black") == 0;
     for (unsigned long frame = 0;; ++frame) {
-        glClearColor((float)(frame % 256) / 255.0f, 0.2f, 0.4f, 1.0f);
+        glDisable(GL_SCISSOR_TEST);
+        if (black)
+            glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        else
+            glClearColor((float)(frame % 256) / 255.0f, 0.2f, 0.4f, 1.0f);
         glClear(GL_COLOR_BUFFER_BIT);
+        if (!flat && !black) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(0, 90, 160, 90); /* GL's window origin is bottom-left: this is the top-left quarter */
+            glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+        }
         glXSwapBuffers(dpy, win);
     }
 }
