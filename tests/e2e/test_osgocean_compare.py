@@ -13,7 +13,8 @@ Cases (chosen with --case, one ctest test each):
               alternates the timed example with the given pacifica-bench-frame (--bench, --skip-install) and
               writes compare.md: one row per round with the two medians and their ratio, matching the files
               it kept (the example's frame times and shot, the bench's frame.csv). A flat frame (no sky) and
-              a black one are refused: exit 4 naming the fault and the shot, no compare.md.
+              a black one are refused: exit 4 naming the fault and the shot, no compare.md (the flat run
+              goes into the good run's folder, whose report it must remove).
   real       the script unchanged on osgOcean's real source, ../shared/peers/osgocean-f235e99.tar.gz
               ($PACIFICA_SHARED_DIR), extracted to a scratch folder; skipped (77) without it. First with the
               source's demo/ folder moved away: the example draws no sky and the run is refused (exit 4);
@@ -177,8 +178,9 @@ def stand_in(src, bench):
                   f"{w}x{h}, {look}")
         check(not os.path.exists(os.path.join(out, "compare.md.part")), "no partial report left")
 
+        # The flat run goes into the same OUT: the report of the good run above must not outlive it.
         for draw, why in (("flat", "no sky"), ("black", "nearly black")):
-            bad = os.path.join(tmp, "out-" + draw)
+            bad = out if draw == "flat" else os.path.join(tmp, "out-" + draw)
             r = subprocess.run(["sh", script, "--source", source, "--out", bad, "--bench", bench, "--skip-install",
                                 "--frames", "3", "--rounds", "1"], capture_output=True, text=True, timeout=600,
                                env=dict(os.environ, GLX_SPIN_DRAW=draw))
@@ -186,7 +188,9 @@ def stand_in(src, bench):
                   f"a {draw} frame is refused: exit 4 saying '{why}' and naming the shot",
                   f"{r.returncode}: {r.stderr[-800:]}")
             check(not os.path.exists(os.path.join(bad, "compare.md")) and
-                  not os.path.exists(os.path.join(bad, "pacifica-1")), f"{draw}: no report, no bench run")
+                  not os.path.exists(os.path.join(bad, "osgocean-1.look")), f"{draw}: no report, no look")
+            if draw == "black":
+                check(not os.path.exists(os.path.join(bad, "pacifica-1")), "black: no bench run")
 
 
 def real(src, bench):

@@ -170,8 +170,8 @@ look() {
     echo "$stats" >"$OUT/osgocean-$1.look"
 }
 
-# 4. Alternating runs in one session.
-rm -f "$OUT/compare.md.part"
+# 4. Alternating runs in one session. An earlier report in OUT goes first: a failed run leaves none.
+rm -f "$OUT/compare.md.part" "$OUT/compare.md"
 {
     echo "# Pacifica vs osgOcean, $(date -u '+%Y-%m-%d %H:%M UTC')"
     echo
@@ -183,7 +183,7 @@ rm -f "$OUT/compare.md.part"
 round=1
 while [ "$round" -le "$ROUNDS" ]; do
     rm -f "$OUT/osgocean-$round.txt"
-    rm -f "$OUT/osgocean-$round.png"
+    rm -f "$OUT/osgocean-$round.png" "$OUT/osgocean-$round.look"
     (cd "$RUN" && xvfb-run -a -f "$OUT/Xauthority" -s "-screen 0 1280x1024x24" env LIBGL_ALWAYS_SOFTWARE=1 \
         LD_PRELOAD="$OUT/swap_timer.so" SWAP_TIMER_OUT="$OUT/osgocean-$round.txt" SWAP_TIMER_WARMUP=10 \
         SWAP_TIMER_FRAMES="$FRAMES" SWAP_TIMER_SHOT="$OUT/osgocean-$round.png" "$EXAMPLE" \
