@@ -10,7 +10,7 @@
  * glFinish and before the swap, written as an 8-bit RGB PNG, and prints one line of statistics on stderr
  * ("swap_timer: shot WxH mean M top_mean T top_stddev S", luma 0-255; "top" is the image's top quarter,
  * the sky in osgOcean's example), so a caller can refuse a black or sky-less frame that only looks fast.
- * Build: cc -O2 -shared -fPIC swap_timer.c -o swap_timer.so -ldl -lz */
+ * Build: cc -O2 -shared -fPIC swap_timer.c -o swap_timer.so -ldl -lz -lm */
 #define _GNU_SOURCE
 #include <GL/glx.h>
 #include <dlfcn.h>
@@ -62,7 +62,8 @@ static int put_chunk(FILE* f, const char* type, const unsigned char* data, unsig
            fwrite(c, 1, 4, f) == 4;
 }
 
-/* rgb: w*h*3 bytes, top row first. Each row gets filter type 0 (none); IDAT is one zlib stream. */
+/* rgb: w*h*3 bytes as glReadPixels returns them, bottom row first; the PNG gets them top row first. Each row
+ * gets filter type 0 (none); IDAT is one zlib stream. */
 static int write_png(const char* path, const unsigned char* rgb, int w, int h) {
     unsigned long raw_n = (unsigned long)h * (3ul * (unsigned long)w + 1ul);
     unsigned char* raw = malloc(raw_n);
@@ -71,8 +72,8 @@ static int write_png(const char* path, const unsigned char* rgb, int w, int h) {
     int ok = raw && z;
     for (int y = 0; ok && y < h; ++y) {
         raw[(unsigned long)y * (3ul * (unsigned long)w + 1ul)] = 0;
-        memcpy(raw + (unsigned long)y * (3ul * (unsigned long)w + 1ul) + 1, rgb + (size_t)y * 3u * (size_t)w,
-               3u * (size_t)w);
+        memcpy(raw + (unsigned long)y * (3ul * (unsigned long)w + 1ul) + 1,
+               rgb + (size_t)(h - 1 - y) * 3u * (size_t)w, 3u * (size_t)w);
     }
     ok = ok && compress2(z, &z_n, raw, raw_n, 6) == Z_OK;
     char tmp[4096];
@@ -134,8 +135,7 @@ static void take_shot(Display* dpy, GLXDrawable drawable, const char* path) {
         bind_framebuffer(0x8CA8 /* GL_READ_FRAMEBUFFER */, 0);
     int w = (int)dw, h = (int)dh;
     unsigned char* rows = w > 0 && h > 0 ? malloc((size_t)w * (size_t)h * 3u) : NULL;
-    unsigned char* top_down = rows ? malloc((size_t)w * (size_t)h * 3u) : NULL;
-    if (!top_down) {
+    if (!rows) {
         fprintf(stderr, "swap_timer: the window is %dx%d: no shot\n", w, h);
         _exit(2);
     }
@@ -144,9 +144,8 @@ static void take_shot(Display* dpy, GLXDrawable drawable, const char* path) {
     read_pixels(0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rows);
     double sum = 0.0, top_sum = 0.0, top_sq = 0.0;
     long top_n = 0;
-    for (int y = 0; y < h; ++y) { /* GL's rows run bottom-up */
+    for (int y = 0; y < h; ++y) { /* y counts from the top; GL's rows run bottom-up */
         const unsigned char* src = rows + (size_t)(h - 1 - y) * 3u * (size_t)w;
-        memcpy(top_down + (size_t)y * 3u * (size_t)w, src, 3u * (size_t)w);
         for (int x = 0; x < w; ++x) {
             double l = 0.2126 * src[3 * x] + 0.7152 * src[3 * x + 1] + 0.0722 * src[3 * x + 2];
             sum += l;
@@ -159,14 +158,13 @@ static void take_shot(Display* dpy, GLXDrawable drawable, const char* path) {
     }
     double mean = sum / ((double)w * h), top_mean = top_n ? top_sum / top_n : 0.0;
     double top_var = top_n ? top_sq / top_n - top_mean * top_mean : 0.0;
-    if (!write_png(path, top_down, w, h)) {
+    if (!write_png(path, rows, w, h)) {
         fprintf(stderr, "swap_timer: cannot write %s\n", path);
         _exit(2);
     }
     fprintf(stderr, "swap_timer: shot %dx%d mean %.2f top_mean %.2f top_stddev %.2f\n", w, h, mean, top_mean,
             sqrt(top_var > 0.0 ? top_var : 0.0));
     free(rows);
-    free(top_down);
 }
 
 static void finish_run(const double* ms, long n) {
