@@ -6,6 +6,7 @@
 
 #include <new>
 #include <stdexcept>
+#include <string>
 
 namespace pacifica::ocean {
 
@@ -29,6 +30,12 @@ Status guarded(Body&& body) noexcept {
     } catch (...) {
         return {ErrorCode::Internal, "unknown exception"};
     }
+}
+
+/// Throws std::invalid_argument "WHAT must be finite" unless `finite`.
+inline void requireFinite(bool finite, const std::string& what) {
+    if (!finite)
+        throw std::invalid_argument(what + " must be finite");
 }
 
 } // namespace pacifica::ocean

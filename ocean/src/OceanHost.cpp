@@ -1,7 +1,6 @@
-// OceanHost: the registry adapter and throwing wrappers over Ocean.h (OceanHost.h).
+// OceanHost: the throwing wrappers over Ocean.h and the entity ids (OceanHost.h); the registry's render
+// adapter, which draws, is in OceanHostRender.cpp, so a program that only makes oceans links no renderer.
 #include "ocean/OceanHost.h"
-
-#include <vector>
 
 namespace pacifica::ocean {
 
@@ -21,19 +20,6 @@ OceanComponent makeOcean(const OceanDesc& desc) {
 
 std::uint64_t oceanId(ecs::Entity e) {
     return (static_cast<std::uint64_t>(e.generation) << 32) | e.index;
-}
-
-void render(OceanRenderer& renderer, ecs::Registry& registry, const OceanFrame& frame) {
-    std::vector<OceanInstance> oceans;
-    registry.view<OceanComponent>().each([&](ecs::Entity e, OceanComponent& ocean) {
-        oceans.push_back({oceanId(e), &ocean});
-    });
-    const RegistryEffects effects(registry);
-    throwIfFailed(renderer.render({oceans, effects.view()}, frame));
-}
-
-PassClock passClock(gl::GpuTimer::Clock clock) {
-    return clock == gl::GpuTimer::Clock::TimerQuery ? PassClock::TimerQuery : PassClock::WallAroundFinish;
 }
 
 } // namespace pacifica::ocean

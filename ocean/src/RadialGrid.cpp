@@ -18,7 +18,7 @@ void require(bool ok, const std::string& message) {
 
 } // namespace
 
-RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
+void RadialGrid::validate(const RadialGridDesc& desc) {
     require(desc.rings >= 2 && desc.rings <= 8192,
             "RadialGridDesc.rings must be in [2, 8192], got " + std::to_string(desc.rings));
     require(desc.segments >= 3 && desc.segments <= 16384,
@@ -29,6 +29,14 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
             "RadialGridDesc.rMax must be finite and > rMin, got " + std::to_string(desc.rMax));
     require(std::isfinite(desc.skirtRadius) && (desc.skirtRadius == 0.0 || desc.skirtRadius > desc.rMax),
             "RadialGridDesc.skirtRadius must be 0 or > rMax, got " + std::to_string(desc.skirtRadius));
+    require(desc.skirtRings >= 1 && desc.skirtRings <= 256,
+            "RadialGridDesc.skirtRings must be in [1, 256], got " + std::to_string(desc.skirtRings));
+    require(std::isfinite(desc.minRingPixels) && desc.minRingPixels >= 0.0 && desc.minRingPixels <= 1000.0,
+            "RadialGridDesc.minRingPixels must be in [0, 1000], got " + std::to_string(desc.minRingPixels));
+}
+
+RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
+    validate(desc);
 
     // §18.2.3: r_0 = a0 = r_min; r_{N-1} = a0 + a1 (N-1)^4 = r_max.
     const double n1 = static_cast<double>(desc.rings - 1);
@@ -36,10 +44,6 @@ RadialGrid::RadialGrid(const RadialGridDesc& desc) : mDesc(desc) {
     mA1 = (desc.rMax - desc.rMin) / (n1 * n1 * n1 * n1);
 
     const int m = desc.segments;
-    require(desc.skirtRings >= 1 && desc.skirtRings <= 256,
-            "RadialGridDesc.skirtRings must be in [1, 256], got " + std::to_string(desc.skirtRings));
-    require(std::isfinite(desc.minRingPixels) && desc.minRingPixels >= 0.0 && desc.minRingPixels <= 1000.0,
-            "RadialGridDesc.minRingPixels must be in [0, 1000], got " + std::to_string(desc.minRingPixels));
     const int skirt = desc.skirtRadius > 0.0 ? desc.skirtRings : 0;
     const int ringsTotal = desc.rings + skirt;
     // Rings are padded to a stride for vertex reuse (GridOrder.h); the padding repeats the ring's last

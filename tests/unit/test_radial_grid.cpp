@@ -135,14 +135,26 @@ TEST(ViewSector, EveryVisibleSeaPointLiesInsideTheSector) {
 }
 
 TEST(RadialGrid, InvalidDescriptionsNameTheField) {
+    // validate() says what the constructor says, without building the mesh.
     auto message = [](const RadialGridDesc& d) {
+        std::string constructed = "no error", validated = "no error";
         try {
             RadialGrid g(d);
         } catch (const std::invalid_argument& e) {
-            return std::string(e.what());
+            constructed = e.what();
         }
-        return std::string("no error");
+        try {
+            RadialGrid::validate(d);
+        } catch (const std::invalid_argument& e) {
+            validated = e.what();
+        }
+        EXPECT_EQ(constructed, validated);
+        return constructed;
     };
+    EXPECT_EQ(message({}), "no error");
+    // The largest grid (~134 M vertices) is valid, and validate() says so without allocating it.
+    EXPECT_NO_THROW(RadialGrid::validate({.rings = 8192, .segments = 16384}));
+    EXPECT_THROW(RadialGrid::validate({.rings = 8193}), std::invalid_argument);
     EXPECT_NE(message({.rings = 1}).find("RadialGridDesc.rings"), std::string::npos);
     EXPECT_NE(message({.segments = 2}).find("RadialGridDesc.segments"), std::string::npos);
     EXPECT_NE(message({.rMin = 0.0}).find("RadialGridDesc.rMin"), std::string::npos);

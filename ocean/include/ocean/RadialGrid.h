@@ -70,6 +70,8 @@ class RadialGrid {
 public:
     /// Throws std::invalid_argument naming the bad field (e.g. "RadialGridDesc.rings must be >= 2, got 1").
     explicit RadialGrid(const RadialGridDesc& desc);
+    /// The constructor's checks without building the mesh: throws std::invalid_argument naming the field.
+    static void validate(const RadialGridDesc& desc);
 
     const RadialGridDesc& desc() const { return mDesc; }
     double a0() const { return mA0; }
