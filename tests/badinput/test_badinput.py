@@ -103,6 +103,10 @@ def make_cases(inputs, demo):
     good_map = write_gray_png(os.path.join(inputs, "good_32x32.png"), 32, 32, lambda x, r: (x % 8) / 7.0, 8)
     return [
         ("missing flight file", [missing_flight], QUICK, {}, 1, [missing_flight, "cannot open flight file"], []),
+        # Arguments are bytes: one that is not UTF-8 (a Linux file name may be any bytes) must not abort the
+        # run key's JSON (tools/src/Commands.cpp argumentJson), as it once did.
+        ("a flight path that is not UTF-8", [missing_flight[:-4] + "\udca1.csv"], QUICK, {}, 1,
+         ["cannot open flight file"], []),
         ("CSV line 4 has 6 fields", [six], QUICK, {}, 1, [f"{six}:4:", "expected 7 fields, got 6"], []),
         ("NaN field", [nan], QUICK, {}, 1, [f"{nan}:4:", "'z_m'"], ["finite", "NaN"]),
         ("non-numeric field", [word], QUICK, {}, 1, [f"{word}:4:", "'x_m'", "not a number", "'abc'"], []),
@@ -165,6 +169,11 @@ def make_cases(inputs, demo):
     ]
 
 
+def shown(text):
+    """Text for the log: bytes that are not UTF-8 (surrogate escapes) as \\xNN."""
+    return text.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+
+
 def run_case(c, exe, tmp, index, case, mode):
     name, flight_args, extra, env, want_rc, must, any_of = case
     parent = os.path.join(tmp, f"case{index:02d}-{mode}")  # holds only `out` (or nothing)
@@ -176,16 +185,17 @@ def run_case(c, exe, tmp, index, case, mode):
     cmd = [exe, "replay", *flight_args, "--out", out, *extra, "--no-progress"]
     print(f"[{name} / DIR {mode}]")
     print("  $ " + " ".join(f"{k}={v}" for k, v in env.items()) + (" " if env else "") +
-          " ".join(f"'{a}'" if " " in a or not a else a for a in cmd))
+          shown(" ".join(f"'{a}'" if " " in a or not a else a for a in cmd)))
     t = time.monotonic()
     try:
-        proc = subprocess.run(cmd, env=child_env(env), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+        proc = subprocess.run(cmd, env=child_env(env), capture_output=True, text=True, errors="surrogateescape",
+                              timeout=RUN_TIMEOUT_S)
     except subprocess.TimeoutExpired:
         c.check(False, f"{name} / {mode}: finishes within {RUN_TIMEOUT_S} s")
         return
     error_lines = [line for line in proc.stderr.splitlines() if line.startswith("pacifica: error: ")]
     error = error_lines[-1] if error_lines else ""
-    print(f"    exit {proc.returncode} after {time.monotonic() - t:.1f} s; {error or proc.stderr.strip()[-500:]}")
+    print(f"    exit {proc.returncode} after {time.monotonic() - t:.1f} s; {shown(error or proc.stderr.strip()[-500:])}")
     c.check(proc.returncode == want_rc, f"{name} / {mode}: exit status {want_rc}", f"got {proc.returncode}")
     c.check(bool(error), f"{name} / {mode}: prints a 'pacifica: error: ' line", repr(proc.stderr[-500:]))
     missing = [m for m in must if m not in error]

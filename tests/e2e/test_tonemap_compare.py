@@ -191,6 +191,14 @@ def case_bad_input(c, exe, source_dir, tmp):
     refuse([rings, "--ocio-config", os.path.join(tmp, "nope.ocio")], "nope.ocio", "missing config")
     refuse([rings, "--pair", "hable,nosuchthing"], "--pair: 'nosuchthing' names no transform", "unknown wipe transform")
     refuse([rings, "--pair", "pacifica,clamp"], "--pair: 'pacifica' names more than one", "ambiguous transform")
+    # Bounds checked while parsing: a usage error (exit 2) before anything is read.
+    for args, needle, what in [(["--lut3d", "1"], "--lut3d", "a LUT edge below 2"),
+                               (["--tile-width", "5000"], "--tile-width", "a tile over 4096 pixels"),
+                               (["--max-pixels", "0"], "--max-pixels", "no pixels allowed"),
+                               (["--pair", "hable"], "expected two transforms, A,B", "a pair without a comma")]:
+        refuse([rings, *args], needle, what)
+        c.check(run(exe, ["tonemap", "compare", rings, *args, "--out", os.path.join(tmp, "never")]).returncode == 2,
+                f"{what}: exit status 2")
 
 
 def case_replay_views(c, exe, source_dir, tmp):

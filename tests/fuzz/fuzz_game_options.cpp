@@ -2,6 +2,7 @@
 // arguments after "pacifica-game". Any argument list must end in Options within the documented ranges or in a
 // UsageError naming the option: any other exception (a conversion CLI11 lets through, std::out_of_range) or
 // an out-of-range value that parses is a finding (abort).
+#include "FuzzArguments.h"
 #include "Options.h"
 
 #include <ocean/Presets.h>
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -25,23 +27,14 @@ void require(bool ok, const char* what) {
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace pacifica;
     std::vector<std::string> args{"pacifica-game"};
-    std::string arg;
-    for (size_t i = 0; i < size && args.size() < 64; ++i) {
-        if (data[i] == '\n') {
-            args.push_back(arg);
-            arg.clear();
-        } else {
-            arg.push_back(static_cast<char>(data[i]));
-        }
-    }
-    if (!arg.empty())
-        args.push_back(arg);
+    for (std::string& a : fuzz::splitArguments(data, size))
+        args.push_back(std::move(a));
     std::vector<char*> argv;
     for (std::string& a : args)
         argv.push_back(a.data());
     argv.push_back(nullptr);
-    using namespace pacifica;
     try {
         const game::Options o = game::parseOptions(static_cast<int>(args.size()), argv.data());
         if (o.help)

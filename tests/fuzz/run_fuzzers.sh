@@ -16,16 +16,28 @@ FLAGS="-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recov
 -I$SRC/engine/recording/include -I$SRC/tools/src -I$SRC/engine/include"
 LIB="$SRC/engine/recording/src/Recording.cpp $SRC/engine/recording/src/Acmi.cpp $SRC/engine/recording/src/Igc.cpp \
 $SRC/engine/recording/src/AcmiWriter.cpp $SRC/tools/src/FlightPath.cpp $SRC/engine/src/Pose.cpp"
-TARGETS="acmi igc csv acmi_roundtrip image game_options"
+TARGETS="acmi igc csv acmi_roundtrip image game_options tool_options ocio_config"
 # fuzz_image: the image inputs (height maps, environment maps, EXRs) through OpenImageIO.
 IMAGE_SRC="$SRC/engine/src/capture/Capture.cpp $SRC/engine/src/capture/Png.cpp $SRC/engine/src/AtomicFile.cpp \
 $SRC/tools/src/ImageInputs.cpp $SRC/ocean/src/HeightOctaves.cpp $SRC/ocean/src/Lighting.cpp $SRC/ocean/src/SurfaceModel.cpp"
 # fuzz_game_options: pacifica-game's command line.
 GAME_SRC="$SRC/game/Options.cpp $SRC/ocean/src/Presets.cpp"
+# fuzz_tool_options: pacifica's command line (tools/src/Commands.cpp) down to the ocean's description, which
+# makes an ocean for --sea-state (the component's CPU side, no renderer).
+TOOL_SRC="$SRC/tools/src/Commands.cpp $SRC/tools/src/OceanOptions.cpp $SRC/tools/src/Usage.cpp \
+$SRC/tools/src/ChunkFrames.cpp $SRC/tools/src/ImageInputs.cpp $SRC/engine/src/capture/Capture.cpp \
+$SRC/engine/src/capture/Png.cpp $SRC/engine/src/AtomicFile.cpp $SRC/engine/src/Log.cpp $SRC/ocean/src/HeightOctaves.cpp \
+$SRC/ocean/src/Lighting.cpp $SRC/ocean/src/SurfaceModel.cpp $SRC/ocean/src/Presets.cpp $SRC/ocean/src/SeaState.cpp \
+$SRC/ocean/src/RadialGrid.cpp $SRC/ocean/src/OceanComponent.cpp $SRC/ocean/src/OceanHost.cpp \
+$SRC/ocean/src/SurfaceModels.cpp $SRC/ocean/src/FftOcean.cpp $SRC/ocean/src/GerstnerWaves.cpp $SRC/ocean/src/Effects.cpp"
+# fuzz_ocio_config: an OCIO config file through the engine's ColorPipeline.
+OCIO_SRC="$SRC/engine/src/color/ColorPipeline.cpp $SRC/engine/src/Log.cpp"
 for t in $TARGETS; do
     case $t in
     image) deps="$IMAGE_SRC $SRC/engine/include $SRC/ocean/include" ;;
     game_options) deps="$GAME_SRC $SRC/game/Options.h $SRC/ocean/include" ;;
+    tool_options) deps="$TOOL_SRC $SRC/tools/src $SRC/ocean/include $SRC/engine/include" ;;
+    ocio_config) deps="$OCIO_SRC $SRC/engine/include" ;;
     *) deps="$LIB $SRC/engine/recording" ;;
     esac
     # shellcheck disable=SC2086
@@ -41,6 +53,13 @@ for t in $TARGETS; do
             # shellcheck disable=SC2086
             "$CXX" $FLAGS -I"$SRC/game" -I"$SRC/game/include" -I"$SRC/ocean/include" \
                 "$SRC/tests/fuzz/fuzz_game_options.cpp" $GAME_SRC -o "$WORK/fuzz_$t"
+        elif [ "$t" = tool_options ]; then
+            # shellcheck disable=SC2086
+            "$CXX" $FLAGS -I"$SRC/ocean/include" "$SRC/tests/fuzz/fuzz_tool_options.cpp" $TOOL_SRC \
+                -lOpenImageIO -lOpenImageIO_Util -lxxhash -lpng -lkissfft-float -o "$WORK/fuzz_$t"
+        elif [ "$t" = ocio_config ]; then
+            # shellcheck disable=SC2086
+            "$CXX" $FLAGS "$SRC/tests/fuzz/fuzz_ocio_config.cpp" $OCIO_SRC -lOpenColorIO -o "$WORK/fuzz_$t"
         else
             # shellcheck disable=SC2086
             "$CXX" $FLAGS "$SRC/tests/fuzz/fuzz_$t.cpp" $LIB -lzip -lisal -o "$WORK/fuzz_$t"
@@ -49,7 +68,7 @@ for t in $TARGETS; do
 done
 # Seed corpora.
 mkdir -p "$WORK/corpus_acmi" "$WORK/corpus_igc" "$WORK/corpus_csv" "$WORK/corpus_acmi_roundtrip" "$WORK/corpus_image" \
-    "$WORK/corpus_game_options"
+    "$WORK/corpus_game_options" "$WORK/corpus_tool_options" "$WORK/corpus_ocio_config"
 # The real DCS recording's first 6000 bytes, when the shared data directory ($PACIFICA_SHARED_DIR) has it.
 DCS="${PACIFICA_SHARED_DIR:-}/data/flights/dcs-blacksea-f14b.txt.acmi"
 if [ -n "${PACIFICA_SHARED_DIR:-}" ] && [ -f "$DCS" ]; then
@@ -66,6 +85,24 @@ printf -- '--autopilot\n--frames\n202\n--fps\n4\n--quality\nlow\n--size\n640x360
 printf -- '--headless\n--frames\n10\n--wind\n25\n--model\nfft\n--wipe\nACES\n--wipe-position\n0.3\n--no-hud\n--view\nRaw' \
     > "$WORK/corpus_game_options/wipe"
 printf -- '--bench\nb.json\n--record\nk.acmi\n--summary\ns.json\n--help' > "$WORK/corpus_game_options/bench"
+# pacifica's command lines, one argument a line: a replay with views and frames, a tonemap comparison, a farm
+# run with replay options after --, a replay with the lighting and FFT knobs.
+printf -- 'replay\nf.csv\n--out\nout\n--size\n320x180\n--fps\n2\n--model\nfft\n--frames\n0-9\n--view\nRaw\n--egl-device\nauto' \
+    > "$WORK/corpus_tool_options/replay"
+printf -- 'tonemap\ncompare\na.exr\n--out\ncmp\n--lut3d\n17\n--pair\nhable,agx\n--tile-width\n200\n--max-pixels\n1000' \
+    > "$WORK/corpus_tool_options/compare"
+printf -- 'farm\nrun\na.acmi\n--out\nrun\n--chunk-frames\n50\n--workers\n2\n--\n--size\n160x90\n--quality\nlow\n--sun-elevation\n20' \
+    > "$WORK/corpus_tool_options/farm"
+printf -- 'replay\nf.csv\n--out\no\n--quality\nmedium\n--grid\nprojected\n--fog-color\n0.5,0.6,0.7\n--fft-cascades\n3\n--rig\norbit:1,size=64x64' \
+    > "$WORK/corpus_tool_options/lighting"
+# OCIO configs: a small v2 config (two views, a matrix, a gamma, a range), and the ACES CG config when the shared
+# data directory has it.
+printf 'ocio_profile_version: 2\nroles:\n  scene_linear: lin\n  default: lin\ndisplays:\n  sRGB:\n    - !<View> {name: Gamma, colorspace: srgb}\n    - !<View> {name: Raw, colorspace: lin}\ncolorspaces:\n  - !<ColorSpace>\n    name: lin\n  - !<ColorSpace>\n    name: srgb\n    from_scene_reference: !<GroupTransform>\n      children:\n        - !<MatrixTransform> {matrix: [0.9, 0.1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}\n        - !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055, direction: inverse}\n        - !<RangeTransform> {min_in_value: 0, max_in_value: 1, min_out_value: 0, max_out_value: 1}\n' \
+    > "$WORK/corpus_ocio_config/small"
+CG="${PACIFICA_SHARED_DIR:-}/data/ocio/cg-config-v1.0.0_aces-v1.3_ocio-v2.1.ocio"
+if [ -n "${PACIFICA_SHARED_DIR:-}" ] && [ -f "$CG" ]; then
+    cp "$CG" "$WORK/corpus_ocio_config/aces_cg"
+fi
 # Images: the first byte picks the file type (0 EXR, 1 PNG, 2 Radiance HDR, 3 TIFF), the rest is the file: a
 # two-frame 16 x 32 height map (half EXR), a grey PNG, an RGB HDR, a PIZ-compressed RGBA EXR.
 if [ ! -s "$WORK/corpus_image/piz_exr" ]; then

@@ -399,7 +399,7 @@ ocean::OceanDesc toOceanDesc(const OceanOptions& o) {
     applyLighting(o, d.lighting);
     applyHeightMaps(o, d);
     try {
-        (void)ocean::RadialGrid(d.grid); // validate here so the message names the option
+        ocean::RadialGrid::validate(d.grid); // here, so the message names the option
     } catch (const std::invalid_argument& e) {
         throw UsageError(std::string("--grid-rings/--grid-segments/--min-ring-pixels: ") + e.what());
     }

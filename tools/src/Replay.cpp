@@ -73,25 +73,6 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-/// The options that need nothing but themselves.
-void checkOptions(const ReplayOptions& o) {
-    if (!std::isfinite(o.fps) || o.fps <= 0.0 || o.fps > 1000.0)
-        throw UsageError("--fps must be in (0, 1000], got " + std::to_string(o.fps));
-    if (!std::isfinite(o.fovYDeg) || o.fovYDeg < 1.0f || o.fovYDeg > 170.0f)
-        throw UsageError("--fov must be in [1, 170] degrees, got " + std::to_string(o.fovYDeg));
-    if (!std::isfinite(o.speed) || o.speed <= 0.0 || o.speed > 1e6)
-        throw UsageError("--speed must be in (0, 1e6], got " + std::to_string(o.speed));
-    if (o.maxFrames < 1)
-        throw UsageError("--max-frames must be >= 1, got " + std::to_string(o.maxFrames));
-    if (o.outDir.empty() && !o.video)
-        throw UsageError("--out: an output directory is required (or --video FILE alone)");
-    if ((o.eglDevice >= 0 || o.eglDeviceAuto) && !o.cudaDevice.empty())
-        throw UsageError("--egl-device and --cuda-device name the device twice: give one");
-    if (o.frames && o.video)
-        throw UsageError("--frames renders a chunk of the run's frames into --out; --video needs the whole "
-                         "run (encode the chunks' PNGs once they are all there)");
-}
-
 /// The frames of a run: frame k is at start + k * speed / fps, from the index (never accumulated), the last
 /// one clamped to end.
 struct FramePlan {
@@ -820,7 +801,7 @@ ReplaySession::ReplaySession(const ReplayOptions& o) : mState(std::make_unique<S
     State& s = *mState;
     s.t0 = Clock::now();
     s.o = o;
-    checkOptions(s.o);
+    checkReplayOptions(s.o);
     if (!s.o.outDir.empty())
         OutputTransaction::checkWritable(s.o.outDir); // before a GL context is made or a frame rendered
     s.input = loadReplayInput(s.o.flight, s.o.rigs, s.o.width, s.o.height, s.o.fovYDeg);
@@ -864,7 +845,7 @@ std::string visibleCudaDevice() {
 }
 
 long long replayFrameCount(const ReplayOptions& o) {
-    checkOptions(o);
+    checkReplayOptions(o);
     const ReplayInput input = loadReplayInput(o.flight, o.rigs, o.width, o.height, o.fovYDeg);
     ReplayOptions whole = o;
     whole.frames.reset(); // the run's count, whatever chunk the options name

@@ -122,6 +122,10 @@ private:
 /// numbers the visible GPUs from 0 (CUDA_VISIBLE_DEVICES=1: the second GPU is CUDA device 0).
 std::string visibleCudaDevice();
 
+/// The checks that need nothing but the options (--fps, --fov, --speed, --max-frames, --out or --video,
+/// one device, --frames without --video); throws UsageError naming the option. runReplay() starts with them.
+void checkReplayOptions(const ReplayOptions& options);
+
 /// The number of frames the run these options describe renders, without rendering: the options checked and
 /// the flight read (no GL context, nothing written). Throws as runReplay() does.
 long long replayFrameCount(const ReplayOptions& options);

@@ -1,7 +1,10 @@
-// Usage: the CLI's shared option parsing (Usage.h).
+// Usage: the CLI's shared option parsing (Usage.h) and the replay options' own checks (Replay.h).
 #include "Usage.h"
 
+#include "Replay.h"
+
 #include <cctype>
+#include <cmath>
 
 namespace pacifica::tools {
 
@@ -45,6 +48,24 @@ FrameRange parseFrameRange(const std::string& text) {
     if (r.last < r.first)
         throw bad();
     return r;
+}
+
+void checkReplayOptions(const ReplayOptions& o) {
+    if (!std::isfinite(o.fps) || o.fps <= 0.0 || o.fps > 1000.0)
+        throw UsageError("--fps must be in (0, 1000], got " + std::to_string(o.fps));
+    if (!std::isfinite(o.fovYDeg) || o.fovYDeg < 1.0f || o.fovYDeg > 170.0f)
+        throw UsageError("--fov must be in [1, 170] degrees, got " + std::to_string(o.fovYDeg));
+    if (!std::isfinite(o.speed) || o.speed <= 0.0 || o.speed > 1e6)
+        throw UsageError("--speed must be in (0, 1e6], got " + std::to_string(o.speed));
+    if (o.maxFrames < 1)
+        throw UsageError("--max-frames must be >= 1, got " + std::to_string(o.maxFrames));
+    if (o.outDir.empty() && !o.video)
+        throw UsageError("--out: an output directory is required (or --video FILE alone)");
+    if ((o.eglDevice >= 0 || o.eglDeviceAuto) && !o.cudaDevice.empty())
+        throw UsageError("--egl-device and --cuda-device name the device twice: give one");
+    if (o.frames && o.video)
+        throw UsageError("--frames renders a chunk of the run's frames into --out; --video needs the whole "
+                         "run (encode the chunks' PNGs once they are all there)");
 }
 
 std::string fileSlug(const std::string& name) {
