@@ -1,6 +1,7 @@
 // The ocean's embedded shaders and generated #defines: every file under ocean/shaders is embedded byte for
 // byte; no embedded string literal exceeds MSVC's 16380-byte limit (the embedder splits long files at line
-// ends into adjacent literals); shaderConstantDefines() holds each constant once, with its value. No GL.
+// ends into adjacent literals); shaderConstantDefines() holds each constant once, with its value; the
+// uniform names the C++ sets and the names the GLSL declares are the same set. No GL.
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanShaders.h"
 
@@ -10,6 +11,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -25,7 +29,50 @@ std::string readFile(const std::filesystem::path& path) {
     return s.str();
 }
 
+/// Every match of `re`'s first group in `text`.
+std::set<std::string> matches(const std::string& text, const std::regex& re) {
+    std::set<std::string> out;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
+        out.insert((*it)[1].str());
+    return out;
+}
+
 } // namespace
+
+// Uniform names are strings on both sides (glGetUniformLocation, glProgramUniform*, and the names that arrays
+// build, "uFoamMix[" + i + "]"): a name the C++ sets that no GLSL declares is a typo whose location is -1
+// (the value is silently dropped), and a declared plain uniform the C++ never names stays 0. Checked both
+// ways over the renderer's sources (ocean/src, ocean/src/gpu) and the shaders, with the GLSL the C++
+// generates.
+TEST(OceanShaders, UniformNamesAreTheSameOnBothSides) {
+    const std::filesystem::path root(PACIFICA_SOURCE_DIR_FOR_TESTS);
+    std::string cpp;
+    for (const char* dir : {"ocean/src", "ocean/src/gpu"})
+        for (const auto& entry : std::filesystem::directory_iterator(root / dir))
+            if (entry.path().extension() == ".cpp" || entry.path().extension() == ".h")
+                cpp += readFile(entry.path());
+    std::string glsl;
+    for (const auto& entry : std::filesystem::directory_iterator(root / "ocean" / "shaders"))
+        glsl += std::string(shaderText(entry.path().filename().string())) + "\n";
+    glsl = std::regex_replace(glsl, std::regex(R"(//[^\n]*)"), "");
+    // Names: a string literal "uName" or "uName[" in the C++; "uniform [layout] TYPE uName" in the GLSL and
+    // in the GLSL the C++ writes; opaque types (samplers, images) are bound by unit, not named.
+    const std::set<std::string> named = matches(cpp, std::regex(R"re("(u[A-Z][A-Za-z0-9_]*)\[?")re"));
+    std::map<std::string, std::string> declared;
+    const std::regex decl(R"(\buniform\s+(?:layout\s*\([^)]*\)\s+)?(\w+)\s+(u[A-Z]\w*))");
+    for (const std::string* text : {&glsl, &cpp})
+        for (auto it = std::sregex_iterator(text->begin(), text->end(), decl); it != std::sregex_iterator();
+             ++it)
+            declared.emplace((*it)[2].str(), (*it)[1].str());
+    EXPECT_GT(named.size(), 100u) << "the scan finds the renderer's uniform names";
+    for (const std::string& n : named)
+        EXPECT_TRUE(declared.count(n)) << n << " is set by the C++ but declared by no shader";
+    for (const auto& [n, type] : declared) {
+        if (type.find("sampler") == std::string::npos && type.find("image") == std::string::npos) {
+            EXPECT_TRUE(named.count(n)) << type << " " << n << " is declared but never set by the C++";
+        }
+    }
+}
 
 TEST(OceanShaders, EveryShaderFileIsEmbeddedByteForByte) {
     const std::filesystem::path dir =
