@@ -459,9 +459,15 @@ glm::dvec4 effectsFieldAt(const EffectsView& effects, const glm::dvec2& xy, doub
 }
 
 RegistryEffects::RegistryEffects(ecs::Registry& registry) {
-    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) { mExplosions.push_back(e); });
+    // What EffectsSystem::update() rejects (a ship's NaN position: a lost track) is left out here too, so one
+    // bad value costs that effect its frame, not the whole frame (render() refuses a non-finite scene).
+    registry.view<Explosion>().each([&](ecs::Entity, Explosion& e) {
+        if (finite(e.center) && std::isfinite(e.startTime))
+            mExplosions.push_back(e);
+    });
     registry.view<Ship, ShipTrail>().each([&](ecs::Entity, Ship& ship, ShipTrail& trail) {
-        mWakes.push_back({&ship, &trail});
+        if (finite(ship.position))
+            mWakes.push_back({&ship, &trail});
     });
 }
 

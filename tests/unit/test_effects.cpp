@@ -706,6 +706,41 @@ TEST(EffectsSystem, BadSpawnDataIsRejectedNotThrown) {
     EXPECT_EQ(reg.view<Explosion>().begin(), reg.view<Explosion>().end());
 }
 
+// A ship whose track is lost for a frame (a NaN position): counted as rejected, its path kept, and left out
+// of the registry's EffectsView that frame -- the renderer refuses a non-finite scene, so one lost track must
+// not cost the whole frame -- then back once its position is finite again.
+TEST(EffectsSystem, ALostShipTrackCostsItsWakeOneFrameNotTheFrame) {
+    ecs::Registry reg;
+    ecs::EventQueue events;
+    EffectsSystem fx(reg, events);
+    const ecs::Entity ship = reg.create(), other = reg.create();
+    reg.emplace<Ship>(ship, Ship{{0.0, 0.0}, 60.0});
+    reg.emplace<Ship>(other, Ship{{500.0, 0.0}, 60.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    events.enqueue(AttachShipTrail{other, WakeParams{}});
+    for (int k = 0; k <= 40; ++k) {
+        reg.get<Ship>(ship).position = {0.0, 8.0 * 0.5 * k};
+        reg.get<Ship>(other).position = {500.0, 8.0 * 0.5 * k};
+        events.dispatch();
+        fx.update(0.5 * k, {0, 0, 100});
+    }
+    const size_t pathBefore = reg.get<ShipTrail>(ship).history.size();
+    ASSERT_EQ(RegistryEffects(reg).view().wakes.size(), 2u);
+    reg.get<Ship>(ship).position.x = std::numeric_limits<double>::quiet_NaN();
+    events.dispatch();
+    fx.update(20.5, {0, 0, 100});
+    EXPECT_EQ(fx.counters().rejected, 1);
+    EXPECT_EQ(reg.get<ShipTrail>(ship).history.size(), pathBefore) << "a NaN position never enters the path";
+    const RegistryEffects lost(reg);
+    ASSERT_EQ(lost.view().wakes.size(), 1u);
+    EXPECT_EQ(lost.view().wakes[0].ship, &reg.get<Ship>(other));
+    reg.get<Ship>(ship).position = {0.0, 8.0 * 20.5};
+    events.dispatch();
+    fx.update(21.0, {0, 0, 100});
+    EXPECT_EQ(fx.counters().rejected, 0);
+    EXPECT_EQ(RegistryEffects(reg).view().wakes.size(), 2u);
+}
+
 TEST(EffectsSystem, ThousandOverlappingExplosionsSaturate) {
     ecs::Registry reg;
     ecs::EventQueue events;

@@ -8,7 +8,9 @@
 //   storm: at its first frame --ships ships appear at once, 0.5-8 km ahead, each with a trail; through its
 //          first simulated second --explosions explosions are spawned evenly, 0.3-3 km ahead, every 7th
 //          event carrying bad data (a NaN centre, an infinite or a 1e9 strength, a centre 1e12 m out), which
-//          must be rejected; the storm goes on --seconds while the ships sail and the explosions evolve.
+//          must be rejected; 10 trails are attached to entities that are no ship, and every 100th ship
+//          reports a NaN position through the storm's second second (a lost track); the storm goes on
+//          --seconds while the ships sail and the explosions evolve.
 // Per frame: the CPU's dispatch + EffectsSystem::update (steady_clock), and render() on the GPU
 // (gl::GpuTimer: GL_TIME_ELAPSED on hardware; steady_clock around glFinish on llvmpipe, whose timer queries
 // are wrong).
@@ -53,7 +55,9 @@ namespace {
 constexpr double ALTITUDE = 300.0;    // m
 constexpr double CAMERA_EAST = 2.0e5; // m from the origin
 constexpr int BAD_EVERY = 7;          // every 7th spawn event carries bad data
-constexpr double CALM_SECONDS = 1.0;  // baseline
+constexpr int LOST_SHIP_EVERY = 100; // every 100th ship reports a NaN position through the storm's 2nd second
+constexpr int BAD_TRAILS = 10;       // trails attached to entities that are no ship
+constexpr double CALM_SECONDS = 1.0; // baseline
 constexpr double SPAWN_SECONDS = 1.0; // the explosions arrive within this
 
 struct Args {
@@ -149,27 +153,28 @@ public:
     }
 
     /// Runs calm then storm; returns the frames (calm first) with `gpuMs` filled from the timer.
-    std::vector<Frame> run(gl::GpuTimer& timer, long long& calmFrames, long long& badEvents) {
+    std::vector<Frame> run(gl::GpuTimer& timer, long long& calmFrames, long long& badSpawns,
+                           long long& badEvents) {
         const double dt = 1.0 / mArgs.fps;
         const auto calm = static_cast<long long>(std::llround(CALM_SECONDS * mArgs.fps));
         const auto storm = static_cast<long long>(std::llround(mArgs.seconds * mArgs.fps));
         const auto spawnFrames = std::max<long long>(1, std::llround(SPAWN_SECONDS * mArgs.fps));
         std::vector<Frame> frames;
         long long spawned = 0;
-        badEvents = 0;
+        badSpawns = badEvents = 0;
         for (long long f = 0; f < calm + storm; ++f) {
             const double t = 1000.0 + static_cast<double>(f) * dt;
             const long long s = f - calm; // storm frame, < 0 while calm
             const auto start = std::chrono::steady_clock::now();
             if (s == 0)
-                launchShips(t);
-            sailShips(t);
+                badEvents += launchShips(t);
+            badEvents += sailShips(t, s >= spawnFrames && s < 2 * spawnFrames);
             // Spawns due by the end of this frame: explosions * (s + 1) / spawnFrames, evenly.
             const long long due =
                 s < 0 ? 0 : std::min<long long>(mArgs.explosions, mArgs.explosions * (s + 1) / spawnFrames);
             for (; spawned < due; ++spawned) {
                 mEvents.enqueue(spawnEvent(spawned, t));
-                badEvents += spawned % BAD_EVERY == BAD_EVERY - 1;
+                badSpawns += spawned % BAD_EVERY == BAD_EVERY - 1;
             }
             mEvents.dispatch();
             mFx.update(t, camera());
@@ -184,6 +189,7 @@ public:
                               c.droppedWakes, c.rejected, c.spawned, r.programsBuilt});
         }
         calmFrames = calm;
+        badEvents += badSpawns;
         return frames;
     }
 
@@ -201,7 +207,8 @@ private:
                                             mTargets.sceneFramebuffer().id(), 0.5f));
     }
 
-    void launchShips(double t) {
+    /// The ships, and BAD_TRAILS trails for entities that are no ship; returns the bad events.
+    long long launchShips(double t) {
         for (int k = 0; k < mArgs.ships; ++k) {
             const ecs::Entity e = mRegistry.create();
             const glm::dvec2 start = scattered(k, 500.0, 8000.0, 8000.0);
@@ -209,11 +216,25 @@ private:
             mEvents.enqueue(ocean::AttachShipTrail{e, {}});
             mShips.push_back({e, start, t, 5.0 + static_cast<double>(k % 3) * 5.0});
         }
+        for (int k = 0; k < BAD_TRAILS; ++k)
+            mEvents.enqueue(ocean::AttachShipTrail{mRegistry.create(), {}});
+        return BAD_TRAILS;
     }
 
-    void sailShips(double t) {
-        for (const Sailing& s : mShips)
-            mRegistry.get<ocean::Ship>(s.entity).position = s.start + glm::dvec2(0.0, s.speed) * (t - s.born);
+    /// Moves the ships; with `lose`, every LOST_SHIP_EVERY-th reports a NaN position (a lost track) this
+    /// frame. Returns the NaN positions set, each a bad value the effects update must reject.
+    long long sailShips(double t, bool lose) {
+        long long lost = 0;
+        for (size_t k = 0; k < mShips.size(); ++k) {
+            const Sailing& s = mShips[k];
+            glm::dvec2& p = mRegistry.get<ocean::Ship>(s.entity).position;
+            p = s.start + glm::dvec2(0.0, s.speed) * (t - s.born);
+            if (lose && k % LOST_SHIP_EVERY == LOST_SHIP_EVERY - 1) {
+                p.x = std::numeric_limits<double>::quiet_NaN();
+                ++lost;
+            }
+        }
+        return lost;
     }
 
     struct Sailing {
@@ -238,7 +259,8 @@ struct Check {
 };
 
 std::vector<Check> check(const std::vector<Frame>& frames, const std::vector<double>& gpuMs, long long calm,
-                         long long badEvents, const Args& a, const ocean::EffectsDesc& caps) {
+                         long long badSpawns, long long badEvents, const Args& a,
+                         const ocean::EffectsDesc& caps) {
     int maxExplosions = 0, maxWakes = 0;
     long long rejected = 0, spawned = 0;
     bool finite = gpuMs.size() == frames.size();
@@ -259,11 +281,13 @@ std::vector<Check> check(const std::vector<Frame>& frames, const std::vector<dou
     long long dropped = 0;
     for (const Frame& f : frames)
         dropped += f.droppedExplosions;
-    const long long good = a.explosions - badEvents;
+    const long long good = a.explosions - badSpawns;
     // Every good event was spawned or dropped at once by the cap (dropped also counts live ones it replaced).
     const bool accounted = spawned <= good && spawned + dropped >= good;
-    rej << rejected << " rejected of " << badEvents << " bad events; of " << good << " good ones " << spawned
-        << " spawned, the rest dropped by the cap (" << dropped << " drops in all)";
+    rej << rejected << " rejected of " << badEvents << " bad values (" << badSpawns
+        << " spawns, the rest lost ships' NaN positions and trails for no ship); of " << good
+        << " good spawns " << spawned << " spawned, the rest dropped by the cap (" << dropped
+        << " drops in all)";
     time << "slowest storm frame " << slowest << " ms" << (a.maxFrameMs > 0.0 ? " <= " : " (bound unchecked)")
          << (a.maxFrameMs > 0.0 ? std::to_string(a.maxFrameMs) + " ms" : "");
     return {{"caps hold", maxExplosions <= caps.maxExplosions && maxWakes <= caps.maxWakes, caps1.str()},
@@ -355,11 +379,11 @@ int main(int argc, char** argv) {
                      renderer.c_str(), a.size.first, a.size.second, a.explosions, a.ships, a.seconds);
         gl::GpuTimer timer(context->info(), 8);
         Storm storm(a);
-        long long calm = 0, bad = 0;
-        const std::vector<Frame> frames = storm.run(timer, calm, bad);
+        long long calm = 0, badSpawns = 0, bad = 0;
+        const std::vector<Frame> frames = storm.run(timer, calm, badSpawns, bad);
         timer.drain();
         const std::vector<double>& gpuMs = timer.samples();
-        const std::vector<Check> checks = check(frames, gpuMs, calm, bad, a, ocean::EffectsDesc{});
+        const std::vector<Check> checks = check(frames, gpuMs, calm, badSpawns, bad, a, ocean::EffectsDesc{});
         writeReports(a, renderer, timer.clockName(), frames, gpuMs, calm, checks);
         bool ok = true;
         for (const Check& c : checks) {

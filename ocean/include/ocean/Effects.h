@@ -144,7 +144,9 @@ private:
 };
 
 /// The effects of a registry as plain spans (EffectsView), for the span-taking queries and the renderer:
-/// every Explosion (copied) and every Ship with a ShipTrail, in the registry's view order.
+/// every Explosion (copied) and every Ship with a ShipTrail, in the registry's view order, less those with a
+/// non-finite centre, start or position (EffectsSystem::update() counts a ship's as rejected; the ship is
+/// back, its path kept, once its position is finite again).
 class RegistryEffects {
 public:
     explicit RegistryEffects(ecs::Registry& registry);
