@@ -8,6 +8,8 @@
 
 #include <engine/capture/OpenExr.h>
 
+#include "ShortestText.h"
+
 #include <Imath/half.h>
 #include <xxhash.h>
 #if !PACIFICA_CAPTURE_OPENEXR
@@ -119,12 +121,6 @@ void writeAtomically(const fs::path& path, const char* formatName, const OIIO::I
     commitRename(temp, path);
 }
 
-template <class T>
-std::string shortestText(T value) {
-    std::array<char, 64> buf{};
-    const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), value);
-    return std::string(buf.data(), res.ptr);
-}
 #endif
 
 } // namespace

@@ -3,6 +3,8 @@
 // carried into a CaptureError naming the file.
 #include <engine/capture/OpenExr.h>
 
+#include "ShortestText.h"
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfDoubleAttribute.h>
@@ -30,13 +32,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::array<const char*, 4> RGBA = {"R", "G", "B", "A"};
-
-template <class T>
-std::string shortestText(T value) {
-    std::array<char, 64> buf{};
-    const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), value);
-    return std::string(buf.data(), res.ptr);
-}
 
 // OpenImageIO's names for OpenEXR's compression methods, so either backend reports the same attribute.
 std::string compressionName(Imf::Compression c) {
