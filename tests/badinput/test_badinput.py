@@ -15,6 +15,7 @@ Temp dirs are removed on success and kept (path printed) on failure.
 """
 import argparse
 import hashlib
+import json
 import os
 import shutil
 import subprocess
@@ -216,6 +217,25 @@ def run_case(c, exe, tmp, index, case, mode):
             f"{before_parent} -> {after_parent}")
 
 
+def non_utf8_flight_name(c, exe, tmp, demo):
+    """A flight whose file name is not UTF-8 (byte 0xA1; a Linux name may be any bytes) renders and writes its
+    summary, the bad byte as U+FFFD there; before, the summary's JSON threw after the last frame."""
+    flight = os.path.join(tmp, "flight\udca1.csv")
+    shutil.copyfile(demo, flight)
+    out = os.path.join(tmp, "non-utf8")
+    cmd = [exe, "replay", flight, "--out", out, *QUICK, "--no-progress"]
+    print("[a flight file whose name is not UTF-8]\n  $ " + shown(" ".join(cmd)))
+    proc = subprocess.run(cmd, env=child_env({}), capture_output=True, text=True, errors="surrogateescape",
+                          timeout=RUN_TIMEOUT_S)
+    c.check(proc.returncode == 0, "a non-UTF-8 flight name: the replay succeeds", shown(proc.stderr[-500:]))
+    summary = os.path.join(out, "summary.json")
+    if c.check(os.path.isfile(summary), "a non-UTF-8 flight name: summary.json written"):
+        with open(summary, encoding="utf-8") as f:
+            flight_in_summary = json.load(f)["flight"]
+        c.check(flight_in_summary.endswith("flight\ufffd.csv"), "the bad byte is U+FFFD in the summary",
+                flight_in_summary)
+
+
 # ---------------------------------------------------------------------------------------------------------
 # Known bugs (run with --known-bugs; the ctest test that does so is disabled until they are fixed).
 
@@ -287,6 +307,7 @@ def main():
             for mode in ("absent", "existing"):
                 run_case(c, ns.pacifica_exe, tmp, i, case, mode)
         print(f"\n{len(cases)} cases x 2 DIR states")
+        non_utf8_flight_name(c, ns.pacifica_exe, tmp, demo)
     return c.finish("badinput known bugs" if ns.known_bugs else "badinput", t0, tmp)
 
 

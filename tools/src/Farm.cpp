@@ -2,6 +2,7 @@
 #include "Farm.h"
 
 #include "ChunkFrames.h"
+#include "OutputTransaction.h"
 #include "VideoWriter.h"
 #include "engine/AtomicFile.h"
 #include "engine/Log.h"
@@ -536,7 +537,7 @@ bool writeMerged(const Plan& p) {
         j["missing_frames"] = std::move(missing);
         if (j["state"] == "whole") {
             const json merged = mergedSummary(parts);
-            writeFileAtomically(p.runDir / rec.name / "summary.json", merged.dump(2) + "\n");
+            writeFileAtomically(p.runDir / rec.name / "summary.json", reportText(merged));
             if (!p.video.empty() && !encodeVideos(p, rec, merged, j))
                 videosFailed = true;
         }
@@ -551,13 +552,11 @@ bool writeMerged(const Plan& p) {
     logInfo("farm: " + std::to_string(wholeCount) + " of " + std::to_string(recs.size()) +
             " recording(s) whole, " + std::to_string(quarantined) + " quarantined, " +
             std::to_string(failed.size()) + " chunk(s) failed -> " + (p.runDir / "report.json").string());
-    writeFileAtomically(p.runDir / "report.json", json{{"whole", whole},
-                                                       {"videos_ok", !videosFailed},
-                                                       {"engine", p.engine.name},
-                                                       {"recordings", std::move(recs)},
-                                                       {"failed_chunks", std::move(failed)}}
-                                                          .dump(2) +
-                                                      "\n");
+    writeFileAtomically(p.runDir / "report.json", reportText(json{{"whole", whole},
+                                                                  {"videos_ok", !videosFailed},
+                                                                  {"engine", p.engine.name},
+                                                                  {"recordings", std::move(recs)},
+                                                                  {"failed_chunks", std::move(failed)}}));
     return whole && !videosFailed;
 }
 

@@ -14,6 +14,10 @@
 #include <unistd.h>
 
 namespace pacifica::tools {
+
+std::string reportText(const nlohmann::json& report) {
+    return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
 namespace fs = std::filesystem;
 
 namespace {
@@ -150,7 +154,7 @@ void OutputTransaction::commit(const nlohmann::json& summary) {
             fs::rename(mStaging / n, mDir / n);
             moved.push_back(n);
         }
-        writeFileAtomically(mDir / "summary.json", summary.dump(2) + "\n");
+        writeFileAtomically(mDir / "summary.json", reportText(summary));
     } catch (...) {
         for (const std::string& n : moved)
             fs::remove(mDir / n, ec);

@@ -18,6 +18,12 @@
 
 namespace pacifica::tools {
 
+/// A run's report (summary.json, a chunk's summary, the farm's merged summaries and report.json) as text:
+/// indented by 2, with a final newline. A string that is not UTF-8 -- a flight or folder whose Linux name is
+/// bytes of another encoding -- is written with U+FFFD for its bad bytes, where nlohmann::json would throw
+/// and fail the run after its last frame.
+std::string reportText(const nlohmann::json& report);
+
 class OutputTransaction {
 public:
     /// Creates DIR if missing, removes the staging folders of runs into DIR that died, and makes this run's.

@@ -690,7 +690,7 @@ void ReplayRun::finish() {
     gpuTimer.drain();    // timer queries of the last frames are still in flight on real GPUs
     const double totalSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (out && o.frames)
-        out->land(chunkSummaryName(*o.frames), summary(totalSeconds).dump(2) + "\n");
+        out->land(chunkSummaryName(*o.frames), reportText(summary(totalSeconds)));
     else if (out)
         out->commit(summary(totalSeconds));
     if (o.frames)
