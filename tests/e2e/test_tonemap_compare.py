@@ -37,9 +37,11 @@ def shared(source_dir, *parts):
 
 def run(exe, args):
     cmd = [exe, *args]
-    print("  $ " + " ".join(cmd))
+    # Arguments that are not UTF-8 (surrogate escapes) are printed as \xNN.
+    print("  $ " + " ".join(cmd).encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace"))
     t = time.monotonic()
-    p = subprocess.run(cmd, env=child_env(), capture_output=True, text=True, timeout=RUN_TIMEOUT_S)
+    p = subprocess.run(cmd, env=child_env(), capture_output=True, text=True, errors="surrogateescape",
+                       timeout=RUN_TIMEOUT_S)
     print(f"    exit {p.returncode} after {time.monotonic() - t:.1f} s")
     return p
 
@@ -199,6 +201,19 @@ def case_bad_input(c, exe, source_dir, tmp):
         refuse([rings, *args], needle, what)
         c.check(run(exe, ["tonemap", "compare", rings, *args, "--out", os.path.join(tmp, "never")]).returncode == 2,
                 f"{what}: exit status 2")
+    # An input whose file name is not UTF-8 (byte 0xA1) is compared; metrics.json names it with U+FFFD (its
+    # JSON threw after the work before).
+    odd = os.path.join(tmp, "rings\udca1.exr")
+    with open(rings, "rb") as src, open(odd, "wb") as dst:
+        dst.write(src.read())
+    out = os.path.join(tmp, "odd-name")
+    p = run(exe, ["tonemap", "compare", odd, "--out", out, "--no-gpu"])
+    c.check(p.returncode == 0, "a non-UTF-8 input name: compared", p.stderr[-600:])
+    if p.returncode == 0:
+        with open(os.path.join(out, "metrics.json"), encoding="utf-8") as f:
+            sources = [i["source"] for i in json.load(f)["inputs"]]
+        c.check(any(src.endswith("rings\ufffd.exr") for src in sources), "metrics.json names it with U+FFFD",
+                sources)
 
 
 def case_replay_views(c, exe, source_dir, tmp):

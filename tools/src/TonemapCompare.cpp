@@ -2,6 +2,7 @@
 #include "TonemapCompare.h"
 
 #include "FlightPath.h"
+#include "OutputTransaction.h"
 #include "Replay.h"
 
 #include <engine/AtomicFile.h>
@@ -797,7 +798,7 @@ std::string htmlReport(const std::string& markdown, const fs::path& out) {
 }
 
 void writeReports(const fs::path& out, const json& report) {
-    writeFileAtomically(out / "metrics.json", report.dump(2) + "\n");
+    writeFileAtomically(out / "metrics.json", reportText(report));
     const Ranking k = rank(report);
     const std::string md = markdownReport(report, k);
     writeFileAtomically(out / "report.md", md);
