@@ -234,6 +234,13 @@ def non_utf8_flight_name(c, exe, tmp, demo):
             flight_in_summary = json.load(f)["flight"]
         c.check(flight_in_summary.endswith("flight\ufffd.csv"), "the bad byte is U+FFFD in the summary",
                 flight_in_summary)
+    # The farm's plan.json must hold the path to run its chunks: refused before anything is written.
+    run_dir = os.path.join(tmp, "farm-non-utf8")
+    proc = subprocess.run([exe, "farm", "run", flight, "--out", run_dir], env=child_env({}), capture_output=True,
+                          text=True, errors="surrogateescape", timeout=RUN_TIMEOUT_S)
+    c.check(proc.returncode == 2 and "is not UTF-8, and plan.json (JSON) cannot hold it" in proc.stderr,
+            "farm run: a non-UTF-8 recording name is refused (exit 2), naming why", shown(proc.stderr[-500:]))
+    c.check(not os.path.exists(run_dir), "farm run: nothing written for it")
 
 
 # ---------------------------------------------------------------------------------------------------------

@@ -279,6 +279,9 @@ def case_no_gpu(c, exe, source_dir, tmp):
         one_clear_error(c, "--egl-device auto with an unknown UUID", p, [uuid])
     p = run(exe, ["replay", *slice_args(source_dir, os.path.join(tmp, "e"), 1), "--egl-device", "gpu"])
     one_clear_error(c, "--egl-device gpu", p, ["--egl-device", "gpu"])
+    # Decimal only: "017" passed CLI11's range check as octal 15 and then named device 17.
+    p = run(exe, ["replay", *slice_args(source_dir, os.path.join(tmp, "e8"), 1), "--egl-device", "017"])
+    one_clear_error(c, "--egl-device 017", p, ["--egl-device", "'017'"])
     p = run(exe, ["replay", *slice_args(source_dir, os.path.join(tmp, "f"), 1), "--egl-device", "auto",
                   "--cuda-device", "0"])
     one_clear_error(c, "--egl-device auto --cuda-device 0", p, ["name the device twice"])

@@ -208,7 +208,8 @@ def case_bad_input(c, exe, source_dir, tmp):
         dst.write(src.read())
     out = os.path.join(tmp, "odd-name")
     p = run(exe, ["tonemap", "compare", odd, "--out", out, "--no-gpu"])
-    c.check(p.returncode == 0, "a non-UTF-8 input name: compared", p.stderr[-600:])
+    c.check(p.returncode == 0, "a non-UTF-8 input name: compared",
+            p.stderr[-600:].encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace"))
     if p.returncode == 0:
         with open(os.path.join(out, "metrics.json"), encoding="utf-8") as f:
             sources = [i["source"] for i in json.load(f)["inputs"]]

@@ -7,6 +7,8 @@
 // to anything.
 #include "engine/color/ColorPipeline.h"
 
+#include <OpenColorIO/OpenColorIO.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -61,6 +63,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             std::abort();
         }
     }
+    // OpenColorIO caches files by path, and every input is the same path: each starts from empty caches.
+    OCIO_NAMESPACE::ClearAllCaches();
     try {
         pacifica::color::ColorPipeline pipeline = pacifica::color::ColorPipeline::fromFile(file);
         (void)pipeline.validateReport();

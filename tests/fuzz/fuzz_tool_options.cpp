@@ -80,14 +80,23 @@ void checkFarm(const pacifica::tools::CommandLine& cli) {
     require(f.farm.engine.name == "local" || f.farm.engine.name == "slurm", "--engine");
     if (!f.runApp->parsed() || cli.replayArgs.empty())
         return;
-    // What farm run does first with the replay's options, if they ask for nothing costly (cheapOcean).
-    tools::CommandLine replay;
-    std::vector<std::string> args = {"replay", "flight", "--out", "out"};
+    // What farm run does with the replay's options per recording (Farm.cpp makePlan): FLIGHT OPTIONS --out
+    // DIR, parsed as the CLI parses them -- when farm run lets them through (no --out, --frames or --video of
+    // their own) and they ask for nothing costly (cheapOcean).
+    for (const std::string& a : cli.replayArgs)
+        for (const char* own : {"--out", "--frames", "--video"})
+            if (a.rfind(own, 0) == 0)
+                return;
+    std::vector<std::string> args = {"flight"};
     args.insert(args.end(), cli.replayArgs.begin(), cli.replayArgs.end());
+    args.insert(args.end(), {"--out", "out"});
+    tools::CommandLine replay;
+    std::vector<std::string> asCommand = {"replay"};
+    asCommand.insert(asCommand.end(), args.begin(), args.end());
     std::ostringstream out, err;
-    if (replay.parse(args, out, err) || !cheapOcean(replay.replay.ocean))
+    if (replay.parse(asCommand, out, err) || !cheapOcean(replay.replay.ocean))
         return;
-    checkReplay(tools::parseReplayArgs(cli.replayArgs, pathLength));
+    checkReplay(tools::parseReplayArgs(args, pathLength));
 }
 
 } // namespace

@@ -34,10 +34,10 @@ $SRC/ocean/src/SurfaceModels.cpp $SRC/ocean/src/FftOcean.cpp $SRC/ocean/src/Gers
 OCIO_SRC="$SRC/engine/src/color/ColorPipeline.cpp $SRC/engine/src/Log.cpp"
 for t in $TARGETS; do
     case $t in
-    image) deps="$IMAGE_SRC $SRC/engine/include $SRC/ocean/include" ;;
+    image) deps="$IMAGE_SRC $SRC/engine/include $SRC/ocean/include $SRC/engine/src/capture" ;;
     game_options) deps="$GAME_SRC $SRC/game/Options.h $SRC/ocean/include" ;;
-    tool_options) deps="$TOOL_SRC $SRC/tools/src $SRC/ocean/include $SRC/engine/include" ;;
-    ocio_config) deps="$OCIO_SRC $SRC/engine/include" ;;
+    tool_options) deps="$TOOL_SRC $SRC/tools/src $SRC/ocean/include $SRC/ocean/src $SRC/engine/include $SRC/engine/src/capture" ;;
+    ocio_config) deps="$OCIO_SRC $SRC/engine/include $SRC/engine/src/color" ;;
     *) deps="$LIB $SRC/engine/recording" ;;
     esac
     # shellcheck disable=SC2086

@@ -55,6 +55,9 @@ TEST(OceanShaders, UniformNamesAreTheSameOnBothSides) {
     for (const auto& entry : std::filesystem::directory_iterator(root / "ocean" / "shaders"))
         glsl += std::string(shaderText(entry.path().filename().string())) + "\n";
     glsl = std::regex_replace(glsl, std::regex(R"(//[^\n]*)"), "");
+    for (size_t open; (open = glsl.find("/*")) != std::string::npos;) // a declaration in a comment is none
+        glsl.erase(open, glsl.find("*/", open) == std::string::npos ? std::string::npos
+                                                                    : glsl.find("*/", open) + 2 - open);
     // Names: a string literal "uName" or "uName[" in the C++; "uniform [layout] TYPE uName" in the GLSL and
     // in the GLSL the C++ writes; opaque types (samplers, images) are bound by unit, not named.
     const std::set<std::string> named = matches(cpp, std::regex(R"re("(u[A-Z][A-Za-z0-9_]*)\[?")re"));

@@ -302,7 +302,8 @@ void writeReports(const Args& a, const std::string& renderer, const char* clock,
     const long long spawnEnd = calm + std::max<long long>(1, std::llround(SPAWN_SECONDS * a.fps));
     const auto part = [&](long long from, long long to, bool gpu) {
         std::vector<double> v;
-        for (long long i = from; i < to && i < static_cast<long long>(frames.size()); ++i)
+        const auto n = static_cast<long long>(std::min(frames.size(), gpuMs.size()));
+        for (long long i = from; i < to && i < n; ++i)
             if (frames[static_cast<size_t>(i)].programsBuilt == 0) // a first use's compile is reported apart
                 v.push_back(gpu ? gpuMs[static_cast<size_t>(i)] : frames[static_cast<size_t>(i)].cpuMs);
         return stats(v);

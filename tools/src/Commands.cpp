@@ -95,7 +95,16 @@ void ReplayCommand::add(CLI::App& parent) {
            "of CUDA_VISIBLE_DEVICES, as --cuda-device (default: the first GPU, else Mesa's surfaceless "
            "llvmpipe)")
         ->type_name("N|auto")
-        ->check(CLI::IsMember({"auto"}) | CLI::Range(0, 15));
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                // Decimal only, as the callback reads it (CLI::Range would also take "017" or "0x1").
+                const bool number = !v.empty() && v.size() <= 2 &&
+                                    v.find_first_not_of("0123456789") == std::string::npos &&
+                                    std::stoi(v) <= 15;
+                return v == "auto" || number ? std::string()
+                                             : "expects auto or a device 0..15, got '" + v + "'";
+            },
+            "N|auto"));
     app->add_option("--cuda-device", replay.cudaDevice,
                     "render on this CUDA device (an index as CUDA numbers the visible GPUs, or a GPU-UUID), "
                     "found through EGL_NV_device_cuda (docs/SCALE.md)");
@@ -220,7 +229,13 @@ void CompareCommand::add(CLI::App& parent) {
                                         "(docs/TONEMAP.md)");
     app->add_option("inputs", compare.inputs, "scene-linear EXRs, replay output folders, or flight files")
         ->required();
-    app->add_option("--out", compare.outDir, "output directory")->required();
+    app->add_option("--out", compare.outDir, "output directory")
+        ->required()
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                return v.empty() ? std::string("expects a folder, got ''") : std::string();
+            },
+            "DIR"));
     app->add_option("--ocio-config", configs, "another OCIO config to compare (repeatable)");
     app->add_option("--lut3d", compare.lut3dSize, "edge of PBR Neutral's 3D LUT")
         ->default_val(33)

@@ -594,10 +594,25 @@ void printPlan(const Plan& p) {
     std::printf("%zu chunks on the %s engine\n", p.chunks.size(), p.engine.name.c_str());
 }
 
+/// plan.json keeps every path to run the chunks with it, so each must be UTF-8 (JSON's text).
+void requireUtf8(const fs::path& path, const char* what) {
+    try {
+        (void)json(path.string()).dump();
+    } catch (const json::type_error&) {
+        throw UsageError(std::string("farm run: ") + what + " '" + path.string() +
+                         "' is not UTF-8, and plan.json (JSON) cannot hold it: rename it");
+    }
+}
+
 } // namespace
 
 int farmRun(const FarmOptions& o, const ReplayParser& parseReplay) {
     checkEngine(o.engine);
+    requireUtf8(o.runDir, "--out");
+    for (const fs::path& r : o.recordings)
+        requireUtf8(r, "the recording");
+    for (const std::string& a : o.replayArgs)
+        requireUtf8(a, "the replay option");
     if (o.recordings.empty())
         throw UsageError("farm run: no recording given");
     if (o.chunkFrames < 1)
