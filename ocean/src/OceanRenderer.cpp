@@ -540,6 +540,7 @@ struct FramePasses {
     OceanGpu& gpu;
     const glm::mat4 invViewProj;
     const FrameMarks& marks;
+    const bool queriesWaiting; ///< GPU height queries of this ocean are evaluated after the frame
     // Decided by compute():
     bool effects = false;   ///< effects in the frame: every grid and the shading read the effects field
     bool holes = false;     ///< ... and secondary grids are drawn: the base grid has holes where they are
@@ -549,6 +550,7 @@ struct FramePasses {
     std::string fxDefines;
 
     void compute();
+    FieldReads fieldReads() const;
     /// The base grid; false when no sea is in view (nothing drawn).
     bool sea();
     void grids();
@@ -575,7 +577,7 @@ void FramePasses::compute() {
     int grids = 0; // secondary grids drawn this frame
     if (!scene.empty()) {
         r.mEffects->prepare(scene, frame, effectHeightBound(ocean), ocean.desc.effectGrids,
-                            ocean.desc.effectField);
+                            ocean.desc.effectField, fieldReads());
         effects = r.mEffects->any();
         grids = effects ? r.mEffects->drawn(EffectKind::Explosion) + r.mEffects->drawn(EffectKind::Wake) : 0;
         holes = grids > 0;
@@ -606,6 +608,18 @@ void FramePasses::compute() {
             (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::On ||
              (ocean.desc.shadeTiles == OceanDesc::ShadeTiles::Auto && r.mPrograms->softwareRenderer == 1));
     r.mStats.shadeTiled = tiled;
+}
+
+/// Where this frame reads the effects field (EffectFieldDesc::viewCull). The base grid's vertices lie in the
+/// view sector widened by asin(g / r) at radius r (setSeaUniforms, sectorPosition), which is within g of the
+/// sector, and each reads the field where it is displaced to, up to g further: 2 g in all (g the horizontal
+/// displacement bound). The shading reads only what is on screen, inside the sector. The GPU height queries
+/// read anywhere, and a projected grid's vertices are not laid out by the sector: every tile then.
+FieldReads FramePasses::fieldReads() const {
+    if (!ocean.desc.effectField.viewCull || !ocean.desc.viewSector || !gpu.radial || queriesWaiting)
+        return {};
+    return {computeViewSector(frame.camera, ocean.desc.sectorGuardDeg * std::numbers::pi / 180.0),
+            2.0 * horizontalGuard(ocean)};
 }
 
 void FramePasses::queries(std::uint64_t oceanId) {
@@ -871,7 +885,8 @@ void OceanRenderer::Impl::renderPasses(const OceanScene& scene, const OceanFrame
                            ocean,
                            prepare(instance.id, ocean),
                            glm::inverse(frame.camera.viewProj),
-                           marks};
+                           marks,
+                           mQueries.waiting(instance.id)};
         passes.compute();
         if (passes.sea() && passes.holes)
             passes.grids();

@@ -1,6 +1,7 @@
 # bench_effects_quick: runs `pacifica-bench-effects --quick --frames 3 --out OUT_DIR` and checks its CSV: the
 # header, the plain, zero_effect, explosion (1, 4) and wake (1, 2) rows, finite positive times,
-# that the zero-effect frame did no effect work (0 effect passes, draws, uploads and vertices in every timed
+# that the field without the view cull evaluates more tiles than with it (wakes_no_view_cull), that the
+# zero-effect frame did no effect work (0 effect passes, draws, uploads and vertices in every timed
 # frame: the columns are maxima over the frames), and that every explosion and wake of a setting was active
 # and drawn with one pass and one instanced draw of its kind. It asserts nothing about speed.
 # Usage: cmake -DEFFECTS_EXE=... -DOUT_DIR=... -P test_effects_bench.cmake
@@ -85,6 +86,13 @@ foreach(line IN LISTS lines)
             message(FATAL_ERROR "${setting} x${count}: active ${active} drawn ${drawn} passes ${fxPasses} draws "
                                 "${fxDraws} vertices ${fxVertices} tiles ${fieldTiles}: ${line}")
         endif()
+    elseif(setting MATCHES "_no_view_cull$")
+        # EffectFieldDesc::viewCull off: every tile the effects touch. The trails run back past the camera, out
+        # of its view sector, so the same wakes evaluate more tiles than with the cull.
+        if(NOT active EQUAL count OR NOT fieldTiles GREATER "${tiles_${kind}_${count}}")
+            message(FATAL_ERROR "${setting} x${count}: active ${active}, tiles ${fieldTiles} not above the "
+                                "culled ${tiles_${kind}_${count}}: ${line}")
+        endif()
     elseif(kind STREQUAL "fleet")
         # Wakes and explosions together (count = both kinds): every one active and in the field, a grid pass
         # and draw per kind with grids at most.
@@ -114,7 +122,7 @@ foreach(line IN LISTS lines)
 endforeach()
 foreach(expected "plain:none:0" "zero_effect:none:0" "explosions:explosion:1" "explosions:explosion:4"
                  "wakes:wake:1" "wakes:wake:2" "explosions_every_grid:explosion:4" "wakes_every_grid:wake:2"
-                 "fleet:fleet:4")
+                 "fleet:fleet:4" "wakes_no_view_cull:wake:1")
     if(NOT expected IN_LIST seen)
         message(FATAL_ERROR "missing row ${expected}; rows: ${seen}")
     endif()

@@ -8,6 +8,7 @@
 //   bound, for an explosion near the camera, at r = 0 just after t = 0, 40 km away (outside the field: no
 //   effect drawn), at 10^7 m from the origin at t = 10^6 s, 64 overlapping ones, a ship in a tight circle;
 //   every captured value and every pixel finite;
+// - the field's view cull changes no pixel, for every surface model, looking along, across and away;
 // - a wake is visible from 10 km altitude; a carrier's wake foam runs along its track from 3 km and follows
 //   the CPU's field;
 // - the component's API: spans in draw what the registry adapter draws; bad scenes are refused as a Status
@@ -512,6 +513,91 @@ TEST_F(EffectsGl, EffectCullingChangesNoPixel) {
     for (size_t i = 0; i < culled.size(); ++i)
         differing += culled[i] != full[i];
     EXPECT_EQ(differing, 0u) << "values differ with effect culling";
+    EXPECT_EQ(nonFinitePixels(), 0u);
+}
+
+// EffectFieldDesc::viewCull: the field's tiles out of reach of the view sector (and of every drawn grid's
+// disc) are not evaluated. A trail that runs back past the camera and explosions all around it, seen by
+// each surface model (Gerstner and the FFT move the sea sideways), from cameras that look along the trail,
+// across it and from right above an explosion behind: the same pixels with the cull as without it, and
+// fewer tiles where the trail leaves the sector.
+TEST_F(EffectsGl, FieldViewCullChangesNoPixel) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 80.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    for (int i = 0; i <= 120; ++i) { // 120 s at 10 m/s heading north: a 1.2 km trail
+        registry.get<Ship>(ship).position = {0.0, i * 10.0};
+        events.dispatch();
+        fx.update(i, {-150.0, 600.0, 40.0});
+    }
+    // Explosions around the camera at (-150, 600): ahead, abeam, behind, and one 30 m behind it.
+    for (const glm::dvec2 at : {glm::dvec2{-150.0, 900.0},
+                                {150.0, 600.0},
+                                {-450.0, 600.0},
+                                {-150.0, 300.0},
+                                {-150.0, 570.0},
+                                {-350.0, 350.0}})
+        events.enqueue(SpawnExplosion{at, 40.0, 1.0});
+    events.dispatch();
+    fx.update(117.0, {-150.0, 600.0, 40.0});
+    struct View {
+        const char* name;
+        glm::dvec3 camera;
+        double heading, pitch;
+        bool fewerTiles; // the trail leaves the sector: the cull must evaluate fewer tiles
+    };
+    const View views[] = {
+        {"along the trail, its end behind", {-150.0, 600.0, 40.0}, 0.0, -10.0, true},
+        {"across the trail", {-150.0, 600.0, 40.0}, 90.0, -15.0, true},
+        {"away from the trail, an explosion just behind", {-150.0, 600.0, 12.0}, 270.0, -5.0, true},
+        {"straight down (every azimuth: no cull)", {-150.0, 600.0, 300.0}, 0.0, -89.0, false},
+    };
+    for (SurfaceKind kind : {SurfaceKind::Octaves, SurfaceKind::Gerstner, SurfaceKind::Fft}) {
+        for (bool everyGrid : {false, true}) {
+            OceanDesc desc = everyGrid ? gridsDesc() : OceanDesc{};
+            desc.model = kind;
+            const OceanComponent base = makeOcean(desc); // the surface built once: the cull is a desc flag
+            OceanComponent& ocean = registry.get<OceanComponent>(oceanEntity);
+            for (const View& v : views) {
+                SCOPED_TRACE(std::string(toString(kind)) + (everyGrid ? ", every grid, " : ", ") + v.name);
+                const OceanFrame f = frameAt(v.camera, v.heading, v.pitch, 120.0);
+                std::vector<float> culled, full;
+                ocean = base;
+                // Each setting rendered twice: the second frame's tiles are this setting's alone (the first
+                // also clears what the frame before it wrote).
+                ocean.desc.effectField.viewCull = true;
+                render(renderer, registry, f);
+                render(renderer, registry, f);
+                const OceanStats withCull = renderer.lastStats();
+                targets.readScene(culled);
+                ocean.desc.effectField.viewCull = false;
+                render(renderer, registry, f);
+                render(renderer, registry, f);
+                const OceanStats without = renderer.lastStats();
+                targets.readScene(full);
+                ASSERT_EQ(without.explosions.active, 6);
+                ASSERT_EQ(without.wakes.active, 1);
+                ASSERT_GT(without.effectField.tiles, 0);
+                // With a grid for every effect the wake's disc (its whole trail) is read: no fewer tiles.
+                if (!v.fewerTiles)
+                    EXPECT_EQ(withCull.effectField.tiles, without.effectField.tiles);
+                else if (!everyGrid)
+                    EXPECT_LT(withCull.effectField.tiles, without.effectField.tiles);
+                else
+                    EXPECT_LE(withCull.effectField.tiles, without.effectField.tiles);
+                std::printf("[field view cull] %s%s, %s: %d tiles, %d without the cull\n", toString(kind),
+                            everyGrid ? ", every grid" : "", v.name, withCull.effectField.tiles,
+                            without.effectField.tiles);
+                ASSERT_EQ(culled.size(), full.size());
+                size_t differing = 0;
+                for (size_t i = 0; i < culled.size(); ++i)
+                    differing += culled[i] != full[i];
+                EXPECT_EQ(differing, 0u) << "tiles " << withCull.effectField.tiles << " culled, "
+                                         << without.effectField.tiles << " without";
+            }
+        }
+    }
     EXPECT_EQ(nonFinitePixels(), 0u);
 }
 

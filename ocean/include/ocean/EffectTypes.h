@@ -242,6 +242,12 @@ struct EffectFieldDesc {
     int size = 512;           ///< texels per side of each level (a multiple of 8, 16..2048)
     int levels = 9;           ///< 1..16; level L's texel is finestTexel 2^L (9 levels of 0.5 m: +-32 km)
     double finestTexel = 0.5; ///< metres
+    /// Evaluate only the tiles this frame's readers can reach: the base grid's view sector (RadialGrid.h
+    /// computeViewSector) widened by twice the horizontal displacement bound, and the discs of the secondary
+    /// grids drawn. Off: every tile an effect touches (a wake's trail behind the camera too). The image is
+    /// the same either way; a frame with GPU height queries waiting, a projected grid or a whole-circle
+    /// sector evaluates every tile.
+    bool viewCull = true;
 };
 /// Throws std::invalid_argument naming the field (EffectFieldDesc.size ...) if out of range.
 void validate(const EffectFieldDesc& desc);

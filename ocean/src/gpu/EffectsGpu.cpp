@@ -313,24 +313,79 @@ struct TileGrid {
         return level.centre - camera + (glm::dvec2(tx, ty) * 8.0 + 4.0 - 0.5 * size) * level.texel;
     }
     /// Per tile, whether any read reaches it: not those inside the part of the next finer level that is
-    /// read alone (widened by a texel for the bilinear read).
-    std::vector<uint8_t> neededMask() const {
-        std::vector<uint8_t> needed(count(), 1);
-        for (int l = 1; l < layout.levels(); ++l) {
+    /// read alone, nor (FieldReads) those out of the reach of the view sector and of every drawn grid's disc
+    /// (each tile widened by a texel for the bilinear read). Only the tiles that the camera-relative box
+    /// [boxLo, boxHi] (all the effects' footprints) touches are judged: no other tile is binned.
+    std::vector<uint8_t> neededMask(const FieldReads& reads, const std::vector<glm::vec4>& grids,
+                                    const glm::dvec2& boxLo, const glm::dvec2& boxHi) const {
+        std::vector<uint8_t> needed(count(), 0);
+        const SectorTest sector(reads.sector);
+        for (int l = 0; l < layout.levels(); ++l) {
             const EffectFieldLevel& level = layout.level(l);
-            const EffectFieldLevel& finer = layout.level(l - 1);
-            const double pure = finer.inner - finer.band; // read alone within this of the finer centre
-            for (int ty = 0; ty < perSide; ++ty)
-                for (int tx = 0; tx < perSide; ++tx) {
+            const EffectFieldLevel* finer = l > 0 ? &layout.level(l - 1) : nullptr;
+            // Read alone within this (Chebyshev) of the finer level's centre.
+            const double pure = finer ? finer->inner - finer->band : -1.0;
+            const Range r = range(boxLo, boxHi, l);
+            for (int ty = r.y0; ty <= r.y1; ++ty)
+                for (int tx = r.x0; tx <= r.x1; ++tx) {
                     const glm::dvec2 lo =
                         level.centre + (glm::dvec2(tx, ty) * 8.0 - 0.5 * size - 1.0) * level.texel;
                     const glm::dvec2 hi = lo + (8.0 + 2.0) * level.texel;
-                    const glm::dvec2 a = glm::abs(lo - finer.centre), b = glm::abs(hi - finer.centre);
-                    if (std::max({a.x, a.y, b.x, b.y}) <= pure)
-                        needed[index(l, tx, ty)] = 0;
+                    if (finer) {
+                        const glm::dvec2 a = glm::abs(lo - finer->centre), b = glm::abs(hi - finer->centre);
+                        if (std::max({a.x, a.y, b.x, b.y}) <= pure)
+                            continue;
+                    }
+                    needed[index(l, tx, ty)] =
+                        sector.all || reached(lo - camera, hi - camera, reads.guard, sector, grids);
                 }
         }
         return needed;
+    }
+
+    /// Whether a box meets the cone from the camera over a sector's azimuths. Conservative for sectors
+    /// narrower than a half-plane (a box can be kept that straddles both edges' lines behind the camera),
+    /// exact otherwise.
+    struct SectorTest {
+        bool all = false;           ///< the whole circle
+        bool wide = false;          ///< wider than a half-plane
+        glm::dvec2 left{}, right{}; ///< the edges' directions, counter-clockwise and clockwise
+        explicit SectorTest(const ViewSector& s) : all(s.halfWidth >= std::numbers::pi) {
+            wide = s.halfWidth > 0.5 * std::numbers::pi;
+            left = {std::cos(s.center + s.halfWidth), std::sin(s.center + s.halfWidth)};
+            right = {std::cos(s.center - s.halfWidth), std::sin(s.center - s.halfWidth)};
+        }
+        bool meets(const glm::dvec2& lo, const glm::dvec2& hi) const {
+            if (all)
+                return true;
+            int beyondLeft = 0, beyondRight = 0, beyondBoth = 0;
+            for (const glm::dvec2& v : {lo, hi, glm::dvec2(lo.x, hi.y), glm::dvec2(hi.x, lo.y)}) {
+                const bool l = left.x * v.y - left.y * v.x > 0.0;   // counter-clockwise of the left edge
+                const bool r = right.x * v.y - right.y * v.x < 0.0; // clockwise of the right edge
+                beyondLeft += l;
+                beyondRight += r;
+                beyondBoth += l && r;
+            }
+            // Up to a half-plane the sector is the intersection of the edges' half-planes; wider, what it
+            // leaves out is the (convex) intersection of their outsides.
+            return wide ? beyondBoth < 4 : beyondLeft < 4 && beyondRight < 4;
+        }
+    };
+
+    /// Whether a reader can sample the camera-relative box [lo, hi]: it lies within `guard` of the view
+    /// sector, or meets a drawn grid's disc widened by the guard.
+    static bool reached(glm::dvec2 lo, glm::dvec2 hi, double guard, const SectorTest& sector,
+                        const std::vector<glm::vec4>& grids) {
+        lo -= guard;
+        hi += guard;
+        if (sector.meets(lo, hi))
+            return true;
+        for (const glm::vec4& g : grids) {
+            const glm::dvec2 c(g.x, g.y);
+            if (glm::length(glm::clamp(c, lo, hi) - c) <= static_cast<double>(g.z))
+                return true;
+        }
+        return false;
     }
 };
 
@@ -418,9 +473,15 @@ void binWakes(const TileGrid& grid, const std::vector<uint8_t>& needed, const Fo
 
 } // namespace
 
-void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosions) {
+void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosions, const FieldReads& reads,
+                          const std::vector<glm::vec4>& grids) {
     const TileGrid grid(mLayout, mCamera);
-    const std::vector<uint8_t> needed = grid.neededMask();
+    glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+    for (const Footprint& f : footprints) {
+        lo = glm::min(lo, f.lo);
+        hi = glm::max(hi, f.hi);
+    }
+    const std::vector<uint8_t> needed = grid.neededMask(reads, grids, lo, hi);
     TileEntries entries[2]; // explosions', wakes'
     for (int g = 0; g < explosions; ++g)
         binExplosion(grid, needed, footprints[size_t(g)].lo, footprints[size_t(g)].hi, g, entries[0]);
@@ -469,7 +530,7 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
 }
 
 void EffectsGpu::prepare(const EffectsView& effects, const OceanFrame& frame, double heightBound,
-                         const EffectGridDesc& grids, const EffectFieldDesc& field) {
+                         const EffectGridDesc& grids, const EffectFieldDesc& field, const FieldReads& reads) {
     mExplosionUploads = mWakeUploads = 0;
     mExplosionCount = mWakeCount = mExplosionsDrawn = mWakesDrawn = 0;
     mFieldStats = {};
@@ -517,7 +578,6 @@ void EffectsGpu::prepare(const EffectsView& effects, const OceanFrame& frame, do
         f.hi = candidates[i].hi;
         footprints.push_back(std::move(f));
     }
-    binTiles(footprints, mExplosionCount);
     // The grids: explosions' then wakes', each (centre - camera, radius, 0).
     const size_t e = static_cast<size_t>(mExplosionCount);
     const std::vector<int> explosionGrids = chooseGrids(candidates, 0, e, grids.minAngularSize,
@@ -535,6 +595,7 @@ void EffectsGpu::prepare(const EffectsView& effects, const OceanFrame& frame, do
                                   static_cast<float>(candidates[i].centre.y),
                                   static_cast<float>(candidates[i].radius), 0.0f);
         }
+    binTiles(footprints, mExplosionCount, reads, gridList);
     if (gridList.empty())
         gridList.emplace_back(0.0f); // a bound buffer, never read (uEffectGridCount = 0)
     upload(mGridBuffer, mGridCapacity, gridList.data(), gridList.size() * sizeof(glm::vec4),

@@ -11,19 +11,28 @@
 #include "gpu/GridMesh.h"
 #include "ocean/EffectTypes.h"
 #include "ocean/Ocean.h"
+#include "ocean/RadialGrid.h"
 
 #include <string>
 #include <vector>
 
 namespace pacifica::ocean {
 
+/// Where a frame's readers of the field can sample it (EffectFieldDesc::viewCull): every point within `guard`
+/// metres of the horizontal sector (camera-relative azimuths), plus the discs of the secondary grids drawn.
+/// The default, the whole circle, evaluates every tile an effect touches.
+struct FieldReads {
+    ViewSector sector;
+    double guard = 0.0;
+};
+
 class EffectsGpu {
 public:
     /// Collects `effects` at frame.time, uploads them and their tile lists, and chooses the
     /// grids to draw (bounding sphere of each disc, raised by `heightBound`, against the camera; the
-    /// largest on screen first, EffectGridDesc's limits). Returns what this frame has.
+    /// largest on screen first, EffectGridDesc's limits). Only the tiles `reads` can reach are evaluated.
     void prepare(const EffectsView& effects, const OceanFrame& frame, double heightBound,
-                 const EffectGridDesc& grids, const EffectFieldDesc& field);
+                 const EffectGridDesc& grids, const EffectFieldDesc& field, const FieldReads& reads = {});
     bool any() const { return mExplosionCount + mWakeCount > 0; }
     bool has(EffectKind kind) const { return count(kind) > 0; }
     int count(EffectKind kind) const { return kind == EffectKind::Explosion ? mExplosionCount : mWakeCount; }
@@ -62,7 +71,9 @@ private:
     void upload(gl::Buffer& buffer, size_t& capacity, const void* data, size_t bytes, int& uploads);
     void ensureField(const EffectFieldDesc& field);
     struct Footprint; // where an effect can be non-zero, camera-relative (EffectsGpu.cpp)
-    void binTiles(const std::vector<Footprint>& footprints, int explosions);
+    /// `grids`: the drawn secondary grids' discs (camera-relative centre, radius), which read the field too.
+    void binTiles(const std::vector<Footprint>& footprints, int explosions, const FieldReads& reads,
+                  const std::vector<glm::vec4>& grids);
 
     Mesh mExplosionMesh, mWakeMesh;
     gl::Buffer mExplosionBuffer, mWakeBuffer, mWakePointBuffer, mTileBuffer, mListBuffer, mGridBuffer;
