@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include "ChunkFrames.h"
+#include "OutputTransaction.h"
 #include "engine/capture/Capture.h"
 
 #include <nlohmann/json.hpp>
@@ -17,17 +18,13 @@ namespace {
 /// `text` as JSON: the string itself when it is UTF-8, else {"hex": its bytes} -- a Linux argument or file
 /// name may be any bytes, and nlohmann::json refuses to write a string that is not UTF-8.
 nlohmann::json argumentJson(const std::string& text) {
-    nlohmann::json j = text;
-    try {
-        (void)j.dump();
-        return j;
-    } catch (const nlohmann::json::type_error&) {
-        static const char* digits = "0123456789abcdef";
-        std::string hex;
-        for (const unsigned char c : text)
-            hex += {digits[c >> 4], digits[c & 15]};
-        return {{"hex", hex}};
-    }
+    if (isUtf8(text))
+        return text;
+    static const char* digits = "0123456789abcdef";
+    std::string hex;
+    for (const unsigned char c : text)
+        hex += {digits[c >> 4], digits[c & 15]};
+    return {{"hex", hex}};
 }
 
 /// XXH64 of a file's bytes as 16 hex digits; null when it cannot be read (the run fails on it later).

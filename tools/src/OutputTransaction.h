@@ -23,6 +23,9 @@ namespace pacifica::tools {
 /// bytes of another encoding -- is written with U+FFFD for its bad bytes, where nlohmann::json would throw
 /// and fail the run after its last frame.
 std::string reportText(const nlohmann::json& report);
+/// Whether JSON can hold `text` as it is: UTF-8 as nlohmann::json checks it when writing (a Linux argument or
+/// file name may be any bytes).
+bool isUtf8(const std::string& text);
 
 class OutputTransaction {
 public:
