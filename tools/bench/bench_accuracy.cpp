@@ -28,6 +28,7 @@
 #include "ocean/RadialGrid.h"
 
 #include "BenchCli.h"
+#include "BenchMain.h"
 #include "BenchPlot.h"
 #include "BenchText.h"
 #include <CLI/CLI.hpp>
@@ -767,11 +768,8 @@ int main(int argc, char** argv) {
     Args a;
     if (const auto code = parseArgs(argc, argv, a))
         return *code;
-    try {
-        std::filesystem::create_directories(a.outDir);
-        std::filesystem::remove(a.outDir + "/accuracy.png"); // a stale plot must not pass for this run's
-        auto context = gl::createHeadlessContext({.debug = false});
-        const gl::ContextInfo info = context->info();
+    return bench::runGlBench("pacifica-accuracy", a.outDir, {"accuracy.png"}, [&](gl::GlContext& context) {
+        const gl::ContextInfo info = context.info();
         gl::GpuTimer timer(info);
         // llvmpipe renders a 256 x 512 grid in ~0.2 s: 5 frames there keep the full sweep near 3 minutes.
         const int frames = !a.quick && !a.framesGiven && info.software ? 5 : a.frames;
@@ -803,12 +801,6 @@ int main(int argc, char** argv) {
                 << "pacifica-accuracy: gnuplot is not installed, so accuracy.png was not drawn: install "
                    "gnuplot-nox, then run `gnuplot accuracy.gp` in "
                 << a.outDir << "\n";
-    } catch (const gl::ContextError& e) {
-        std::cerr << "pacifica-accuracy: no GL context: " << e.what() << "\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "pacifica-accuracy: " << e.what() << "\n";
-        return 1;
-    }
-    return 0;
+        return 0;
+    });
 }

@@ -22,6 +22,7 @@
 #include "ocean/OceanHost.h"
 
 #include "BenchCli.h"
+#include "BenchMain.h"
 #include "BenchText.h"
 
 #include <epoxy/gl.h>
@@ -790,10 +791,8 @@ int main(int argc, char** argv) {
     const int frames = args.frames.value_or(quick ? 3 : 15);
     const std::vector<int> explosionCounts = quick ? std::vector{1, 4} : std::vector{1, 4, 16, 64, 256, 1024};
     const std::vector<int> wakeCounts = quick ? std::vector{1, 2} : std::vector{1, 2, 8, 64, 256};
-    try {
-        std::filesystem::create_directories(outDir);
-        auto context = gl::createHeadlessContext({.debug = false});
-        const gl::ContextInfo info = context->info();
+    return bench::runGlBench("pacifica-bench-effects", outDir, {}, [&](gl::GlContext& context) {
+        const gl::ContextInfo info = context.info();
         gl::GpuTimer timer(info);
         std::fprintf(stderr,
                      "pacifica-bench-effects: GL_RENDERER %s; clock: %s; %dx%d, %d frames per setting\n",
@@ -832,11 +831,5 @@ int main(int argc, char** argv) {
         // The grid density knob (OceanDesc::effectGrids): its error and its cost.
         writeGridReport(outDir, gridKnob(timer, targets, frames, quick), info, timer, width, height, frames);
         return 0;
-    } catch (const gl::ContextError& e) {
-        std::cerr << "pacifica-bench-effects: no GL context: " << e.what() << "\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "pacifica-bench-effects: " << e.what() << "\n";
-        return 1;
-    }
+    });
 }

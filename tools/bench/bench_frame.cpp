@@ -22,6 +22,7 @@
 #include "ocean/SeaState.h"
 
 #include "BenchCli.h"
+#include "BenchMain.h"
 #include "BenchText.h"
 
 #include <epoxy/gl.h>
@@ -519,10 +520,8 @@ int main(int argc, char** argv) {
     Args a;
     if (const auto code = parseArgs(argc, argv, a))
         return *code;
-    try {
-        std::filesystem::create_directories(a.outDir);
-        auto context = gl::createHeadlessContext({.debug = false});
-        const gl::ContextInfo& gl = context->info();
+    return bench::runGlBench("pacifica-bench-frame", a.outDir, {}, [&](gl::GlContext& context) {
+        const gl::ContextInfo& gl = context.info();
         gl::GpuTimer timer(gl);
         std::vector<std::pair<int, int>> sizes = a.sizes;
         if (sizes.empty())
@@ -533,21 +532,17 @@ int main(int argc, char** argv) {
             gl.renderer, timer.clockName(), "",
             utcNow(),    a.commandLine,     a.frames.value_or(a.quick ? 3 : (gl.software ? 15 : 120))};
         std::vector<Row> rows;
-        for (const auto& [width, height] : sizes)
-            runSize(a, width, height, timer, info, rows);
+        try {
+            for (const auto& [width, height] : sizes)
+                runSize(a, width, height, timer, info, rows);
+        } catch (const CLI::ValidationError& e) { // --only names no setting: a usage error
+            std::fprintf(stderr, "pacifica-bench-frame: error: %s\n", e.what());
+            return 2;
+        }
         const std::filesystem::path dir(a.outDir);
         writeFileAtomically(dir / "frame.csv", csvReport(rows, info));
         writeFileAtomically(dir / "frame.md", markdownReport(rows, info));
         writeFileAtomically(dir / "frame.json", jsonReport(rows, info));
         return 0;
-    } catch (const CLI::ValidationError& e) {
-        std::cerr << "pacifica-bench-frame: " << e.what() << "\n";
-        return 2;
-    } catch (const gl::ContextError& e) {
-        std::cerr << "pacifica-bench-frame: no GL context: " << e.what() << "\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "pacifica-bench-frame: " << e.what() << "\n";
-        return 1;
-    }
+    });
 }

@@ -31,6 +31,7 @@
 #include "ocean/OceanHost.h"
 
 #include "BenchCli.h"
+#include "BenchMain.h"
 #include "BenchPlot.h"
 #include "BenchText.h"
 
@@ -366,11 +367,8 @@ int main(int argc, char** argv) {
     Args a;
     if (const auto code = parseArgs(argc, argv, a))
         return *code;
-    try {
-        std::filesystem::create_directories(a.outDir);
-        std::filesystem::remove(a.outDir + "/soak.png"); // a stale plot must not pass for this run's
-        auto context = gl::createHeadlessContext({.debug = false});
-        const std::string renderer = context->info().renderer;
+    return bench::runGlBench("pacifica-bench-soak", a.outDir, {"soak.png"}, [&](gl::GlContext& context) {
+        const std::string renderer = context.info().renderer;
         std::fprintf(stderr, "pacifica-bench-soak: GL_RENDERER %s; %lld frames at %dx%d, dt %g s\n",
                      renderer.c_str(), a.frames, a.size.first, a.size.second, a.dt);
         Soak soak(a);
@@ -413,8 +411,5 @@ int main(int argc, char** argv) {
         const bool plotted = bench::runGnuplot(a.outDir, "soak.gp", "soak.png");
         std::printf("wrote %s/soak.csv, soak.json%s\n", a.outDir.c_str(), plotted ? ", soak.png" : "");
         return ok ? 0 : 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pacifica-bench-soak: error: %s\n", e.what());
-        return 1;
-    }
+    });
 }

@@ -31,6 +31,7 @@
 #include "ocean/OceanHost.h"
 
 #include "BenchCli.h"
+#include "BenchMain.h"
 #include "BenchText.h"
 
 #include <epoxy/gl.h>
@@ -371,14 +372,12 @@ int main(int argc, char** argv) {
     Args a;
     if (const auto code = parseArgs(argc, argv, a))
         return *code;
-    try {
-        std::filesystem::create_directories(a.outDir);
-        auto context = gl::createHeadlessContext({.debug = false});
-        const std::string renderer = context->info().renderer;
+    return bench::runGlBench("pacifica-bench-storm-frames", a.outDir, {}, [&](gl::GlContext& context) {
+        const std::string renderer = context.info().renderer;
         std::fprintf(stderr,
                      "pacifica-bench-storm-frames: GL_RENDERER %s; %dx%d, %d explosions, %d ships, %g s\n",
                      renderer.c_str(), a.size.first, a.size.second, a.explosions, a.ships, a.seconds);
-        gl::GpuTimer timer(context->info(), 8);
+        gl::GpuTimer timer(context.info(), 8);
         Storm storm(a);
         long long calm = 0, badSpawns = 0, bad = 0;
         const std::vector<Frame> frames = storm.run(timer, calm, badSpawns, bad);
@@ -393,8 +392,5 @@ int main(int argc, char** argv) {
         }
         std::printf("wrote %s/storm.json, storm.md\n", a.outDir.c_str());
         return ok ? 0 : 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pacifica-bench-storm-frames: error: %s\n", e.what());
-        return 1;
-    }
+    });
 }

@@ -8,6 +8,7 @@
 //
 //   pacifica-bench-tonemap --out DIR [--frames 60] [--cpu-frames 5] [--size 1920x1080 (16..8192 each)]
 #include "BenchCli.h"
+#include "BenchMain.h"
 
 #include <engine/Stats.h>
 #include <engine/color/ColorPipeline.h>
@@ -165,11 +166,9 @@ int main(int argc, char** argv) {
     Args a;
     if (const auto code = parseArgs(argc, argv, a))
         return *code;
-    try {
-        fs::create_directories(a.outDir);
+    const auto run = [&](gl::GlContext& context) {
         const std::vector<float> rgba = chartFrame(a.width, a.height);
         std::vector<Entry> entries = transforms(a.outDir);
-        auto context = gl::createHeadlessContext();
         gl::Texture scene = gl::Texture::create2D(GL_RGBA32F, a.width, a.height);
         glTextureSubImage2D(scene.id(), 0, 0, 0, a.width, a.height, GL_RGBA, GL_FLOAT, rgba.data());
         gl::Texture target = gl::Texture::create2D(GL_RGBA8, a.width, a.height); // a display framebuffer
@@ -183,7 +182,7 @@ int main(int argc, char** argv) {
             gpuTotal += rows.back()["gpu_ms_per_frame_median"].get<double>() * a.frames;
             cpuTotal += rows.back()["cpu_ms_per_frame_median"].get<double>() * a.frames;
         }
-        const nlohmann::json report = {{"gl_renderer", context->info().renderer},
+        const nlohmann::json report = {{"gl_renderer", context.info().renderer},
                                        {"clock",
                                         "steady_clock wall time around each pass + glFinish; CPU: around "
                                         "OCIO CPUProcessor::apply, one thread"},
@@ -201,9 +200,7 @@ int main(int argc, char** argv) {
         pacifica::writeFileAtomically(a.outDir / "tonemap_bench.json", report.dump(2) + "\n");
         pacifica::writeFileAtomically(a.outDir / "tonemap_bench.md", markdownReport(report) + total);
         std::fputs(total, stderr);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pacifica-bench-tonemap: error: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+        return 0;
+    };
+    return bench::runGlBench("pacifica-bench-tonemap", a.outDir, {}, run, gl::ContextDesc{});
 }
