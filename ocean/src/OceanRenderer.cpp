@@ -211,7 +211,14 @@ bool sameProjected(const ProjectedGridDesc& a, const ProjectedGridDesc& b) {
 void buildGrid(OceanGpu& gpu, const OceanDesc& desc) {
     gpu.gridKind = desc.gridKind;
     gpu.gridDesc = desc.grid;
+    // One kind at a time: a radial grid left beside a projected one would give the projected mesh the radial
+    // grid's index ranges (seaIndices) and the radial grid's field reads (fieldReads).
+    gpu.thinRings.clear();
+    gpu.thinIndices = {};
+    gpu.thinIndexCount = 0;
+    gpu.thinBound = false;
     if (desc.gridKind == GridKind::Projected) {
+        gpu.radial.reset();
         gpu.projected = std::make_unique<ProjectedGrid>(desc.projectedGrid);
         gpu.mesh = GridMesh::upload(gpu.projected->vertices(), gpu.projected->indices());
         return;
@@ -219,10 +226,6 @@ void buildGrid(OceanGpu& gpu, const OceanDesc& desc) {
     gpu.projected.reset();
     gpu.radial = std::make_unique<RadialGrid>(desc.grid);
     gpu.mesh = GridMesh::upload(gpu.radial->vertices(), gpu.radial->indices());
-    gpu.thinRings.clear();
-    gpu.thinIndices = {};
-    gpu.thinIndexCount = 0;
-    gpu.thinBound = false;
 }
 
 /// Rounds v > 0 up to the ladder 2^(k/8) (steps of 9%), so the thinning selection changes only when the

@@ -101,6 +101,7 @@ foreach(line IN LISTS lines)
             message(FATAL_ERROR "fleet x${count}: active ${active}, drawn ${drawn}, tiles ${fieldTiles}, passes "
                                 "${fxPasses}, draws ${fxDraws}: ${line}")
         endif()
+        set(tiles_fleet_${count} "${fieldTiles}")
     else()
         # The defaults: every effect in the field (its compute pass over the tiles they touch, the effect
         # data uploaded each frame), grids only for those next to the eye (a grid pass and draw if any).

@@ -23,6 +23,7 @@
 #include "ocean/OceanConstants.h"
 #include "ocean/OceanDebug.h"
 #include "ocean/OceanHost.h"
+#include "ocean/RadialGrid.h"
 
 #include "OceanTestFrame.h"
 
@@ -546,12 +547,14 @@ TEST_F(EffectsGl, FieldViewCullChangesNoPixel) {
         glm::dvec3 camera;
         double heading, pitch;
         bool fewerTiles; // the trail leaves the sector: the cull must evaluate fewer tiles
+        bool wide;       // the sector is wider than a half-plane (the other branch of the tile test)
     };
     const View views[] = {
-        {"along the trail, its end behind", {-150.0, 600.0, 40.0}, 0.0, -10.0, true},
-        {"across the trail", {-150.0, 600.0, 40.0}, 90.0, -15.0, true},
-        {"away from the trail, an explosion just behind", {-150.0, 600.0, 12.0}, 270.0, -5.0, true},
-        {"straight down (every azimuth: no cull)", {-150.0, 600.0, 300.0}, 0.0, -89.0, false},
+        {"along the trail, its end behind", {-150.0, 600.0, 40.0}, 0.0, -10.0, true, false},
+        {"across the trail", {-150.0, 600.0, 40.0}, 90.0, -15.0, true, false},
+        {"away from the trail, an explosion just behind", {-150.0, 600.0, 12.0}, 270.0, -5.0, true, false},
+        {"steeply down, a sector wider than a half-plane", {-150.0, 600.0, 120.0}, 0.0, -58.0, true, true},
+        {"straight down (every azimuth: no cull)", {-150.0, 600.0, 300.0}, 0.0, -89.0, false, false},
     };
     for (SurfaceKind kind : {SurfaceKind::Octaves, SurfaceKind::Gerstner, SurfaceKind::Fft}) {
         for (bool everyGrid : {false, true}) {
@@ -562,6 +565,13 @@ TEST_F(EffectsGl, FieldViewCullChangesNoPixel) {
             for (const View& v : views) {
                 SCOPED_TRACE(std::string(toString(kind)) + (everyGrid ? ", every grid, " : ", ") + v.name);
                 const OceanFrame f = frameAt(v.camera, v.heading, v.pitch, 120.0);
+                const double half =
+                    computeViewSector(f.camera, desc.sectorGuardDeg * std::numbers::pi / 180.0).halfWidth;
+                if (v.wide) {
+                    ASSERT_TRUE(half > 0.5 * std::numbers::pi && half < std::numbers::pi) << half;
+                } else if (v.fewerTiles) {
+                    ASSERT_LE(half, 0.5 * std::numbers::pi);
+                }
                 std::vector<float> culled, full;
                 ocean = base;
                 // Each setting rendered twice: the second frame's tiles are this setting's alone (the first
@@ -599,6 +609,39 @@ TEST_F(EffectsGl, FieldViewCullChangesNoPixel) {
         }
     }
     EXPECT_EQ(nonFinitePixels(), 0u);
+}
+
+// An ocean whose grid changes kind between frames (radial, then projected) draws what a fresh renderer draws:
+// nothing of the radial grid (its index ranges, its view sector's field reads) is left behind.
+TEST_F(EffectsGl, GridKindSwitchDrawsWhatAFreshRendererDraws) {
+    EffectsSystem fx(registry, events);
+    const ecs::Entity ship = registry.create();
+    registry.emplace<Ship>(ship, Ship{{0.0, 0.0}, 80.0});
+    events.enqueue(AttachShipTrail{ship, WakeParams{}});
+    for (int i = 0; i <= 60; ++i) { // 60 s at 10 m/s heading north
+        registry.get<Ship>(ship).position = {0.0, i * 10.0};
+        events.dispatch();
+        fx.update(i, {-150.0, 300.0, 30.0});
+    }
+    OceanDesc desc = OceanDesc{};
+    desc.grid.minRingPixels = 1.0; // ring thinning: the radial grid's own index ranges
+    registry.get<OceanComponent>(oceanEntity) = makeOcean(desc);
+    const OceanFrame f = frameAt({-150.0, 300.0, 30.0}, 20.0, -10.0, 60.0);
+    render(renderer, registry, f);
+    ASSERT_GT(renderer.lastStats().effectField.tiles, 0);
+    registry.get<OceanComponent>(oceanEntity).desc.gridKind = GridKind::Projected;
+    render(renderer, registry, f);
+    render(renderer, registry, f);
+    std::vector<float> switched, fresh;
+    targets.readScene(switched);
+    OceanRenderer other;
+    render(other, registry, f);
+    render(other, registry, f);
+    targets.readScene(fresh);
+    ASSERT_EQ(switched.size(), fresh.size());
+    EXPECT_EQ(std::memcmp(switched.data(), fresh.data(), switched.size() * sizeof(float)), 0);
+    EXPECT_EQ(renderer.lastStats().vertices, other.lastStats().vertices);
+    EXPECT_EQ(renderer.lastStats().effectField.tiles, other.lastStats().effectField.tiles);
 }
 
 TEST_F(EffectsGl, WakeIsVisibleFromTenKilometres) {

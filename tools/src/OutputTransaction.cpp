@@ -18,15 +18,6 @@ namespace pacifica::tools {
 std::string reportText(const nlohmann::json& report) {
     return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
-
-bool isUtf8(const std::string& text) {
-    try {
-        (void)nlohmann::json(text).dump();
-        return true;
-    } catch (const nlohmann::json::type_error&) {
-        return false;
-    }
-}
 namespace fs = std::filesystem;
 
 namespace {

@@ -24,8 +24,16 @@ namespace pacifica::tools {
 /// and fail the run after its last frame.
 std::string reportText(const nlohmann::json& report);
 /// Whether JSON can hold `text` as it is: UTF-8 as nlohmann::json checks it when writing (a Linux argument or
-/// file name may be any bytes).
-bool isUtf8(const std::string& text);
+/// file name may be any bytes). Inline: the command line's parser (Commands.cpp) links without this header's
+/// .cpp in its fuzzer.
+inline bool isUtf8(const std::string& text) {
+    try {
+        (void)nlohmann::json(text).dump();
+        return true;
+    } catch (const nlohmann::json::type_error&) {
+        return false;
+    }
+}
 
 class OutputTransaction {
 public:

@@ -258,6 +258,7 @@ nlohmann::json countersJson(const ocean::OceanStats& st, const ocean::EffectCoun
             {"effect_field",
              {{"passes", st.effectField.passes},
               {"tiles", st.effectField.tiles},
+              {"cleared", st.effectField.cleared},
               {"texels", st.effectField.texels},
               {"uploads", st.effectField.uploads}}},
             {"explosions_spawned", fx.spawned},

@@ -200,6 +200,7 @@ struct EffectKindStats {
 struct EffectFieldStats {
     int passes = 0;
     int tiles = 0;
+    int cleared = 0; ///< of `tiles`, those only cleared: written by the frame before, no effect in reach now
     long long texels = 0;
     int uploads = 0;
 };

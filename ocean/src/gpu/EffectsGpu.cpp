@@ -510,6 +510,7 @@ void EffectsGpu::binTiles(const std::vector<Footprint>& footprints, int explosio
                             glm::max(glm::vec2(box.z, box.w), glm::vec2(c + half)));
         }
         tiles.push_back({l, tx, ty, listSize, e, w, 0, 0});
+        mFieldStats.cleared += e + w == 0;
         cursor[2 * t] = listSize;
         cursor[2 * t + 1] = listSize + e;
         listSize += e + w;
