@@ -74,6 +74,48 @@ vec3 crestScatter(vec3 v, float z, vec3 sunLight, float nearFade) {
     return (weight * SUN_DIFFUSE_SCALE * phase * length(uSunDir.xy)) * sunLight * perCrest;
 }
 
+#ifdef SPOT_LIGHTS
+// Spot lights (Lighting.h SpotLight; OceanScene::spots): compiled in only for a frame that has any.
+uniform int uSpotCount;
+uniform vec3 uSpotPosition[MAX_SPOT_LIGHTS]; // camera-relative, metres
+uniform vec4 uSpotAxis[MAX_SPOT_LIGHTS];     // (unit axis, frustum half-angle theta_f in radians)
+uniform vec4 uSpotLight[MAX_SPOT_LIGHTS];    // (colour x intensity, range in metres)
+
+// spotFalloff and spotIrradiance in Lighting.h, expression for expression: the seed's saturate(|theta_f /
+// theta| - 1), finite on the axis. l: the unit direction from p toward the spot.
+float spotFalloff(float theta, float frustum) {
+    return clamp(frustum / max(theta, 0.5 * frustum) - 1.0, 0.0, 1.0);
+}
+vec3 spotIrradiance(int i, vec3 p, out vec3 l) {
+    vec3 toPoint = p - uSpotPosition[i];
+    float d = length(toPoint);
+    l = d > 0.0 ? -toPoint / d : vec3(0.0, 0.0, 1.0);
+    float range = uSpotLight[i].w;
+    if (!(d < range))
+        return vec3(0.0);
+    float c = d > 0.0 ? dot(uSpotAxis[i].xyz, -l) : 1.0;
+    float theta = acos(clamp(c, -1.0, 1.0));
+    float q = d / range, q2 = q * q;
+    float window = (1.0 - q2 * q2) * (1.0 - q2 * q2);
+    float r = max(d, SPOT_MIN_DISTANCE);
+    return uSpotLight[i].rgb * (spotFalloff(theta, uSpotAxis[i].w) * window / (r * r));
+}
+// The spots' light at surface point p with normal n: their glitter (the sun's lobe, lightSpecular) and the
+// irradiance they put on the surface, sum E max(n.l, 0), which lights the water body and the foam.
+void spotLighting(vec3 p, vec3 n, vec3 v, float m2, out vec3 specular, out vec3 irradiance) {
+    specular = vec3(0.0);
+    irradiance = vec3(0.0);
+    for (int i = 0; i < uSpotCount; ++i) {
+        vec3 l;
+        vec3 e = spotIrradiance(i, p, l);
+        if (e == vec3(0.0))
+            continue;
+        specular += lightSpecular(n, v, l, m2, e);
+        irradiance += e * max(dot(n, l), 0.0);
+    }
+}
+#endif
+
 // GPU Gems 2 §18.3: alpha = (H - H0) / (Hmax - H0), clamped (the C++ twin: foamAlpha in Lighting.h).
 float foamAlpha(float h) {
     if (uFoamHeightFull <= uFoamHeightStart)
@@ -209,6 +251,14 @@ vec3 shadeSea() {
     vec3 water = fresnel * reflectedSky(r, m2, max(z, 0.0)) +
                  (1.0 - fresnel) * (waterBody(v, n) + crestScatter(v, crest, sunLight, nearFade)) +
                  sunSpecular(n, v, m2, sunLight);
+#ifdef SPOT_LIGHTS
+    // The spots' glitter and the light they put into the water body (as the sky's, from above).
+    vec3 spotSpecular, spotLight;
+    spotLighting(vRel, n, v, m2, spotSpecular, spotLight);
+    water += (1.0 - fresnel) * waterBodyLit(v, n, dot(spotLight, vec3(0.2126, 0.7152, 0.0722)) /
+                                                      waterLightReference(), 1.0) +
+             spotSpecular;
+#endif
 
     // Foam (§18.3): coverage from height and folding, textured by the pattern; a diffuse white (albedo
     // FOAM_ALBEDO) lit by the sun (SUN_DIFFUSE_SCALE) and the sky, covering the water's reflection and
@@ -254,6 +304,9 @@ vec3 shadeSea() {
 #endif
         vec3 foamColor =
             FOAM_ALBEDO / PI * (sunLight * (SUN_DIFFUSE_SCALE * max(dot(n, uSunDir), 0.0)) + skyIrradiance());
+#ifdef SPOT_LIGHTS
+        foamColor += FOAM_ALBEDO / PI * spotLight;
+#endif
         color = mix(water, foamColor, foam);
     }
 

@@ -282,20 +282,25 @@ vec3 sunLightAt(float z) {
 // D / cos(theta_t), gathering scatter (1 - e^(-sigma D / cos theta_t)). Scaled so that looking straight down
 // gives uWaterColor (LightingDesc::waterColor, default DEEP_WATER_COLOR) under the default sky; oblique views see more (bluer) scattering. The light in the
 // water follows the sky's irradiance and the sun's elevation.
-vec3 waterBody(vec3 v, vec3 n) {
+// The luminance of the default sky's irradiance (skyIrradiance() of a default LightingDesc): the gradient's,
+// or for the physical sky the default physical sky's (uWaterLightReference, computed once).
+float waterLightReference() {
+    vec3 reference = PI * mix(SKY_ZENITH, SKY_HORIZON, SKY_HORIZON_WEIGHT);
+    return uPhysicalSky ? uWaterLightReference : dot(reference, vec3(0.2126, 0.7152, 0.0722));
+}
+// The water body under light of luminance `light` (relative to waterLightReference()) from elevation lightZ.
+vec3 waterBodyLit(vec3 v, vec3 n, float light, float lightZ) {
     vec3 t = refract(-v, n, 1.0 / WATER_IOR);
     float cosT = max(abs(t.z), 0.1);
     vec3 sigma = vec3(WATER_EXT_R, WATER_EXT_G, WATER_EXT_B);
     vec3 nadir = 1.0 - exp(-sigma * WATER_SCATTER_DEPTH);
     vec3 along = 1.0 - exp(-sigma * (WATER_SCATTER_DEPTH / cosT));
-    // The luminance of the default sky's irradiance (skyIrradiance() of a default LightingDesc): the
-    // gradient's, or for the physical sky the default physical sky's (uWaterLightReference, computed once).
-    vec3 reference = PI * mix(SKY_ZENITH, SKY_HORIZON, SKY_HORIZON_WEIGHT);
-    float referenceLuminance =
-        uPhysicalSky ? uWaterLightReference : dot(reference, vec3(0.2126, 0.7152, 0.0722));
-    float light = dot(skyIrradiance(), vec3(0.2126, 0.7152, 0.0722)) / referenceLuminance;
     return uWaterColor * (along / nadir) * light *
-           (0.6 + 0.4 * max(uSunDir.z, 0.0)) * 4.0;
+           (0.6 + 0.4 * max(lightZ, 0.0)) * 4.0;
+}
+vec3 waterBody(vec3 v, vec3 n) {
+    float light = dot(skyIrradiance(), vec3(0.2126, 0.7152, 0.0722)) / waterLightReference();
+    return waterBodyLit(v, n, light, uSunDir.z);
 }
 
 // The sun's glitter: Cox & Munk's (1954) radiance of a sea whose facet slopes are Gaussian with mean-square
@@ -307,8 +312,10 @@ vec3 waterBody(vec3 v, vec3 n) {
 // which keeps the glitter finite at grazing views. The mean radiance of a glitter pattern against this very
 // formula is test_look_gl's SunGlitterFollowsCoxAndMunk.
 uniform bool uGlitterBlinnPhong; // LightingDesc::Glitter::BlinnPhong: the lobe the glitter replaced (a knob)
-vec3 sunSpecular(vec3 n, vec3 v, float m2, vec3 sunLight) {
-    vec3 h = normalize(uSunDir + v);
+// For light arriving from unit direction l (the sun: sunSpecular; a spot light: ocean.frag) with irradiance
+// sunLight.
+vec3 lightSpecular(vec3 n, vec3 v, vec3 l, float m2, vec3 sunLight) {
+    vec3 h = normalize(l + v);
     if (uGlitterBlinnPhong) { // normalised Blinn-Phong, exponent 2 / m2 - 2 (Walter et al. 2007, eq. 30)
         float shininess = max(2.0 / m2 - 2.0, 1.0);
         float spec = pow(max(dot(n, h), 0.0), shininess) * (shininess + 8.0) / (8.0 * PI);
@@ -325,6 +332,9 @@ vec3 sunSpecular(vec3 n, vec3 v, float m2, vec3 sunLight) {
     float g1 = a < 1.6 ? (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a) : 1.0;
     float fresnel = fresnelSchlick(clamp(dot(v, h), 0.0, 1.0));
     return sunLight * (fresnel * p * g1 / (4.0 * cv));
+}
+vec3 sunSpecular(vec3 n, vec3 v, float m2, vec3 sunLight) {
+    return lightSpecular(n, v, uSunDir, m2, sunLight);
 }
 
 // The sky reflected at a surface point of altitude z: the sky over the reflection lobe, seen through the

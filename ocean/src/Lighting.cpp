@@ -323,6 +323,46 @@ double fogOpticalDepth(double z0, double z1, double distance, const LightingDesc
     return rho0 * distance * std::exp(-std::min(z0, z1) / h) * shape;
 }
 
+void validateSpotLight(const SpotLight& s, size_t index) {
+    const std::string name = "spots[" + std::to_string(index) + "].";
+    auto finite3 = [](const auto& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    if (!finite3(s.position))
+        throw std::invalid_argument(name + "position must be finite");
+    if (!finite3(s.direction) || glm::length(s.direction) < 1e-9)
+        throw std::invalid_argument(name + "direction must be finite and non-zero");
+    if (!(s.frustumDeg > 0.0 && s.frustumDeg <= 90.0))
+        throw std::invalid_argument(name + "frustumDeg must be in (0, 90], got " +
+                                    std::to_string(s.frustumDeg));
+    if (!finite3(s.color) || s.color.x < 0.0f || s.color.y < 0.0f || s.color.z < 0.0f)
+        throw std::invalid_argument(name + "color must be finite and >= 0");
+    if (!(std::isfinite(s.intensity) && s.intensity >= 0.0f))
+        throw std::invalid_argument(name + "intensity must be finite and >= 0");
+    if (!(std::isfinite(s.range) && s.range > 0.0))
+        throw std::invalid_argument(name + "range must be finite and > 0");
+}
+
+double spotFalloff(double theta, double frustum) {
+    return std::clamp(frustum / std::max(theta, 0.5 * frustum) - 1.0, 0.0, 1.0);
+}
+
+glm::dvec3 spotIrradiance(const SpotLight& s, const glm::dvec3& p) {
+    const glm::dvec3 toPoint = p - s.position;
+    const double d = glm::length(toPoint);
+    if (!(d < s.range))
+        return glm::dvec3(0.0);
+    const glm::dvec3 axis = glm::normalize(s.direction);
+    const double c = d > 0.0 ? glm::dot(axis, toPoint / d) : 1.0;
+    const double theta = std::acos(std::clamp(c, -1.0, 1.0));
+    const double q = d / s.range, q2 = q * q;
+    const double window = (1.0 - q2 * q2) * (1.0 - q2 * q2);
+    const double r = std::max(d, SPOT_MIN_DISTANCE);
+    return glm::dvec3(s.color) *
+           (static_cast<double>(s.intensity) * spotFalloff(theta, s.frustumDeg * std::numbers::pi / 180.0) *
+            window / (r * r));
+}
+
 double foamAlpha(double height, const LightingDesc& l) {
     const double h0 = l.foamHeightStart, hmax = l.foamHeightFull;
     if (hmax <= h0)

@@ -1,5 +1,5 @@
-// OceanHostRender: OceanHost.h's registry adapter -- every OceanComponent, Explosion and Ship+ShipTrail of
-// the registry drawn by one OceanRenderer::render() -- and the pass clock's translation.
+// OceanHostRender: OceanHost.h's registry adapter -- every OceanComponent, Explosion, Ship+ShipTrail and
+// SpotLight of the registry drawn by one OceanRenderer::render() -- and the pass clock's translation.
 #include "ocean/OceanHost.h"
 
 #include <vector>
@@ -12,7 +12,16 @@ void render(OceanRenderer& renderer, ecs::Registry& registry, const OceanFrame& 
         oceans.push_back({oceanId(e), &ocean});
     });
     const RegistryEffects effects(registry);
-    throwIfFailed(renderer.render({oceans, effects.view()}, frame));
+    // A light the component would refuse (NaN position, zero axis...) is left out, not the frame.
+    std::vector<SpotLight> spots;
+    registry.view<SpotLight>().each([&](ecs::Entity, SpotLight& s) {
+        try {
+            validateSpotLight(s, spots.size());
+            spots.push_back(s);
+        } catch (const std::invalid_argument&) {
+        }
+    });
+    throwIfFailed(renderer.render({oceans, effects.view(), spots}, frame));
 }
 
 PassClock passClock(gl::GpuTimer::Clock clock) {

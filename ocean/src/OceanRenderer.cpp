@@ -85,6 +85,32 @@ void validateScene(const OceanScene& scene, const OceanFrame& frame) {
         requireFinite(std::isfinite(w.ship->position.x) && std::isfinite(w.ship->position.y),
                       "OceanScene.effects.wakes[" + std::to_string(i) + "].ship->position");
     }
+    for (size_t i = 0; i < scene.spots.size(); ++i) {
+        try {
+            validateSpotLight(scene.spots[i], i);
+        } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument(std::string("OceanScene.") + e.what());
+        }
+    }
+}
+
+/// The spot lights' uniforms (ocean.frag SPOT_LIGHTS) for a program lighting the sea: positions relative to
+/// the camera (in double, then float), unit axes, half-angles, colour times intensity, ranges.
+void setSpotUniforms(GLuint prog, std::span<const SpotLight> spots, const OceanFrame& frame) {
+    glm::vec3 position[MAX_SPOT_LIGHTS];
+    glm::vec4 axis[MAX_SPOT_LIGHTS], light[MAX_SPOT_LIGHTS];
+    const int n = static_cast<int>(std::min<size_t>(spots.size(), MAX_SPOT_LIGHTS));
+    for (int i = 0; i < n; ++i) {
+        const SpotLight& s = spots[static_cast<size_t>(i)];
+        position[i] = glm::vec3(s.position - frame.camera.origin);
+        axis[i] = glm::vec4(glm::vec3(glm::normalize(s.direction)),
+                            static_cast<float>(s.frustumDeg * std::numbers::pi / 180.0));
+        light[i] = glm::vec4(s.color * s.intensity, static_cast<float>(s.range));
+    }
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpotCount"), n);
+    glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSpotPosition"), n, glm::value_ptr(position[0]));
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "uSpotAxis"), n, glm::value_ptr(axis[0]));
+    glProgramUniform4fv(prog, glGetUniformLocation(prog, "uSpotLight"), n, glm::value_ptr(light[0]));
 }
 
 } // namespace
@@ -149,7 +175,8 @@ struct OceanRenderer::Impl {
     OceanGpu& prepare(std::uint64_t id, const OceanComponent& ocean);
     /// The secondary-grid program for this ocean's model and the effect kinds of the frame (built once):
     /// lit, transform feedback (tests), or into the G-buffer (compute shading).
-    unsigned effectProgram(OceanGpu& gpu, bool feedback, bool geometry);
+    /// `lit`: the forward variant's extra defines (spotDefines()).
+    unsigned effectProgram(OceanGpu& gpu, bool feedback, bool geometry, const std::string& lit = {});
     unsigned effectFieldProgram();
 };
 
@@ -406,10 +433,11 @@ OceanGpu& OceanRenderer::Impl::prepare(std::uint64_t id, const OceanComponent& o
     return *gpu;
 }
 
-unsigned OceanRenderer::Impl::effectProgram(OceanGpu& gpu, bool feedback, bool geometry) {
+unsigned OceanRenderer::Impl::effectProgram(OceanGpu& gpu, bool feedback, bool geometry,
+                                            const std::string& lit) {
     gl::Program& program = (feedback   ? mPrograms->effectsFeedback
                             : geometry ? mPrograms->effectsGeometry
-                                       : mPrograms->effects)[gpu.programKey];
+                                       : mPrograms->effects)[gpu.programKey + lit];
     if (!program) {
         ++mStats.programsBuilt;
         const std::vector<std::string> model = gpu.model->glslFiles();
@@ -428,7 +456,7 @@ unsigned OceanRenderer::Impl::effectProgram(OceanGpu& gpu, bool feedback, bool g
             program = gl::buildProgram(
                 {{gl::ShaderStage::Vertex, vertex},
                  {gl::ShaderStage::Fragment,
-                  sources(concat(model, {"effects_sample.glsl", "sky.glsl", "ocean.frag"}), field)}},
+                  sources(concat(model, {"effects_sample.glsl", "sky.glsl", "ocean.frag"}), field + lit)}},
                 name);
     }
     return program.id();
@@ -492,6 +520,8 @@ const GpuQueryCounters& OceanRenderer::gpuQueryCounters() const noexcept {
 void OceanRenderer::Impl::render(const OceanScene& scene, const OceanFrame& frame) {
     mStats = {};
     validateScene(scene, frame);
+    mStats.spots = static_cast<int>(std::min<size_t>(scene.spots.size(), MAX_SPOT_LIGHTS));
+    mStats.spotsDropped = static_cast<int>(scene.spots.size()) - mStats.spots;
     renderPasses(scene, frame);
     if (!mPassTimer)
         return;
@@ -544,6 +574,7 @@ struct FramePasses {
     const glm::mat4 invViewProj;
     const FrameMarks& marks;
     const bool queriesWaiting; ///< GPU height queries of this ocean are evaluated after the frame
+    const std::span<const SpotLight> spots; ///< the spot lights that light the sea (at most MAX_SPOT_LIGHTS)
     // Decided by compute():
     bool effects = false;   ///< effects in the frame: every grid and the shading read the effects field
     bool holes = false;     ///< ... and secondary grids are drawn: the base grid has holes where they are
@@ -554,6 +585,13 @@ struct FramePasses {
 
     void compute();
     FieldReads fieldReads() const;
+    /// "#define SPOT_LIGHTS" when the frame has spot lights: the variant of every program lighting the sea.
+    std::string spotDefines() const { return spots.empty() ? std::string() : "#define SPOT_LIGHTS\n"; }
+    /// Sets the spots' uniforms on a program built with spotDefines().
+    void bindSpots(GLuint prog) const {
+        if (!spots.empty())
+            setSpotUniforms(prog, spots, frame);
+    }
     /// The base grid; false when no sea is in view (nothing drawn).
     bool sea();
     void grids();
@@ -687,8 +725,8 @@ GLuint FramePasses::shadeProgram(int kind) {
     // Every shading program's defines; the sea's add the model's G-buffer layers.
     const std::string base = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
                              r.mCompute->outputFormat() + "\n" + ComputeShading::tileDefines();
-    const std::string seaDefines =
-        base + (effects ? "#define EFFECT_FIELD\n" : "") + (displaced ? "#define GBUFFER_DISPLACED\n" : "");
+    const std::string seaDefines = base + (effects ? "#define EFFECT_FIELD\n" : "") +
+                                   (displaced ? "#define GBUFFER_DISPLACED\n" : "") + spotDefines();
     const bool skyOnly = ComputeShading::skyOnly(kind);
     const std::string variant =
         (skyOnly ? base : seaDefines) + (kind < 0 ? std::string()
@@ -717,6 +755,8 @@ GLuint FramePasses::shadeProgram(int kind) {
     const GLuint prog = program.id();
     setSurfaceUniforms(prog, ocean, gpu, frame);
     r.mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    if (!skyOnly)
+        bindSpots(prog);
     if (effects && !skyOnly)
         r.mEffects->bindField(prog);
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
@@ -756,15 +796,16 @@ void FramePasses::shade() {
 /// The base grid's program: lit, or into the G-buffer; with holes where the effect grids draw.
 gl::Program& FramePasses::seaProgram() {
     const char* vert = gpu.projected ? "ocean_projected.vert" : "ocean.vert";
+    const std::string lit = deferred ? std::string() : spotDefines(); // the G-buffer variant lights nothing
     gl::Program& program =
-        (deferred ? r.mPrograms->seaGeometry : r.mPrograms->sea)[gpu.programKey + vert + fxDefines];
+        (deferred ? r.mPrograms->seaGeometry : r.mPrograms->sea)[gpu.programKey + vert + fxDefines + lit];
     if (!program) {
         ++r.mStats.programsBuilt;
         const std::vector<std::string> model = gpu.model->glslFiles();
         std::vector<std::string> vertex = model;
         std::vector<std::string> frag = deferred ? std::vector<std::string>{} : model;
         // The G-buffer's fragment stage needs the field's file only for the holes.
-        const std::string fragDefines = deferred && !holes ? std::string() : fxDefines;
+        const std::string fragDefines = deferred && !holes ? std::string() : fxDefines + lit;
         if (effects)
             vertex.emplace_back("effects_sample.glsl");
         if (!fragDefines.empty())
@@ -789,8 +830,10 @@ bool FramePasses::sea() {
         r.mCompute->beginGeometry();
     if (!setSeaUniforms(sea, ocean, gpu, frame))
         return false;
-    if (!deferred)
+    if (!deferred) {
         r.mLighting->bind(sea, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+        bindSpots(sea);
+    }
     if (effects) {
         r.mEffects->bindField(sea);
         setCullUniform(sea, ocean, frame, effectHeightBound(ocean)); // the field raises the sea too
@@ -830,13 +873,15 @@ void FramePasses::drawSeaGrid() {
 
 /// The secondary grids, one instanced draw per kind in view (after the base grid: the same depth test).
 void FramePasses::grids() {
-    const GLuint fx = r.effectProgram(gpu, false, deferred);
+    const GLuint fx = r.effectProgram(gpu, false, deferred, deferred ? std::string() : spotDefines());
     glUseProgram(fx);
     setSurfaceUniforms(fx, ocean, gpu, frame);
     // The effect grids' guard adds the effect field's reach; the feedback programs (tests) leave the test
     // off: every vertex evaluated.
     setCullUniform(fx, ocean, frame, effectHeightBound(ocean));
     r.mLighting->bind(fx, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    if (!deferred)
+        bindSpots(fx);
     r.mEffects->bindField(fx);
     enableGridClips(true);
     for (EffectKind kind : {EffectKind::Explosion, EffectKind::Wake}) {
@@ -889,7 +934,8 @@ void OceanRenderer::Impl::renderPasses(const OceanScene& scene, const OceanFrame
                            prepare(instance.id, ocean),
                            glm::inverse(frame.camera.viewProj),
                            marks,
-                           mQueries.waiting(instance.id)};
+                           mQueries.waiting(instance.id),
+                           scene.spots.first(std::min<size_t>(scene.spots.size(), MAX_SPOT_LIGHTS))};
         passes.compute();
         if (passes.sea() && passes.holes)
             passes.grids();

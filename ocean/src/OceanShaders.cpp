@@ -103,6 +103,8 @@ std::string shaderConstantDefines() {
         .add("CREST_SCATTER_G", CREST_SCATTER_G)
         .add("CREST_SCATTER_PATH", CREST_SCATTER_PATH)
         .add("FOAM_EDGE", FOAM_EDGE)
+        .add("MAX_SPOT_LIGHTS", MAX_SPOT_LIGHTS)
+        .add("SPOT_MIN_DISTANCE", SPOT_MIN_DISTANCE)
         .add("FOAM_PATTERN_SIZE", FOAM_PATTERN_SIZE)
         .add("FOAM_NEAR_WEIGHT", FOAM_NEAR_WEIGHT)
         .add("FOAM_FAR_WEIGHT", FOAM_FAR_WEIGHT)

@@ -25,10 +25,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -437,4 +439,102 @@ vec2 modelFoamInputs(vec2 rel) { return vec2(0.0, uStubJacobian); }
     EXPECT_GE(with.uniformLocation("uFoamJacobianThreshold"), 0);
     EXPECT_EQ(without.uniformLocation("uStubJacobian"), -1) << "modelFoamInputs used without the #define";
     EXPECT_GE(without.uniformLocation("uFoamHeightStart"), 0);
+}
+
+// Spot lights (Lighting.h SpotLight, OceanScene::spots), forward and compute shading: a searchlight 25 m up,
+// pointing straight down 40 m ahead of a camera 30 m up, at dusk. Pixels whose sea lies well outside its
+// cone are the frame without it (within float rounding); pixels within its full-light core are much
+// brighter; every value is finite, the axis's point (theta = 0) included. A frame without spots builds no
+// new program and uploads nothing more; ten spots light with eight (the rest counted); a bad spot is
+// refused naming its field, and the registry's adapter leaves it out instead.
+TEST_F(LightingGl, SpotLightsLightTheirConeOnlyAndStayFinite) {
+    for (bool compute : {false, true}) {
+        SCOPED_TRACE(compute ? "compute shading" : "forward shading");
+        ocean::OceanDesc desc;
+        desc.computeShading = compute;
+        desc.lighting = noFog();
+        desc.lighting.sunDirection = {0.0, -1.0, 0.05}; // dusk, behind the camera
+        desc.lighting.sunIntensity = 0.5f;
+        desc.lighting.skyIntensity = 0.05f;
+        const ocean::OceanComponent ocean = ocean::makeOcean(desc);
+        const ocean::OceanInstance oceans[] = {{1, &ocean}};
+        gl::FrameTargets targets(W, H);
+        ocean::OceanRenderer renderer;
+        Pose p;
+        p.position = {1e6, -1e6, 30.0};
+        p.headingDeg = 0.0;
+        p.pitchDeg = -30.0;
+        const ocean::OceanFrame frame =
+            ocean::makeOceanFrame(p, FOV_Y, W, H, 17.25, targets.sceneFramebuffer().id());
+        ocean::SpotLight spot;
+        spot.position = p.position + glm::dvec3(0.0, 40.0, -5.0);
+        spot.direction = {0.0, 0.0, -1.0};
+        spot.frustumDeg = 20.0;
+        auto draw = [&](std::span<const ocean::SpotLight> spots) {
+            const ocean::Status s = renderer.render({oceans, {}, spots}, frame);
+            EXPECT_TRUE(s.ok()) << s.message;
+            std::vector<float> rgba;
+            targets.readScene(rgba);
+            return rgba;
+        };
+        (void)draw({}); // builds the programs without spots, uploads the lighting's textures
+        const std::vector<float> dark = draw({});
+        const ocean::OceanStats plain = renderer.lastStats();
+        const std::vector<float> lit = draw({&spot, 1});
+        EXPECT_GT(renderer.lastStats().programsBuilt, 0); // the spots' variant
+        EXPECT_EQ(renderer.lastStats().spots, 1);
+        EXPECT_EQ(renderer.lastStats().uploads, plain.uploads);
+        (void)draw({});
+        EXPECT_EQ(renderer.lastStats().programsBuilt, 0) << "a frame without spots uses the plain programs";
+        EXPECT_EQ(renderer.lastStats().spots, 0);
+        expectFinite(lit, "lit");
+        // Each pixel's ray against the flat sea (the waves' few decimetres are far inside the margins).
+        int outside = 0, core = 0, brighter = 0;
+        double worstOutside = 0.0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const glm::dvec3 dir = pixelDirection(frame.camera, x, y);
+                if (dir.z > -0.05)
+                    continue;
+                const glm::dvec2 hit = glm::dvec2(p.position) + glm::dvec2(dir) * (p.position.z / -dir.z);
+                const double r = glm::length(hit - glm::dvec2(spot.position));
+                const size_t i = (static_cast<size_t>(y) * W + x) * 4;
+                const glm::dvec3 a(dark[i], dark[i + 1], dark[i + 2]), b(lit[i], lit[i + 1], lit[i + 2]);
+                if (r > 25.0 * std::tan(20.0 * std::numbers::pi / 180.0) + 4.0) {
+                    ++outside;
+                    worstOutside = std::max(worstOutside, relativeDifference(b, a));
+                } else if (r < 25.0 * std::tan(10.0 * std::numbers::pi / 180.0) - 1.0) {
+                    ++core;
+                    brighter += luminance(b) > 3.0 * luminance(a);
+                }
+            }
+        std::printf("[spot] %s: %d pixels outside the cone (worst relative change %.2g), %d in its core (%d "
+                    "more than 3x brighter)\n",
+                    compute ? "compute" : "forward", outside, worstOutside, core, brighter);
+        if (const char* dump = std::getenv("PACIFICA_LIGHTING_DUMP"); dump && *dump)
+            capture::writeExrHalf(std::filesystem::path(dump) /
+                                      (compute ? "spot_compute.exr" : "spot_forward.exr"),
+                                  W, H, 4, lit.data(), {});
+        ASSERT_GT(outside, 1000);
+        ASSERT_GT(core, 20);
+        EXPECT_LT(worstOutside, 1e-5) << "the sea outside the cone changed";
+        EXPECT_EQ(brighter, core) << "pixels of the cone's core more than 3x brighter";
+        // Ten spots: eight light the sea, two are counted out.
+        std::vector<ocean::SpotLight> ten(10, spot);
+        (void)draw(ten);
+        EXPECT_EQ(renderer.lastStats().spots, ocean::MAX_SPOT_LIGHTS);
+        EXPECT_EQ(renderer.lastStats().spotsDropped, 2);
+        // A bad spot: the span API refuses the frame naming the field; the registry's adapter leaves it out.
+        ocean::SpotLight bad = spot;
+        bad.direction = glm::dvec3(0.0);
+        const ocean::Status refused = renderer.render({oceans, {}, {&bad, 1}}, frame);
+        EXPECT_EQ(refused.code, ocean::ErrorCode::InvalidArgument);
+        EXPECT_EQ(refused.message, "OceanScene.spots[0].direction must be finite and non-zero");
+        ecs::Registry registry;
+        registry.emplace<ocean::OceanComponent>(registry.create(), ocean);
+        registry.emplace<ocean::SpotLight>(registry.create(), bad);
+        registry.emplace<ocean::SpotLight>(registry.create(), spot);
+        ocean::render(renderer, registry, frame);
+        EXPECT_EQ(renderer.lastStats().spots, 1);
+    }
 }

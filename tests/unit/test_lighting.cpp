@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -390,4 +391,79 @@ TEST(ProceduralTextures, MeanFoamOpacityIsTheThresholdsMeanOverRanks) {
     }
     EXPECT_EQ(meanFoamOpacity(0.0), 0.0);
     EXPECT_DOUBLE_EQ(meanFoamOpacity(1.0), 1.0);
+}
+
+// Spot lights (Lighting.h SpotLight): the seed's falloff saturate(|theta_f / theta| - 1) at its landmarks,
+// its limit on the axis (theta = 0, where the seed's expression is undefined), the inverse square law with
+// its range window, and bad spots named by field.
+TEST(SpotLight, FalloffFollowsTheSeedAndIsFiniteOnTheAxis) {
+    const double f = 20.0 * std::numbers::pi / 180.0;
+    EXPECT_DOUBLE_EQ(spotFalloff(0.0, f), 1.0); // on the axis: the limit, not inf or NaN
+    EXPECT_DOUBLE_EQ(spotFalloff(1e-30, f), 1.0);
+    EXPECT_DOUBLE_EQ(spotFalloff(0.25 * f, f), 1.0); // the seed's 3, saturated
+    EXPECT_DOUBLE_EQ(spotFalloff(0.5 * f, f), 1.0);
+    EXPECT_NEAR(spotFalloff(0.75 * f, f), 1.0 / 3.0, 1e-15);
+    EXPECT_DOUBLE_EQ(spotFalloff(f, f), 0.0);
+    EXPECT_DOUBLE_EQ(spotFalloff(1.5 * f, f), 0.0);
+}
+
+TEST(SpotLight, IrradianceIsTheInverseSquareInsideTheCone) {
+    SpotLight s;
+    s.position = {1e7, -1e7, 25.0}; // far from the origin: the maths is relative
+    s.direction = {0.0, 0.0, -2.0}; // normalised on use
+    s.frustumDeg = 20.0;
+    s.color = {1.0f, 0.5f, 0.25f};
+    s.intensity = 2.0e4f;
+    s.range = 5000.0;
+    const glm::dvec3 below = s.position - glm::dvec3(0.0, 0.0, 25.0);
+    const double q = 25.0 / 5000.0, window = (1.0 - q * q * q * q) * (1.0 - q * q * q * q);
+    const glm::dvec3 e = spotIrradiance(s, below); // theta = 0 exactly
+    EXPECT_NEAR(e.x, 2.0e4 / 625.0 * window, 1e-9);
+    EXPECT_NEAR(e.y, 0.5 * e.x, 1e-12);
+    // 25 tan(15 deg) off the axis: theta = 15 deg, falloff 20 / 15 - 1 = 1/3, distance 25 / cos(15 deg).
+    const double t = 15.0 * std::numbers::pi / 180.0, d = 25.0 / std::cos(t);
+    const glm::dvec3 off = below + glm::dvec3(25.0 * std::tan(t), 0.0, 0.0);
+    const double qo = d / 5000.0, wo = (1.0 - qo * qo * qo * qo) * (1.0 - qo * qo * qo * qo);
+    EXPECT_NEAR(spotIrradiance(s, off).x, 2.0e4 / (d * d) * wo / 3.0, 1e-8); // 1e7 m from the origin
+    // Outside the cone, beyond the range, behind the lamp: nothing. At the lamp itself: finite.
+    EXPECT_EQ(spotIrradiance(s, below + glm::dvec3(25.0 * std::tan(0.4), 0.0, 0.0)).x, 0.0);
+    s.range = 20.0;
+    EXPECT_EQ(spotIrradiance(s, below).x, 0.0);
+    s.range = 5000.0;
+    EXPECT_EQ(spotIrradiance(s, s.position + glm::dvec3(0.0, 0.0, 10.0)).x, 0.0);
+    const glm::dvec3 at = spotIrradiance(s, s.position);
+    EXPECT_TRUE(std::isfinite(at.x));
+    EXPECT_NEAR(at.x, 2.0e4 / (SPOT_MIN_DISTANCE * SPOT_MIN_DISTANCE), 1e-6);
+}
+
+TEST(SpotLight, BadSpotsAreNamedByField) {
+    auto message = [](const SpotLight& s) {
+        try {
+            validateSpotLight(s, 3);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_EQ(message(SpotLight{}), "accepted");
+    SpotLight s;
+    s.position.y = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(message(s), "spots[3].position must be finite");
+    s = {};
+    s.direction = glm::dvec3(0.0);
+    EXPECT_EQ(message(s), "spots[3].direction must be finite and non-zero");
+    s = {};
+    s.frustumDeg = 0.0;
+    EXPECT_EQ(message(s), "spots[3].frustumDeg must be in (0, 90], got 0.000000");
+    s.frustumDeg = 120.0;
+    EXPECT_EQ(message(s), "spots[3].frustumDeg must be in (0, 90], got 120.000000");
+    s = {};
+    s.color.g = -1.0f;
+    EXPECT_EQ(message(s), "spots[3].color must be finite and >= 0");
+    s = {};
+    s.intensity = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(message(s), "spots[3].intensity must be finite and >= 0");
+    s = {};
+    s.range = 0.0;
+    EXPECT_EQ(message(s), "spots[3].range must be finite and > 0");
 }

@@ -126,6 +126,8 @@ TEST(OceanShaders, ConstantDefinesHoldEachConstantOnce) {
     expectLine("#define FOAM_MEMORY_WINDOW " + std::to_string(FOAM_MEMORY_WINDOW));
     expectLine("#define FFT_MAX_CASCADES " + std::to_string(FFT_MAX_CASCADES));
     expectLine("#define FFT_MIX_AMPLITUDE 1.5");
+    expectLine("#define MAX_SPOT_LIGHTS " + std::to_string(MAX_SPOT_LIGHTS));
+    expectLine("#define SPOT_MIN_DISTANCE 0.1");
     expectLine("#define EFFECT_EXPLOSIONS_BINDING 4");
     expectLine("#define SHADE_OUTPUT_IMAGE_UNIT 1");
     expectLine("#define FFT_FOAM_MEMORY_IMAGE_UNIT 3");
@@ -135,12 +137,12 @@ TEST(OceanShaders, ConstantDefinesHoldEachConstantOnce) {
                "dot(m[(first) + 0].xy, rel)) + sin(m[(first) + 1].z + dot(m[(first) + 1].xy, rel)) + "
                "sin(m[(first) + 2].z + dot(m[(first) + 2].xy, rel)) + sin(m[(first) + 3].z + "
                "dot(m[(first) + 3].xy, rel))))");
-    // Every line is a define; 46 constants (3 of them arrays), the mix's macro, 13 binding slots and 10
+    // Every line is a define; 48 constants (3 of them arrays), the mix's macro, 13 binding slots and 10
     // image units.
     size_t lines = 0;
     for (size_t at = 0; (at = d.find('\n', at)) != std::string::npos; ++at)
         ++lines;
-    EXPECT_EQ(lines, 70u);
+    EXPECT_EQ(lines, 72u);
     EXPECT_EQ(d.rfind("#define ", 0), 0u);
     EXPECT_EQ(d.back(), '\n');
 }

@@ -159,6 +159,37 @@ struct LightingDesc {
 /// Throws std::invalid_argument naming the first bad field ("OceanDesc.lighting.fogDensity must be ...").
 void validateLighting(const LightingDesc& lighting);
 
+/// A spot light over the sea (a lighthouse, a ship's searchlight, a deck light), supplied by the host per
+/// frame (OceanScene::spots). It lights the sea's glitter (the sun's Cox & Munk lobe with the spot as its
+/// source), the water body and the foam. As in the Intel projected-grid ocean's lighthouse ("Light
+/// Implementation"), a point lies in the light when the angle theta between the spot's axis and the ray from
+/// the spot to the point is within the frustum's half-angle theta_f, and the light falls off as
+/// saturate(|theta_f / theta| - 1): full within theta_f / 2, none from theta_f on (spotFalloff).
+struct SpotLight {
+    glm::dvec3 position{0.0};             ///< world ENU, metres
+    glm::dvec3 direction{0.0, 0.0, -1.0}; ///< the cone's axis, world ENU (normalised on use; not zero)
+    double frustumDeg = 15.0;             ///< theta_f, the cone's half-angle, degrees in (0, 90]
+    glm::vec3 color{1.0f};                ///< scene-linear, each >= 0
+    /// Radiant intensity on the axis, in the sun's units: the irradiance at distance d is intensity / d^2
+    /// (the sun's is LightingDesc::sunIntensity, 20 by default, for ~1e5 lux; so 2e4 is ~1e8 cd, a large
+    /// naval searchlight). >= 0.
+    float intensity = 2.0e4f;
+    /// Metres: the light fades smoothly to 0 here, (1 - (d / range)^4)^2 on the inverse square (Karis,
+    /// "Real Shading in Unreal Engine 4", SIGGRAPH 2013, eq. 9), so a spot costs nothing beyond it. > 0.
+    double range = 5000.0;
+};
+
+/// Throws std::invalid_argument naming the spot and field ("spots[2].frustumDeg must be in (0, 90], got
+/// 120").
+void validateSpotLight(const SpotLight& spot, size_t index);
+/// The seed's falloff saturate(|theta_f / theta| - 1), as saturate(theta_f / max(theta, theta_f / 2) - 1):
+/// the same value at every theta > 0, and its limit 1 on the axis, where the seed's is undefined.
+double spotFalloff(double theta, double frustum);
+/// The irradiance the spot delivers at world point p on a surface facing it (times n.l for a surface of
+/// normal n), scene-linear: color intensity spotFalloff(theta, theta_f) window(d / range) / max(d,
+/// SPOT_MIN_DISTANCE)^2. ocean.frag's spotIrradiance is the same expression.
+glm::dvec3 spotIrradiance(const SpotLight& spot, const glm::dvec3& p);
+
 /// Optical depth of the fog along a straight segment of length `distance` (metres) from altitude z0 to z1
 /// (metres above mean sea level), for rho(z) = rho0 e^(-z/H) (rho0 = fogDensity, H = fogHeightFalloff):
 ///

@@ -177,6 +177,9 @@ struct OceanInstance {
 struct OceanScene {
     std::span<const OceanInstance> oceans;
     EffectsView effects;
+    /// Spot lights on the sea this frame (Lighting.h); the first MAX_SPOT_LIGHTS light it, the rest are left
+    /// out and counted (OceanStats::spotsDropped). None: no shader variant, uniform or cost.
+    std::span<const SpotLight> spots;
 };
 
 /// Heights of the sea at `points` (world metres) at time t: the ocean's surface (SurfaceModel::heightAt)
@@ -229,6 +232,8 @@ struct OceanStats {
     bool shadeTiled = false;    ///< ... sorted into tiles (OceanDesc::shadeTiles)
     EffectKindStats explosions, wakes;
     EffectFieldStats effectField;
+    int spots = 0;            ///< spot lights that lit the sea (OceanScene::spots, at most MAX_SPOT_LIGHTS)
+    int spotsDropped = 0;     ///< spot lights beyond MAX_SPOT_LIGHTS, left out
     OceanPassTimes passTimes; ///< only with OceanRenderer::setPassTiming()
 };
 

@@ -79,6 +79,12 @@ inline constexpr double FOAM_MIN_VARIANCE = 1e-4;
 inline constexpr double FOAM_EFFECT_SOFTNESS = 1.5;
 /// Shares closer than this to 0 or 1 are clamped before the normal quantile (float precision in GLSL).
 inline constexpr double FOAM_SHARE_MIN = 1e-5;
+/// Spot lights a frame lights the sea with (OceanScene::spots); more are left out and counted
+/// (OceanStats::spotsDropped).
+inline constexpr int MAX_SPOT_LIGHTS = 8;
+/// Spot lights' nearest distance in the inverse square law, metres: a surface point at the lamp itself gets a
+/// finite irradiance (Lighting.h spotIrradiance).
+inline constexpr double SPOT_MIN_DISTANCE = 0.1;
 /// Width of the foam's soft edge in coverage (Lighting.h meanFoamOpacity: the share of the sea a coverage c
 /// puts under foam).
 inline constexpr double FOAM_EDGE = 0.3;

@@ -37,7 +37,8 @@ void throwIfFailed(const Status& status);
 /// makeOcean() that returns the component and throws std::invalid_argument naming the field.
 OceanComponent makeOcean(const OceanDesc& desc);
 
-/// Renders every OceanComponent of the registry with its effects (RegistryEffects); throws on error.
+/// Renders every OceanComponent of the registry with its effects (RegistryEffects) and its SpotLight
+/// components (those validateSpotLight() refuses left out); throws on error.
 void render(OceanRenderer& renderer, ecs::Registry& registry, const OceanFrame& frame);
 
 /// The ocean's pass clock for an engine GpuTimer's.
