@@ -80,6 +80,9 @@ uniform int uSpotCount;
 uniform vec3 uSpotPosition[MAX_SPOT_LIGHTS]; // camera-relative, metres
 uniform vec4 uSpotAxis[MAX_SPOT_LIGHTS];     // (unit axis, frustum half-angle theta_f in radians)
 uniform vec4 uSpotLight[MAX_SPOT_LIGHTS];    // (colour x intensity, range in metres)
+// The default LightingDesc's sun on a flat sea: (its diffuse irradiance SUN_DIFFUSE_SCALE sunIntensity
+// sin(elevation), sin(elevation)). Daylight is that plus the default sky's irradiance (waterLightReference).
+uniform vec2 uDaylightSun;
 
 // spotFalloff and spotIrradiance in Lighting.h, expression for expression: the seed's saturate(|theta_f /
 // theta| - 1), finite on the axis. l: the unit direction from p toward the spot.
@@ -101,7 +104,9 @@ vec3 spotIrradiance(int i, vec3 p, out vec3 l) {
     return uSpotLight[i].rgb * (spotFalloff(theta, uSpotAxis[i].w) * window / (r * r));
 }
 // The spots' light at surface point p with normal n: their glitter (the sun's lobe, lightSpecular) and the
-// irradiance they put on the surface, sum E max(n.l, 0), which lights the water body and the foam.
+// diffuse irradiance they put on the surface, SUN_DIFFUSE_SCALE sum E max(n.l, 0), which lights the water
+// body and the foam. A spot's intensity is in the sun's units, which are calibrated for the glitter: its
+// diffuse light is scaled as the sun's is.
 void spotLighting(vec3 p, vec3 n, vec3 v, float m2, out vec3 specular, out vec3 irradiance) {
     specular = vec3(0.0);
     irradiance = vec3(0.0);
@@ -111,8 +116,14 @@ void spotLighting(vec3 p, vec3 n, vec3 v, float m2, out vec3 specular, out vec3 
         if (e == vec3(0.0))
             continue;
         specular += lightSpecular(n, v, l, m2, e);
-        irradiance += e * max(dot(n, l), 0.0);
+        irradiance += e * (SUN_DIFFUSE_SCALE * max(dot(n, l), 0.0));
     }
+}
+// The water body under the spots' diffuse irradiance: relative to daylight's (the default sky's plus the
+// default sun's), so a lamp that puts daylight's irradiance on the sea lights the water body as daylight does.
+vec3 spotWaterBody(vec3 v, vec3 n, vec3 irradiance) {
+    float daylight = waterLightReference() + uDaylightSun.x;
+    return waterBodyLit(v, n, dot(irradiance, vec3(0.2126, 0.7152, 0.0722)) / daylight, uDaylightSun.y);
 }
 #endif
 
@@ -255,9 +266,7 @@ vec3 shadeSea() {
     // The spots' glitter and the light they put into the water body (as the sky's, from above).
     vec3 spotSpecular, spotLight;
     spotLighting(vRel, n, v, m2, spotSpecular, spotLight);
-    water += (1.0 - fresnel) * waterBodyLit(v, n, dot(spotLight, vec3(0.2126, 0.7152, 0.0722)) /
-                                                      waterLightReference(), 1.0) +
-             spotSpecular;
+    water += (1.0 - fresnel) * spotWaterBody(v, n, spotLight) + spotSpecular;
 #endif
 
     // Foam (§18.3): coverage from height and folding, textured by the pattern; a diffuse white (albedo

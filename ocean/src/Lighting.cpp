@@ -339,6 +339,10 @@ void validateSpotLight(const SpotLight& s, size_t index) {
         throw std::invalid_argument(name + "color must be finite and >= 0");
     if (!(std::isfinite(s.intensity) && s.intensity >= 0.0f))
         throw std::invalid_argument(name + "intensity must be finite and >= 0");
+    const double brightest = std::max({s.color.x, s.color.y, s.color.z}) * static_cast<double>(s.intensity);
+    if (!(brightest <= MAX_SPOT_INTENSITY))
+        throw std::invalid_argument(name + "color x intensity must be <= 1e12, got " +
+                                    std::to_string(brightest));
     if (!(std::isfinite(s.range) && s.range > 0.0))
         throw std::invalid_argument(name + "range must be finite and > 0");
 }

@@ -12,16 +12,19 @@ void render(OceanRenderer& renderer, ecs::Registry& registry, const OceanFrame& 
         oceans.push_back({oceanId(e), &ocean});
     });
     const RegistryEffects effects(registry);
-    // A light the component would refuse (NaN position, zero axis...) is left out, not the frame.
+    // A light the component would refuse (NaN position, zero axis...) is left out, not the frame, and
+    // counted (OceanStats::spotsRejected).
     std::vector<SpotLight> spots;
+    int rejected = 0;
     registry.view<SpotLight>().each([&](ecs::Entity, SpotLight& s) {
         try {
             validateSpotLight(s, spots.size());
             spots.push_back(s);
         } catch (const std::invalid_argument&) {
+            ++rejected;
         }
     });
-    throwIfFailed(renderer.render({oceans, effects.view(), spots}, frame));
+    throwIfFailed(renderer.render({oceans, effects.view(), spots, rejected}, frame));
 }
 
 PassClock passClock(gl::GpuTimer::Clock clock) {

@@ -111,6 +111,10 @@ void setSpotUniforms(GLuint prog, std::span<const SpotLight> spots, const OceanF
     glProgramUniform3fv(prog, glGetUniformLocation(prog, "uSpotPosition"), n, glm::value_ptr(position[0]));
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "uSpotAxis"), n, glm::value_ptr(axis[0]));
     glProgramUniform4fv(prog, glGetUniformLocation(prog, "uSpotLight"), n, glm::value_ptr(light[0]));
+    const LightingDesc defaults;
+    const float sunZ = static_cast<float>(glm::normalize(defaults.sunDirection).z);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "uDaylightSun"),
+                       SUN_DIFFUSE_SCALE * defaults.sunIntensity * sunZ, sunZ);
 }
 
 } // namespace
@@ -522,6 +526,7 @@ void OceanRenderer::Impl::render(const OceanScene& scene, const OceanFrame& fram
     validateScene(scene, frame);
     mStats.spots = static_cast<int>(std::min<size_t>(scene.spots.size(), MAX_SPOT_LIGHTS));
     mStats.spotsDropped = static_cast<int>(scene.spots.size()) - mStats.spots;
+    mStats.spotsRejected = scene.spotsRejected;
     renderPasses(scene, frame);
     if (!mPassTimer)
         return;
@@ -805,10 +810,11 @@ gl::Program& FramePasses::seaProgram() {
         std::vector<std::string> vertex = model;
         std::vector<std::string> frag = deferred ? std::vector<std::string>{} : model;
         // The G-buffer's fragment stage needs the field's file only for the holes.
-        const std::string fragDefines = deferred && !holes ? std::string() : fxDefines + lit;
+        const bool fragField = !fxDefines.empty() && (!deferred || holes);
+        const std::string fragDefines = (fragField ? fxDefines : std::string()) + lit;
         if (effects)
             vertex.emplace_back("effects_sample.glsl");
-        if (!fragDefines.empty())
+        if (fragField)
             frag.emplace_back("effects_sample.glsl");
         vertex.emplace_back(vert);
         program = gl::buildProgram(

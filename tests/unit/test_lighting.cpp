@@ -466,4 +466,14 @@ TEST(SpotLight, BadSpotsAreNamedByField) {
     s = {};
     s.range = 0.0;
     EXPECT_EQ(message(s), "spots[3].range must be finite and > 0");
+    // Finite colour and intensity whose float product would overflow in the shader (then NaN at 0 x inf).
+    s = {};
+    s.color = glm::vec3(1e30f, 0.0f, 0.0f);
+    s.intensity = 1e30f;
+    EXPECT_EQ(message(s).rfind("spots[3].color x intensity must be <= 1e12, got ", 0), 0u) << message(s);
+    s.color = glm::vec3(0.5f, 1e9f, 1.0f);
+    s.intensity = 1e3f; // 1e12 on the brightest channel: the bound itself
+    EXPECT_EQ(message(s), "accepted");
+    s.intensity = 2e3f;
+    EXPECT_EQ(message(s), "spots[3].color x intensity must be <= 1e12, got 2000000000000.000000");
 }

@@ -179,8 +179,12 @@ struct SpotLight {
     double range = 5000.0;
 };
 
+/// The largest colour x intensity per channel a spot may have: a large naval searchlight is ~2e4, and 1e12
+/// keeps the shader's products (over SPOT_MIN_DISTANCE^2, times the glitter's peak) far inside a float.
+inline constexpr double MAX_SPOT_INTENSITY = 1e12;
+
 /// Throws std::invalid_argument naming the spot and field ("spots[2].frustumDeg must be in (0, 90], got
-/// 120").
+/// 120"; colour x intensity above MAX_SPOT_INTENSITY).
 void validateSpotLight(const SpotLight& spot, size_t index);
 /// The seed's falloff saturate(|theta_f / theta| - 1), as saturate(theta_f / max(theta, theta_f / 2) - 1):
 /// the same value at every theta > 0, and its limit 1 on the axis, where the seed's is undefined.

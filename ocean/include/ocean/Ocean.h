@@ -180,6 +180,9 @@ struct OceanScene {
     /// Spot lights on the sea this frame (Lighting.h); the first MAX_SPOT_LIGHTS light it, the rest are left
     /// out and counted (OceanStats::spotsDropped). None: no shader variant, uniform or cost.
     std::span<const SpotLight> spots;
+    /// Spot lights the host left out of `spots` as invalid (the registry adapter's count, render() in
+    /// OceanHost.h), reported in OceanStats::spotsRejected.
+    int spotsRejected = 0;
 };
 
 /// Heights of the sea at `points` (world metres) at time t: the ocean's surface (SurfaceModel::heightAt)
@@ -234,6 +237,7 @@ struct OceanStats {
     EffectFieldStats effectField;
     int spots = 0;            ///< spot lights that lit the sea (OceanScene::spots, at most MAX_SPOT_LIGHTS)
     int spotsDropped = 0;     ///< spot lights beyond MAX_SPOT_LIGHTS, left out
+    int spotsRejected = 0;    ///< invalid spot lights the host left out (OceanScene::spotsRejected)
     OceanPassTimes passTimes; ///< only with OceanRenderer::setPassTiming()
 };
 
