@@ -74,58 +74,6 @@ vec3 crestScatter(vec3 v, float z, vec3 sunLight, float nearFade) {
     return (weight * SUN_DIFFUSE_SCALE * phase * length(uSunDir.xy)) * sunLight * perCrest;
 }
 
-#ifdef SPOT_LIGHTS
-// Spot lights (Lighting.h SpotLight; OceanScene::spots): compiled in only for a frame that has any.
-uniform int uSpotCount;
-uniform vec3 uSpotPosition[MAX_SPOT_LIGHTS]; // camera-relative, metres
-uniform vec4 uSpotAxis[MAX_SPOT_LIGHTS];     // (unit axis, frustum half-angle theta_f in radians)
-uniform vec4 uSpotLight[MAX_SPOT_LIGHTS];    // (colour x intensity, range in metres)
-// The default LightingDesc's sun on a flat sea: (its diffuse irradiance SUN_DIFFUSE_SCALE sunIntensity
-// sin(elevation), sin(elevation)). Daylight is that plus the default sky's irradiance (waterLightReference).
-uniform vec2 uDaylightSun;
-
-// spotFalloff and spotIrradiance in Lighting.h, expression for expression: the seed's saturate(|theta_f /
-// theta| - 1), finite on the axis. l: the unit direction from p toward the spot.
-float spotFalloff(float theta, float frustum) {
-    return clamp(frustum / max(theta, 0.5 * frustum) - 1.0, 0.0, 1.0);
-}
-vec3 spotIrradiance(int i, vec3 p, out vec3 l) {
-    vec3 toPoint = p - uSpotPosition[i];
-    float d = length(toPoint);
-    l = d > 0.0 ? -toPoint / d : vec3(0.0, 0.0, 1.0);
-    float range = uSpotLight[i].w;
-    if (!(d < range))
-        return vec3(0.0);
-    float c = d > 0.0 ? dot(uSpotAxis[i].xyz, -l) : 1.0;
-    float theta = acos(clamp(c, -1.0, 1.0));
-    float q = d / range, q2 = q * q;
-    float window = (1.0 - q2 * q2) * (1.0 - q2 * q2);
-    float r = max(d, SPOT_MIN_DISTANCE);
-    return uSpotLight[i].rgb * (spotFalloff(theta, uSpotAxis[i].w) * window / (r * r));
-}
-// The spots' light at surface point p with normal n: their glitter (the sun's lobe, lightSpecular) and the
-// diffuse irradiance they put on the surface, SUN_DIFFUSE_SCALE sum E max(n.l, 0), which lights the water
-// body and the foam. A spot's intensity is in the sun's units, which are calibrated for the glitter: its
-// diffuse light is scaled as the sun's is.
-void spotLighting(vec3 p, vec3 n, vec3 v, float m2, out vec3 specular, out vec3 irradiance) {
-    specular = vec3(0.0);
-    irradiance = vec3(0.0);
-    for (int i = 0; i < uSpotCount; ++i) {
-        vec3 l;
-        vec3 e = spotIrradiance(i, p, l);
-        if (e == vec3(0.0))
-            continue;
-        specular += lightSpecular(n, v, l, m2, e);
-        irradiance += e * (SUN_DIFFUSE_SCALE * max(dot(n, l), 0.0));
-    }
-}
-// The water body under the spots' diffuse irradiance: relative to daylight's (the default sky's plus the
-// default sun's), so a lamp that puts daylight's irradiance on the sea lights the water body as daylight does.
-vec3 spotWaterBody(vec3 v, vec3 n, vec3 irradiance) {
-    float daylight = waterLightReference() + uDaylightSun.x;
-    return waterBodyLit(v, n, dot(irradiance, vec3(0.2126, 0.7152, 0.0722)) / daylight, uDaylightSun.y);
-}
-#endif
 
 // GPU Gems 2 §18.3: alpha = (H - H0) / (Hmax - H0), clamped (the C++ twin: foamAlpha in Lighting.h).
 float foamAlpha(float h) {
@@ -263,7 +211,7 @@ vec3 shadeSea() {
                  (1.0 - fresnel) * (waterBody(v, n) + crestScatter(v, crest, sunLight, nearFade)) +
                  sunSpecular(n, v, m2, sunLight);
 #ifdef SPOT_LIGHTS
-    // The spots' glitter and the light they put into the water body (as the sky's, from above).
+    // The spots' glitter and the light they put into the water body (spot.glsl).
     vec3 spotSpecular, spotLight;
     spotLighting(vRel, n, v, m2, spotSpecular, spotLight);
     water += (1.0 - fresnel) * spotWaterBody(v, n, spotLight) + spotSpecular;
@@ -322,7 +270,11 @@ vec3 shadeSea() {
     // Fog between the eye and the surface (De Sylva's fog: f = e^(-tau n)), tau integrated over the height falloff
     // and the noise over the path (fogNoiseAlongPath).
     float tau = fogOpticalDepth(uCameraHeight, z, dist) * fogNoiseAlongPath(vRel, uCameraHeight, z);
-    return mix(fogColor(-v), color, exp(-tau));
+    vec3 fogged = mix(fogColor(-v), color, exp(-tau));
+#ifdef SPOT_LIGHTS
+    fogged += spotScatter(-v, dist); // the beams in the fog before the sea
+#endif
+    return fogged;
 }
 
 #ifndef SHADE_COMPUTE

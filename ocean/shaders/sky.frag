@@ -34,8 +34,17 @@ vec3 distantSea(vec3 dir) {
     return sea;
 }
 
+// The spots' beams in the fog along dir out to distance s (spot.glsl); none without spots.
+vec3 skyBeams(vec3 dir, float s) {
+#ifdef SPOT_LIGHTS
+    return spotScatter(dir, s);
+#else
+    return vec3(0.0);
+#endif
+}
+
 // The sky above the sea's horizon in direction dir (unit) from altitude z0: rays that miss the sea.
-vec3 openSkyColor(vec3 dir, float z0) {
+vec3 openSkyRadiance(vec3 dir, float z0) {
     // The physical sky's map holds every ray that misses the sea, those that pass below the horizontal over
     // the curved sea included (ClearSky::skyMap integrates from the sea's dipped horizon up), and the haze.
     if (uSkyHoldsFog)
@@ -48,13 +57,16 @@ vec3 openSkyColor(vec3 dir, float z0) {
     sky = mix(sky, fogColor(dir), smoothstep(0.0, 0.009, -dir.z));
     return mix(fogColor(dir), sky, skyTransmittance(z0, dir));
 }
+vec3 openSkyColor(vec3 dir, float z0) {
+    return openSkyRadiance(dir, z0) + skyBeams(dir, 1e30);
+}
 
 // The sea beyond the grid, hit at distance s along dir from altitude z0.
 vec3 beyondGridColor(vec3 dir, float z0, float s) {
     // No noise factor: beyond the grid it has averaged out to 1 (its mipmaps), and the texture()
     // derivatives would be undefined inside this branch.
     float tau = fogOpticalDepth(z0, 0.0, s);
-    return mix(fogColor(dir), distantSea(dir), exp(-tau));
+    return mix(fogColor(dir), distantSea(dir), exp(-tau)) + skyBeams(dir, s);
 }
 
 // The camera's altitude as the sky sees it (above the sea, so every ray upward misses it).

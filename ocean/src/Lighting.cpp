@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <vector>
 
 namespace pacifica::ocean {
 
@@ -309,6 +310,8 @@ void validateLighting(const LightingDesc& l) {
         fail("foamJacobianThreshold must be finite");
     if (!finite(l.foamIntensity) || l.foamIntensity < 0.0f)
         fail("foamIntensity must be finite and >= 0, got " + std::to_string(l.foamIntensity));
+    if (l.spotScatterSamples < 0 || l.spotScatterSamples > 64)
+        fail("spotScatterSamples must be in [0, 64], got " + std::to_string(l.spotScatterSamples));
     if (!std::isfinite(l.windDirectionDeg))
         fail("windDirectionDeg must be finite");
 }
@@ -365,6 +368,93 @@ glm::dvec3 spotIrradiance(const SpotLight& s, const glm::dvec3& p) {
     return glm::dvec3(s.color) *
            (static_cast<double>(s.intensity) * spotFalloff(theta, s.frustumDeg * std::numbers::pi / 180.0) *
             window / (r * r));
+}
+
+bool spotConeInterval(const SpotLight& spot, const glm::dvec3& origin, const glm::dvec3& dir, double& t0,
+                      double& t1) {
+    // From the ray's point nearest the apex (t = shift), as spot.glsl must in float.
+    const double shift = -glm::dot(origin - spot.position, dir);
+    const glm::dvec3 w = origin - spot.position + shift * dir;
+    const double disc = spot.range * spot.range - glm::dot(w, w);
+    if (disc <= 0.0)
+        return false;
+    const double s = std::sqrt(disc);
+    t0 = std::max(t0 - shift, -s);
+    t1 = std::min(t1 - shift, s);
+    if (!(t0 < t1))
+        return false;
+    const glm::dvec3 axis = glm::normalize(spot.direction);
+    const double cosF = std::cos(spot.frustumDeg * std::numbers::pi / 180.0);
+    const double da = glm::dot(dir, axis), wa = glm::dot(w, axis), k2 = cosF * cosF;
+    const double a = da * da - k2, bq = 2.0 * da * wa, c = wa * wa - k2 * glm::dot(w, w);
+    // The crossings (t1 where there is none), clamped into [t0, t1] and sorted: the ray between consecutive
+    // ones is wholly in or out.
+    double r[3] = {t1, t1, t1};
+    const double qd = bq * bq - 4.0 * a * c;
+    if (std::abs(a) > 1e-6 && qd >= 0.0) { // Numerical Recipes' form: no cancellation
+        const double q = -0.5 * (bq + std::copysign(std::sqrt(qd), bq));
+        if (q != 0.0) {
+            r[0] = q / a;
+            r[1] = c / q;
+        }
+    } else if (std::abs(a) <= 1e-6 && bq != 0.0) {
+        r[0] = -c / bq;
+    }
+    if (da != 0.0)
+        r[2] = -wa / da;
+    for (double& x : r)
+        x = std::clamp(x, t0, t1);
+    std::sort(std::begin(r), std::end(r));
+    const double from[4] = {t0, r[0], r[1], r[2]}, to[4] = {r[0], r[1], r[2], t1};
+    double lo = t1, hi = t0;
+    for (int j = 0; j < 4; ++j) {
+        if (!(to[j] > from[j]))
+            continue;
+        const glm::dvec3 p = w + 0.5 * (from[j] + to[j]) * dir;
+        const double pa = glm::dot(p, axis);
+        if (pa >= 0.0 && pa * pa >= k2 * glm::dot(p, p)) {
+            lo = std::min(lo, from[j]);
+            hi = std::max(hi, to[j]);
+        }
+    }
+    t0 = lo + shift;
+    t1 = hi + shift;
+    return lo < hi;
+}
+
+glm::dvec3 spotInScatter(const SpotLight& spot, const LightingDesc& l, const glm::dvec3& eye,
+                         const glm::dvec3& dir, double tMax, int samples) {
+    double t0 = 0.0, t1 = tMax;
+    if (samples <= 0 || l.fogDensity <= 0.0f || !spotConeInterval(spot, eye, dir, t0, t1))
+        return glm::dvec3(0.0);
+    const glm::dvec3 c = spot.position - eye;
+    const glm::dvec3 axis = glm::normalize(spot.direction);
+    const double frustum = spot.frustumDeg * std::numbers::pi / 180.0, g = SPOT_FOG_PHASE_G;
+    const double delta = glm::dot(c, dir);
+    const double big = std::max(glm::length(c - delta * dir), SPOT_MIN_DISTANCE);
+    const double a0 = std::atan((t0 - delta) / big), a1 = std::atan((t1 - delta) / big);
+    const double h = l.fogHeightFalloff;
+    double sum = 0.0;
+    for (int k = 0; k < samples; ++k) {
+        const double a = a0 + (a1 - a0) * (k + 0.5) / samples;
+        const double t = delta + big * std::tan(a);
+        const glm::dvec3 toX = t * dir - c;
+        const double d = glm::length(toX);
+        const glm::dvec3 light = d > 0.0 ? toX / d : axis; // the light's direction of travel
+        const double theta = std::acos(std::clamp(glm::dot(axis, light), -1.0, 1.0));
+        const double r = std::max(d, SPOT_MIN_DISTANCE);
+        const double jacobian = (big * big + (t - delta) * (t - delta)) / (big * r * r);
+        const double hg = 1.0 + g * g - 2.0 * g * glm::dot(light, -dir);
+        const double phase = (1.0 - g * g) / (4.0 * std::numbers::pi * hg * std::sqrt(hg));
+        const double z = eye.z + t * dir.z;
+        const double sigma = h > 0.0 ? l.fogDensity * std::exp(-z / h) : l.fogDensity;
+        const double tau = fogOpticalDepth(eye.z, z, t, l) + fogOpticalDepth(spot.position.z, z, d, l);
+        const double q = d / spot.range, q2 = q * q;
+        sum += sigma * phase * spotFalloff(theta, frustum) * (1.0 - q2 * q2) * (1.0 - q2 * q2) *
+               std::exp(-tau) * jacobian;
+    }
+    return glm::dvec3(spot.color) *
+           (SUN_DIFFUSE_SCALE * static_cast<double>(spot.intensity) * sum * (a1 - a0) / samples);
 }
 
 double foamAlpha(double height, const LightingDesc& l) {

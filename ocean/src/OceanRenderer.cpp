@@ -95,8 +95,10 @@ void validateScene(const OceanScene& scene, const OceanFrame& frame) {
 }
 
 /// The spot lights' uniforms (ocean.frag SPOT_LIGHTS) for a program lighting the sea: positions relative to
-/// the camera (in double, then float), unit axes, half-angles, colour times intensity, ranges.
-void setSpotUniforms(GLuint prog, std::span<const SpotLight> spots, const OceanFrame& frame) {
+/// the camera (in double, then float), unit axes, half-angles, colour times intensity, ranges; the daylight
+/// the water body is relative to; the beams' quadrature and phase.
+void setSpotUniforms(GLuint prog, std::span<const SpotLight> spots, const OceanFrame& frame,
+                     const LightingDesc& lighting) {
     glm::vec3 position[MAX_SPOT_LIGHTS];
     glm::vec4 axis[MAX_SPOT_LIGHTS], light[MAX_SPOT_LIGHTS];
     const int n = static_cast<int>(std::min<size_t>(spots.size(), MAX_SPOT_LIGHTS));
@@ -115,6 +117,9 @@ void setSpotUniforms(GLuint prog, std::span<const SpotLight> spots, const OceanF
     const float sunZ = static_cast<float>(glm::normalize(defaults.sunDirection).z);
     glProgramUniform2f(prog, glGetUniformLocation(prog, "uDaylightSun"),
                        SUN_DIFFUSE_SCALE * defaults.sunIntensity * sunZ, sunZ);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "uSpotScatterSamples"), lighting.spotScatterSamples);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "uSpotFogPhaseG"),
+                       static_cast<float>(SPOT_FOG_PHASE_G));
 }
 
 } // namespace
@@ -134,6 +139,7 @@ struct Programs {
     gl::Program shadeTileSort;                   // compute shading's tile sorting (ocean_shade_tiles.comp)
     int softwareRenderer = -1; // GL_RENDERER names a software rasteriser (1), not (0), unknown
     gl::Program sky;           // built on first use
+    gl::Program skySpots;      // ... with the spots' beams (SPOT_LIGHTS)
     gl::VertexArray emptyVao;  // the sky's fullscreen triangle needs a bound VAO in core profile
     gl::Texture feedbackColor; // a 1x1 target: drawing needs a complete framebuffer even with discard
     gl::Framebuffer feedbackFbo;
@@ -460,7 +466,8 @@ unsigned OceanRenderer::Impl::effectProgram(OceanGpu& gpu, bool feedback, bool g
             program = gl::buildProgram(
                 {{gl::ShaderStage::Vertex, vertex},
                  {gl::ShaderStage::Fragment,
-                  sources(concat(model, {"effects_sample.glsl", "sky.glsl", "ocean.frag"}), field + lit)}},
+                  sources(concat(model, {"effects_sample.glsl", "sky.glsl", "spot.glsl", "ocean.frag"}),
+                          field + lit)}},
                 name);
     }
     return program.id();
@@ -590,12 +597,13 @@ struct FramePasses {
 
     void compute();
     FieldReads fieldReads() const;
-    /// "#define SPOT_LIGHTS" when the frame has spot lights: the variant of every program lighting the sea.
+    /// "#define SPOT_LIGHTS" when the frame has spot lights: the variant of every program lighting the sea or
+    /// drawing the sky (the beams).
     std::string spotDefines() const { return spots.empty() ? std::string() : "#define SPOT_LIGHTS\n"; }
     /// Sets the spots' uniforms on a program built with spotDefines().
     void bindSpots(GLuint prog) const {
         if (!spots.empty())
-            setSpotUniforms(prog, spots, frame);
+            setSpotUniforms(prog, spots, frame, ocean.desc.lighting);
     }
     /// The base grid; false when no sea is in view (nothing drawn).
     bool sea();
@@ -701,16 +709,20 @@ void FramePasses::sky() {
     if (!ocean.desc.drawSky)
         return;
     Programs& programs = *r.mPrograms;
-    if (!programs.sky) {
+    gl::Program& program = spots.empty() ? programs.sky : programs.skySpots;
+    if (!program) {
         ++r.mStats.programsBuilt;
-        programs.sky = gl::buildProgram({{gl::ShaderStage::Vertex, sources({"sky.vert"})},
-                                         {gl::ShaderStage::Fragment, sources({"sky.glsl", "sky.frag"})}},
-                                        "ocean sky");
-        programs.emptyVao = gl::VertexArray::create();
+        program = gl::buildProgram(
+            {{gl::ShaderStage::Vertex, sources({"sky.vert"})},
+             {gl::ShaderStage::Fragment, sources({"sky.glsl", "spot.glsl", "sky.frag"}, spotDefines())}},
+            spots.empty() ? "ocean sky" : "ocean sky (spot lights)");
     }
-    const GLuint sky = programs.sky.id();
+    if (!programs.emptyVao)
+        programs.emptyVao = gl::VertexArray::create();
+    const GLuint sky = program.id();
     glUseProgram(sky);
     r.mLighting->bind(sky, LIGHTING_FIRST_UNIT, ocean.desc, frame);
+    bindSpots(sky);
     glProgramUniformMatrix4fv(sky, glGetUniformLocation(sky, "uInvViewProj"), 1, GL_FALSE,
                               glm::value_ptr(invViewProj));
     glEnable(GL_DEPTH_TEST);
@@ -729,9 +741,10 @@ void FramePasses::sky() {
 GLuint FramePasses::shadeProgram(int kind) {
     // Every shading program's defines; the sea's add the model's G-buffer layers.
     const std::string base = std::string("#define SHADE_COMPUTE\n#define SHADE_OUTPUT_FORMAT ") +
-                             r.mCompute->outputFormat() + "\n" + ComputeShading::tileDefines();
-    const std::string seaDefines = base + (effects ? "#define EFFECT_FIELD\n" : "") +
-                                   (displaced ? "#define GBUFFER_DISPLACED\n" : "") + spotDefines();
+                             r.mCompute->outputFormat() + "\n" + ComputeShading::tileDefines() +
+                             spotDefines();
+    const std::string seaDefines =
+        base + (effects ? "#define EFFECT_FIELD\n" : "") + (displaced ? "#define GBUFFER_DISPLACED\n" : "");
     const bool skyOnly = ComputeShading::skyOnly(kind);
     const std::string variant =
         (skyOnly ? base : seaDefines) + (kind < 0 ? std::string()
@@ -748,7 +761,7 @@ GLuint FramePasses::shadeProgram(int kind) {
                 files.push_back(f);
         if (!skyOnly && effects)
             files.push_back("effects_sample.glsl");
-        files.insert(files.end(), {"sky.glsl", "sky.frag", "shade_pixels.glsl"});
+        files.insert(files.end(), {"sky.glsl", "spot.glsl", "sky.frag", "shade_pixels.glsl"});
         if (!skyOnly)
             files.push_back("ocean.frag");
         files.push_back("ocean_shade.comp");
@@ -760,8 +773,7 @@ GLuint FramePasses::shadeProgram(int kind) {
     const GLuint prog = program.id();
     setSurfaceUniforms(prog, ocean, gpu, frame);
     r.mLighting->bind(prog, LIGHTING_FIRST_UNIT, ocean.desc, frame);
-    if (!skyOnly)
-        bindSpots(prog);
+    bindSpots(prog);
     if (effects && !skyOnly)
         r.mEffects->bindField(prog);
     glProgramUniformMatrix4fv(prog, glGetUniformLocation(prog, "uInvViewProj"), 1, GL_FALSE,
@@ -817,14 +829,15 @@ gl::Program& FramePasses::seaProgram() {
         if (fragField)
             frag.emplace_back("effects_sample.glsl");
         vertex.emplace_back(vert);
-        program = gl::buildProgram(
-            {{gl::ShaderStage::Vertex,
-              sources(vertex, fxDefines + (holes ? "#define EFFECT_GRID_CLIP\n" : ""))},
-             {gl::ShaderStage::Fragment, sources(deferred ? concat(frag, {"ocean_gbuffer.frag"})
-                                                          : concat(frag, {"sky.glsl", "ocean.frag"}),
-                                                 fragDefines)}},
-            std::string(deferred ? "ocean sea geometry (" : "ocean sea (") + gpu.programKey +
-                (effects ? ", effects field" : "") + (holes ? ", effect holes" : "") + ")");
+        program =
+            gl::buildProgram({{gl::ShaderStage::Vertex,
+                               sources(vertex, fxDefines + (holes ? "#define EFFECT_GRID_CLIP\n" : ""))},
+                              {gl::ShaderStage::Fragment,
+                               sources(deferred ? concat(frag, {"ocean_gbuffer.frag"})
+                                                : concat(frag, {"sky.glsl", "spot.glsl", "ocean.frag"}),
+                                       fragDefines)}},
+                             std::string(deferred ? "ocean sea geometry (" : "ocean sea (") + gpu.programKey +
+                                 (effects ? ", effects field" : "") + (holes ? ", effect holes" : "") + ")");
     }
     return program;
 }

@@ -239,6 +239,11 @@ TEST(LightingValidation, NamesTheField) {
     l.fogColor = glm::vec3(0.5f, std::nanf(""), 0.5f);
     EXPECT_NE(message(l).find("OceanDesc.lighting.fogColor"), std::string::npos) << message(l);
     l = {};
+    l.spotScatterSamples = 65;
+    EXPECT_EQ(message(l), "OceanDesc.lighting.spotScatterSamples must be in [0, 64], got 65");
+    l.spotScatterSamples = -1;
+    EXPECT_NE(message(l).find("OceanDesc.lighting.spotScatterSamples"), std::string::npos) << message(l);
+    l = {};
     auto bad = std::make_shared<EnvironmentMap>();
     bad->width = 4; // no data: not from makeEnvironmentMap()
     bad->height = 2;
@@ -476,4 +481,191 @@ TEST(SpotLight, BadSpotsAreNamedByField) {
     EXPECT_EQ(message(s), "accepted");
     s.intensity = 2e3f;
     EXPECT_EQ(message(s), "spots[3].color x intensity must be <= 1e12, got 2000000000000.000000");
+}
+
+namespace {
+
+/// Whether p lies in the spot's cone and range (the definition spotConeInterval narrows a ray to).
+bool inSpotCone(const SpotLight& s, const glm::dvec3& p) {
+    const glm::dvec3 w = p - s.position;
+    const double d = glm::length(w);
+    return d < s.range &&
+           glm::dot(w, glm::normalize(s.direction)) >= d * std::cos(s.frustumDeg * std::numbers::pi / 180.0);
+}
+
+} // namespace
+
+// The ray's part in a cone against a fine march along it, for rays of every kind: from outside across the
+// cone, from inside, from the apex, along the axis, along the cone's surface, against a 90-degree cone (a
+// half-space), missing it, and 1e7 m from the origin.
+TEST(SpotLight, ConeIntervalMatchesAMarch) {
+    struct Case {
+        const char* name;
+        glm::dvec3 lamp, axis;
+        double frustumDeg;
+        glm::dvec3 origin, dir;
+        double tMax;
+    };
+    const double c20 = std::cos(20.0 * std::numbers::pi / 180.0),
+                 s20 = std::sin(20.0 * std::numbers::pi / 180.0);
+    const Case cases[] = {
+        {"across", {0, 0, 20}, {0, 0, -1}, 20.0, {-100, 0, 10}, {1, 0, 0}, 400.0},
+        {"from inside",
+         {0, 0, 20},
+         {0, 0, -1},
+         20.0,
+         {0, 0, 5},
+         glm::normalize(glm::dvec3(1, 0.3, 0.2)),
+         400.0},
+        {"from the apex",
+         {0, 0, 20},
+         {0, 0, -1},
+         20.0,
+         {0, 0, 20},
+         glm::normalize(glm::dvec3(0.1, 0, -1)),
+         400.0},
+        {"along the axis", {0, 0, 20}, {0, 0, -1}, 20.0, {0, 0, 100}, {0, 0, -1}, 400.0},
+        {"along the surface", {0, 0, 20}, {0, 0, -1}, 20.0, {0, 0, 20}, {s20, 0, -c20}, 400.0},
+        {"half-space",
+         {0, 0, 20},
+         {1, 0, 0},
+         90.0,
+         {-50, 3, 0},
+         glm::normalize(glm::dvec3(1, 0.2, 0.1)),
+         400.0},
+        {"missing", {0, 0, 20}, {0, 0, -1}, 20.0, {-100, 0, 30}, {1, 0, 0}, 400.0},
+        {"behind the lamp", {0, 0, 20}, {0, 0, -1}, 20.0, {0, 0, 40}, {0, 0, 1}, 400.0},
+        {"far from the origin",
+         {1e7, -1e7, 20},
+         glm::normalize(glm::dvec3(1, 0, 0.2)),
+         10.0,
+         {1e7 - 300, -1e7 + 40, 5},
+         glm::normalize(glm::dvec3(1, -0.1, 0.05)),
+         3000.0},
+    };
+    for (const Case& k : cases) {
+        SCOPED_TRACE(k.name);
+        SpotLight s;
+        s.position = k.lamp;
+        s.direction = k.axis;
+        s.frustumDeg = k.frustumDeg;
+        s.range = 1000.0;
+        double t0 = 0.0, t1 = k.tMax;
+        const bool hit = spotConeInterval(s, k.origin, k.dir, t0, t1);
+        const int steps = 200000;
+        const double dt = k.tMax / steps;
+        double first = -1.0, last = -1.0;
+        for (int i = 0; i <= steps; ++i) {
+            const double t = i * dt;
+            if (inSpotCone(s, k.origin + t * k.dir)) {
+                if (first < 0.0)
+                    first = t;
+                last = t;
+            }
+        }
+        if (first < 0.0 || last - first < 4.0 * dt) { // none (or a graze thinner than the march resolves)
+            EXPECT_TRUE(!hit || t1 - t0 < 4.0 * dt) << t0 << ".." << t1;
+            continue;
+        }
+        ASSERT_TRUE(hit);
+        EXPECT_NEAR(t0, first, 2.0 * dt + 1e-6 * k.tMax);
+        EXPECT_NEAR(t1, last, 2.0 * dt + 1e-6 * k.tMax);
+    }
+}
+
+// The beams' quadrature (spotInScatter) against the trapezoid rule over 2e5 even steps in t, for a beam seen
+// from the side, a ray up its axis from inside the fog, and a ray passing 1 m from the lamp: the error of
+// each sample count (LightingDesc::spotScatterSamples), and the hard cases finite.
+TEST(SpotLight, InScatterQuadratureConvergesToTheIntegral) {
+    LightingDesc fog;
+    fog.fogDensity = 2e-3f;
+    fog.fogHeightFalloff = 600.0f;
+    SpotLight s;
+    s.position = {0.0, 0.0, 20.0};
+    s.direction = glm::normalize(glm::dvec3(0.0, 1.0, 0.3));
+    s.frustumDeg = 8.0;
+    s.range = 3000.0;
+    auto reference = [&](const glm::dvec3& eye, const glm::dvec3& dir, double tMax) {
+        const int steps = 200000;
+        double sum = 0.0;
+        const double dt = tMax / steps;
+        const glm::dvec3 axis = glm::normalize(s.direction);
+        const double g = SPOT_FOG_PHASE_G;
+        for (int i = 0; i <= steps; ++i) {
+            const double t = i * dt;
+            const glm::dvec3 x = eye + t * dir;
+            const glm::dvec3 toX = x - s.position;
+            const double d = glm::length(toX);
+            if (!inSpotCone(s, x))
+                continue;
+            const glm::dvec3 l = toX / d;
+            const double theta = std::acos(std::clamp(glm::dot(axis, l), -1.0, 1.0));
+            const double hg = 1.0 + g * g - 2.0 * g * glm::dot(l, -dir);
+            const double phase = (1.0 - g * g) / (4.0 * std::numbers::pi * hg * std::sqrt(hg));
+            const double q = d / s.range, window = (1.0 - q * q * q * q) * (1.0 - q * q * q * q);
+            const double tau =
+                fogOpticalDepth(eye.z, x.z, t, fog) + fogOpticalDepth(s.position.z, x.z, d, fog);
+            const double r = std::max(d, SPOT_MIN_DISTANCE);
+            sum += (i == 0 || i == steps ? 0.5 : 1.0) * fog.fogDensity * std::exp(-x.z / 600.0) * phase *
+                   spotFalloff(theta, 8.0 * std::numbers::pi / 180.0) * window * std::exp(-tau) / (r * r);
+        }
+        return SUN_DIFFUSE_SCALE * s.intensity * sum * dt;
+    };
+    struct Ray {
+        const char* name;
+        glm::dvec3 eye, dir;
+        double tMax;
+        double bound8; // relative error allowed with 8 samples (measured 0.75 %, 0.28 %, 1.1 %)
+    };
+    const Ray rays[] = {
+        {"from the side", {-300.0, 150.0, 40.0}, glm::normalize(glm::dvec3(1.0, 0.05, 0.02)), 800.0, 0.02},
+        {"up the axis", s.position + 30.0 * glm::normalize(s.direction), glm::normalize(s.direction), 2900.0,
+         0.02},
+        {"across it 1 m from the lamp",
+         s.position + glm::normalize(s.direction) - glm::dvec3(200.0, 0.0, 0.0),
+         {1.0, 0.0, 0.0},
+         600.0,
+         0.05},
+    };
+    for (const Ray& ray : rays) {
+        SCOPED_TRACE(ray.name);
+        const double exact = reference(ray.eye, ray.dir, ray.tMax);
+        ASSERT_GT(exact, 0.0);
+        std::printf("[beam] %s: exact %.4g;", ray.name, exact);
+        double err8 = 0.0;
+        for (int n : {2, 4, 8, 16, 32}) {
+            const double v = spotInScatter(s, fog, ray.eye, ray.dir, ray.tMax, n).x;
+            const double err = std::abs(v / exact - 1.0);
+            std::printf(" %d: %.2g%%", n, 100.0 * err);
+            if (n == 8)
+                err8 = err;
+            if (n == 32) {
+                EXPECT_LT(err, 0.01);
+            }
+        }
+        std::printf("\n");
+        EXPECT_LT(err8, ray.bound8);
+    }
+    // Outside the cone nothing; none without fog or with no samples; more of the beam, more light.
+    EXPECT_EQ(spotInScatter(s, fog, {-300.0, -100.0, 40.0}, {1.0, 0.0, 0.0}, 800.0, 8).x, 0.0);
+    LightingDesc clear = fog;
+    clear.fogDensity = 0.0f;
+    EXPECT_EQ(spotInScatter(s, clear, rays[0].eye, rays[0].dir, 800.0, 8).x, 0.0);
+    EXPECT_EQ(spotInScatter(s, fog, rays[0].eye, rays[0].dir, 800.0, 0).x, 0.0);
+    double previous = 0.0;
+    for (double tMax : {100.0, 300.0, 1000.0, 2900.0}) {
+        const double v = spotInScatter(s, fog, rays[1].eye, rays[1].dir, tMax, 32).x;
+        EXPECT_GT(v, previous) << tMax;
+        previous = v;
+    }
+    // The eye at the lamp, looking along its axis and across it; a spot pointing straight down: finite.
+    for (const glm::dvec3& dir :
+         {glm::normalize(s.direction), glm::dvec3(1.0, 0.0, 0.0), glm::dvec3(0.0, 0.0, -1.0)}) {
+        const glm::dvec3 v = spotInScatter(s, fog, s.position, dir, 500.0, 8);
+        EXPECT_TRUE(std::isfinite(v.x) && v.x >= 0.0);
+    }
+    SpotLight down = s;
+    down.direction = {0.0, 0.0, -1.0};
+    const glm::dvec3 v = spotInScatter(down, fog, {0.0, 0.0, 30.0}, {0.0, 0.0, -1.0}, 30.0, 8);
+    EXPECT_TRUE(std::isfinite(v.x) && v.x > 0.0);
 }

@@ -85,6 +85,11 @@ inline constexpr int MAX_SPOT_LIGHTS = 8;
 /// Spot lights' nearest distance in the inverse square law, metres: a surface point at the lamp itself gets a
 /// finite irradiance (Lighting.h spotIrradiance).
 inline constexpr double SPOT_MIN_DISTANCE = 0.1;
+/// Henyey-Greenstein asymmetry g of the fog's scattering of the spots' light (their beams: spot.glsl
+/// spotScatter, Lighting.h spotInScatter). Fog and haze droplets, a few micrometres across, scatter forward:
+/// Mie theory gives g ~ 0.7-0.85 for them in visible light (Petty, "A First Course in Atmospheric Radiation",
+/// 2nd ed., sec. 12.2); 0.7 keeps a beam seen from the side visible as it is at night.
+inline constexpr double SPOT_FOG_PHASE_G = 0.7;
 /// Width of the foam's soft edge in coverage (Lighting.h meanFoamOpacity: the share of the sea a coverage c
 /// puts under foam).
 inline constexpr double FOAM_EDGE = 0.3;
