@@ -3,7 +3,8 @@
 report: one row per preset, finite positive frame times, the per-pass split measured (sea and the compute shading
 pass, which lights the sky too, > 0; no effect time above the frame), vertices growing low < medium < high, the
 compute, sea and shading passes and the one draw counted, GL_RENDERER
-and both clocks named, CSV and Markdown written; a bad --size is refused with exit 2; --only runs the named settings only. Asserts nothing about speed
+and both clocks named, CSV and Markdown written; a bad --size is refused with exit 2; --only runs the named settings only;
+eight spot lights with their beams add no pass or draw. Asserts nothing about speed
 (docs/PERFORMANCE.md has the figures). Usage: test_frame_bench.py BENCH_EXE OUT_DIR"""
 import csv
 import json
@@ -63,5 +64,18 @@ check([r["setting"] for r in only_rows] == ["low"], "--only low runs just the lo
 p5 = subprocess.run([exe, "--quick", "--only", "lowest", "--out", only_out], capture_output=True, text=True,
                     timeout=60)
 check(p5.returncode == 2 and "--only" in p5.stderr, "--only naming no setting is refused")
+# The spot rows (a full run's): eight lamps with their beams run inside the same passes and draws as the fog
+# without lamps.
+spot_out = os.path.join(out, "spots")
+p6 = subprocess.run([exe, "--size", "160x90", "--frames", "1", "--only", "high/fog-1e-3", "--only", "high/spots-8",
+                     "--out", spot_out], capture_output=True, text=True, timeout=240)
+spot_rows = {r["setting"]: r for r in json.load(open(os.path.join(spot_out, "frame.json")))["rows"]} \
+    if p6.returncode == 0 else {}
+check(sorted(spot_rows) == ["high/fog-1e-3", "high/spots-8"], f"the spot rows run (got {sorted(spot_rows)})")
+if len(spot_rows) == 2:
+    fog, spots = spot_rows["high/fog-1e-3"], spot_rows["high/spots-8"]
+    check(spots["passes"] == fog["passes"] and spots["draws"] == fog["draws"],
+          f"lamps and beams add no pass or draw ({spots['passes']}/{spots['draws']} vs {fog['passes']}/{fog['draws']})")
+    check(math.isfinite(spots["ms_median"]) and spots["ms_median"] > 0, "the spot row's frame time measured")
 print("FAILED: " + "; ".join(failed) if failed else "all checks passed")
 sys.exit(1 if failed else 0)

@@ -16,7 +16,9 @@
 #include "engine/gl/FrameTargets.h"
 #include "engine/gl/GlContext.h"
 #include "engine/gl/GpuTimer.h"
+#include "ocean/Lighting.h"
 #include "ocean/Ocean.h"
+#include "ocean/OceanConstants.h"
 #include "ocean/OceanHost.h"
 #include "ocean/Presets.h"
 #include "ocean/SeaState.h"
@@ -83,6 +85,7 @@ struct Setting {
     /// Asynchronous GPU height queries queued before every timed frame (OceanRenderer::queueHeights), the
     /// previous frames' answers taken after it: the cost of the query pass.
     size_t gpuQueries = 0;
+    std::vector<ocean::SpotLight> spots; ///< SpotLight components in the scene
 };
 
 /// Adds one row of the high preset changed by `change`.
@@ -240,6 +243,43 @@ void shadingSettings(std::vector<Setting>& out) {
     }
 }
 
+/// Spot lights (Lighting.h SpotLight) in a foggy night's fog (1e-3/m, ~4 km visibility): eight ships'
+/// searchlights 150..780 m ahead, 15 m up, four sweeping the sea and four raised into the fog; their beams
+/// with 4, 8 (the default) and 16 points (LightingDesc::spotScatterSamples) and none; and the same fog
+/// without lamps. The rows' differences are the lamps' cost on the sea and their beams'.
+void spotSettings(std::vector<Setting>& out) {
+    const double heading = HEADING_DEG * std::numbers::pi / 180.0;
+    const glm::dvec2 ahead(std::sin(heading), std::cos(heading)), right(ahead.y, -ahead.x);
+    std::vector<ocean::SpotLight> lamps;
+    for (int i = 0; i < ocean::MAX_SPOT_LIGHTS; ++i) {
+        ocean::SpotLight s;
+        const double along = 150.0 + 90.0 * i, side = (i % 2 ? 1.0 : -1.0) * (40.0 + 15.0 * i);
+        s.position = glm::dvec3(glm::dvec2(CAMERA) + ahead * along + right * side, 15.0);
+        const double yaw = (i % 4 - 1.5) * 0.35,
+                     elevation = (i % 2 ? -12.0 : 15.0) * std::numbers::pi / 180.0;
+        const glm::dvec2 h = ahead * std::cos(yaw) + right * std::sin(yaw);
+        s.direction = glm::dvec3(h * std::cos(elevation), std::sin(elevation));
+        s.frustumDeg = 6.0;
+        s.range = 3000.0;
+        lamps.push_back(s);
+    }
+    auto row = [&](const std::string& name, const std::string& knob, int samples, bool withLamps) {
+        Setting st{name, knob, ocean::oceanPreset(ocean::Quality::High)};
+        st.desc.lighting.fogDensity = 1e-3f;
+        st.desc.lighting.spotScatterSamples = samples;
+        if (withLamps)
+            st.spots = lamps;
+        out.push_back(st);
+    };
+    row("high/fog-1e-3", "the high preset in a 1e-3/m fog (the spot rows' baseline)", 8, false);
+    row("high/spots-8-no-beams", "8 spot lights on the sea, no beams (LightingDesc::spotScatterSamples 0)", 0,
+        true);
+    row("high/spots-8-beams-4", "8 spot lights with their beams in the fog, 4 points per beam", 4, true);
+    row("high/spots-8", "8 spot lights with their beams in the fog, 8 points per beam (the default)", 8,
+        true);
+    row("high/spots-8-beams-16", "8 spot lights with their beams in the fog, 16 points per beam", 16, true);
+}
+
 std::vector<Setting> settings(bool quick) {
     using ocean::Quality;
     std::vector<Setting> out;
@@ -258,6 +298,7 @@ std::vector<Setting> settings(bool quick) {
     fftSettings(high);
     modelSettings(high);
     shadingSettings(out);
+    spotSettings(out);
     for (const auto& [name, model] :
          {std::pair{"high/gpu-queries-100k", ocean::SurfaceKind::Octaves},
           std::pair{"high/gerstner-gpu-queries-100k", ocean::SurfaceKind::Gerstner},
@@ -289,6 +330,8 @@ struct Scene {
     Scene(Setting s, gl::GpuTimer::Clock clock) : setting(std::move(s)), timer(clock) {
         entity = registry.create();
         registry.emplace<ocean::OceanComponent>(entity, ocean::makeOcean(setting.desc));
+        for (const ocean::SpotLight& spot : setting.spots)
+            registry.emplace<ocean::SpotLight>(registry.create(), spot);
         profiled.setPassTiming(ocean::passClock(clock));
         // A square grid over +-2 km around the camera, row by row (neighbours in the buffer are neighbours on
         // the sea, as a fleet's hull points are).
