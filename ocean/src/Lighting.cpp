@@ -350,6 +350,45 @@ void validateSpotLight(const SpotLight& s, size_t index) {
         throw std::invalid_argument(name + "range must be finite and > 0");
 }
 
+double moonIlluminanceLux(double phaseDeg) {
+    if (!(phaseDeg >= 0.0 && phaseDeg <= 180.0))
+        throw std::invalid_argument("moon phase angle must be in [0, 180] degrees, got " +
+                                    std::to_string(phaseDeg));
+    const double m = -12.73 + 0.026 * phaseDeg + 4e-9 * std::pow(phaseDeg, 4.0);
+    constexpr double LUX_PER_FOOT_CANDLE = 10.764;
+    return std::pow(10.0, -0.4 * (m + 16.57)) * LUX_PER_FOOT_CANDLE;
+}
+
+LightingDesc moonlit(LightingDesc l, const glm::dvec3& moonDirection, double phaseDeg) {
+    const double len = glm::length(moonDirection);
+    if (!(std::isfinite(len) && len > 1e-9))
+        throw std::invalid_argument("moon direction must be finite and non-zero");
+    const double scale = moonIlluminanceLux(phaseDeg) / SUN_ILLUMINANCE_LUX;
+    l.sunDirection = moonDirection / len;
+    l.sunIntensity = static_cast<float>(l.sunIntensity * scale);
+    if (l.sky == LightingDesc::Sky::Gradient) // the physical sky already follows sunIntensity
+        l.skyIntensity = static_cast<float>(l.skyIntensity * scale);
+    return l;
+}
+
+LightingDesc exposed(LightingDesc l, double ev) {
+    if (!(std::isfinite(ev) && std::abs(ev) <= 40.0))
+        throw std::invalid_argument("exposure must be finite and within +-40 stops, got " +
+                                    std::to_string(ev));
+    const float scale = static_cast<float>(std::exp2(ev));
+    l.sunIntensity *= scale;
+    if (l.sky == LightingDesc::Sky::Gradient)
+        l.skyIntensity *= scale;
+    if (l.environment) {
+        auto map = std::make_shared<EnvironmentMap>(*l.environment);
+        map->intensity *= scale;
+        l.environment = std::move(map);
+    }
+    if (l.fogColor)
+        *l.fogColor *= scale;
+    return l;
+}
+
 double spotFalloff(double theta, double frustum) {
     return std::clamp(frustum / std::max(theta, 0.5 * frustum) - 1.0, 0.0, 1.0);
 }

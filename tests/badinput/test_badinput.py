@@ -150,7 +150,15 @@ def make_cases(inputs, demo):
         ("--fft-cascades 5", [demo], QUICK + ["--model", "fft", "--fft-cascades", "5"], {}, 2,
          ["--fft-cascades must be in [1, 4], got 5"], []),
         ("--sun-elevation with --env", [demo], QUICK + ["--sun-elevation", "30", "--env", missing_map], {}, 2,
-         ["--sun-elevation/--sun-azimuth cannot be combined with --env"], []),
+         ["--sun-elevation/--sun-azimuth/--moon-elevation cannot be combined with --env"], []),
+        # A moonlit night (--moon-*) and the pre-exposure that goes with it.
+        ("--moon-phase 200", [demo], QUICK + ["--moon-elevation", "20", "--moon-phase", "200"], {}, 2,
+         ["--moon-phase must be in [0, 180] degrees, got 200"], []),
+        ("--moon-azimuth alone", [demo], QUICK + ["--moon-azimuth", "90"], {}, 2,
+         ["--moon-azimuth/--moon-phase need --moon-elevation"], []),
+        ("--moon-elevation with --sun-elevation", [demo], QUICK + ["--moon-elevation", "20", "--sun-elevation", "-10"],
+         {}, 2, ["--moon-elevation cannot be combined with --sun-elevation/--sun-azimuth"], []),
+        ("--exposure 50", [demo], QUICK + ["--exposure", "50"], {}, 2, ["--exposure", "50"], []),
         # Painted height maps: the message names the file; nothing is written.
         ("--height-map missing file", [demo], QUICK + ["--height-map", missing_map], {}, 1,
          [missing_map, "cannot open image"], []),

@@ -13,6 +13,8 @@ Cases (chosen with --case, one ctest test each):
                a low western sun), --sea-state/--beaufort (a 20 m/s sea is brighter; 0 is refused) and painted
                --height-map PNGs (a still map and a 4-frame strip): each changes the EXR pixels, and the same
                maps render the same pixels twice.
+  night        a moonlit night: the day frame x the Moon/Sun ratio, --exposure's 2^EV, the Moon's glitter path,
+               not black through both OCIO views once exposed.
   effects      the demo's 3.0 s explosion and two ships: per-frame counters in summary.json show the effect
                kinds active and drawn; with --no-events every effect counter is 0 and the frame costs exactly
                the plain ocean's passes, draws and uploads.
@@ -656,8 +658,72 @@ def case_effects(c, exe, source_dir, tmp):
             c.check(pm.get("effects", 0) > 0, f"t={fp['time_s']}: drawn effects take time", str(pm))
 
 
+
+
+
+def png_mean(directory, name):
+    """Mean of the R, G, B code values (0..255) of an 8-bit PNG, from `oiiotool --dumpdata`."""
+    proc = subprocess.run([oiio_tool("oiiotool"), "--dumpdata", name], cwd=directory, capture_output=True,
+                          text=True, timeout=RUN_TIMEOUT_S)
+    if proc.returncode != 0:
+        raise CaseAborted(f"oiiotool --dumpdata failed (exit {proc.returncode}): {proc.stderr.strip()}")
+    values = [sum(int(v) for v in line.split(":", 1)[1].split()[:3]) / 3.0
+              for line in proc.stdout.splitlines() if line.startswith("    Pixel (")]
+    return sum(values) / max(len(values), 1)
+
+
+def case_night(c, exe, source_dir, tmp):
+    """A moonlit night (--moon-*) and its pre-exposure (--exposure): one frame at t = 0 (20 m up, heading 90),
+    the full Moon 12 degrees up straight ahead. The same frame by day (the Sun where the Moon is) is the night
+    frame times the Sun/Moon illuminance ratio (Krisciunas & Schaefer: 2.34e-6 for a full Moon); --exposure 15
+    scales every pixel by 2^15; the Moon's glitter path lies in the middle column; through both OCIO views the
+    exposed night is not black, unexposed it is."""
+    flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
+    args = ["--start", "0", "--end", "0", "--size", "160x90", "--view", DEFAULT_VIEW, "--view", UNTONEMAPPED_VIEW]
+
+    def run(name, extra):
+        out = os.path.join(tmp, name)
+        proc = run_replay(exe, [flight, "--out", out, *args, *extra])
+        c.require(proc.returncode == 0, f"{name}: exits 0", proc.stderr.strip()[-2000:])
+        summary = load_summary(c, out)
+        frames = summary.get("frames", [])
+        c.require(len(frames) == 1, f"{name}: one frame", str(frames)[:300])
+        return out, summary, frames[0]
+
+    moon = ["--moon-elevation", "12", "--moon-azimuth", "90"]
+    out_day, _, f_day = run("day", ["--sun-elevation", "12", "--sun-azimuth", "90"])
+    out_n0, _, f_n0 = run("night-ev0", moon)
+    out_n, s_n, f_n = run("night-ev15", moon + ["--exposure", "15"])
+    c.check(s_n.get("exposure_ev") == 15, "summary.json records exposure_ev 15", str(s_n.get("exposure_ev")))
+    day, night0, night = (exr_pixels(o, f["exr"]) for o, f in ((out_day, f_day), (out_n0, f_n0), (out_n, f_n)))
+
+    def lum(p):
+        return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]
+
+    mean = [sum(lum(p) for p in px) / len(px) for px in (day, night0, night)]
+    print(f"    mean luminance: day {mean[0]:.4g}, night {mean[1]:.4g}, night +15 EV {mean[2]:.4g}")
+    c.check(all(math.isfinite(v) for px in (night0, night) for p in px for v in p), "night EXRs finite")
+    ratio = 0.313 / 133800.0  # the full Moon's illuminance over the Sun's (ocean/Lighting.h)
+    c.check(abs(mean[2] / mean[0] / (ratio * 32768.0) - 1.0) < 0.01,
+            "night +15 EV = day x Moon/Sun x 2^15 within 1 %", f"{mean[2] / mean[0]:.5g} vs {ratio * 32768.0:.5g}")
+    c.check(abs(mean[2] / mean[1] / 32768.0 - 1.0) < 0.03, "--exposure 15 scales the frame by 2^15 within 3 %",
+            f"{mean[2] / mean[1]:.1f}")
+    # The glitter: the brightest column of the sea (the lower half, below the level horizon) is the middle one.
+    cols = [sum(lum(night[y * 160 + x]) for y in range(50, 90)) for x in range(160)]
+    brightest = max(range(160), key=lambda x: cols[x])
+    c.check(abs(brightest - 79.5) <= 4, "the Moon's glitter path lies in the middle column", f"column {brightest}")
+    pngs = [(DEFAULT_VIEW, f_n.get("png"))] + [(e.get("view"), e.get("png")) for e in f_n.get("extra_views", [])]
+    c.check([v for v, _ in pngs] == [DEFAULT_VIEW, UNTONEMAPPED_VIEW], "a PNG per OCIO view", str(pngs))
+    for view, name in pngs:
+        exposed = png_mean(out_n, name)
+        unexposed = png_mean(out_n0, name)
+        c.check(exposed > 15.0 and unexposed < 2.0,
+                f"{view}: the exposed night is not black (mean code {exposed:.1f}), unexposed it is ({unexposed:.2f})")
+
+
 CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options": case_ocean_options,
-         "effects": case_effects}
+         "effects": case_effects,
+         "night": case_night}
 
 
 def main(cases=None, label="e2e", doc=None):

@@ -669,3 +669,33 @@ TEST(SpotLight, InScatterQuadratureConvergesToTheIntegral) {
     const glm::dvec3 v = spotInScatter(down, fog, {0.0, 0.0, 30.0}, {0.0, 0.0, -1.0}, 30.0, 8);
     EXPECT_TRUE(std::isfinite(v.x) && v.x > 0.0);
 }
+
+// Krisciunas & Schaefer's moonlight: 0.313 lx full (m = -12.73, I = 10^(-0.4 x 3.84) = 0.0291 fc), dimming
+// with the phase angle by their magnitude law, new Moon nearly dark; a moonlit LightingDesc is the Sun's
+// light in the Moon's direction scaled by their ratio, the gradient sky alike, the physical sky through the
+// Sun's.
+TEST(Moonlight, FollowsKrisciunasAndSchaefer) {
+    EXPECT_NEAR(moonIlluminanceLux(0.0), 0.3134, 5e-4);
+    EXPECT_NEAR(moonIlluminanceLux(90.0),
+                moonIlluminanceLux(0.0) * std::pow(10.0, -0.4 * (0.026 * 90.0 + 4e-9 * std::pow(90.0, 4.0))),
+                1e-9);
+    double previous = 1.0;
+    for (double a = 0.0; a <= 180.0; a += 15.0) {
+        const double lux = moonIlluminanceLux(a);
+        EXPECT_LT(lux, previous) << a;
+        previous = lux;
+    }
+    EXPECT_LT(moonIlluminanceLux(180.0), 1e-3 * moonIlluminanceLux(0.0));
+    EXPECT_THROW(moonIlluminanceLux(-1.0), std::invalid_argument);
+    EXPECT_THROW(moonIlluminanceLux(std::nan("")), std::invalid_argument);
+
+    LightingDesc day;
+    const LightingDesc night = moonlit(day, {0.0, 2.0, 1.0}, 0.0);
+    EXPECT_NEAR(night.sunIntensity / day.sunIntensity, moonIlluminanceLux(0.0) / SUN_ILLUMINANCE_LUX, 1e-9);
+    EXPECT_NEAR(glm::length(night.sunDirection - glm::normalize(glm::dvec3(0.0, 2.0, 1.0))), 0.0, 1e-12);
+    EXPECT_EQ(night.skyIntensity, day.skyIntensity) << "the physical sky follows sunIntensity already";
+    day.sky = LightingDesc::Sky::Gradient;
+    EXPECT_NEAR(moonlit(day, {0.0, 2.0, 1.0}, 0.0).skyIntensity, 0.3134 / SUN_ILLUMINANCE_LUX, 1e-8);
+    EXPECT_THROW(moonlit(day, glm::dvec3(0.0), 0.0), std::invalid_argument);
+    EXPECT_NO_THROW(validateLighting(night));
+}

@@ -117,6 +117,10 @@ void ReplayCommand::add(CLI::App& parent) {
         ->expected(1)
         ->take_all();
     ocioOpt = app->add_option("--ocio-config", ocioConfig, "OCIO config file (overrides $OCIO)");
+    app->add_option("--exposure", replay.exposureEv,
+                    "exposure, stops: every light x 2^EV, so the frame and the EXR hold radiance x 2^EV "
+                    "(default 0; a moonlit night wants ~17)")
+        ->check(CLI::Range(-40.0, 40.0));
     addOutputOptions();
     addOceanOptions(*app, ocean);
 }
@@ -167,9 +171,10 @@ ReplayOptions ReplayCommand::options() const {
         r.ocioConfig = ocioConfig;
     if (envOpt->count()) {
         // Replay points the sun at the map's brightest direction (docs/ARCHITECTURE.md, Shading).
-        if (ocean.sunElevationDeg || ocean.sunAzimuthDeg)
-            throw UsageError("--sun-elevation/--sun-azimuth cannot be combined with --env: the sun is the "
-                             "environment map's brightest direction");
+        if (ocean.sunElevationDeg || ocean.sunAzimuthDeg || ocean.moonElevationDeg)
+            throw UsageError(
+                "--sun-elevation/--sun-azimuth/--moon-elevation cannot be combined with --env: the "
+                "sun is the environment map's brightest direction");
         r.environment = environment;
     }
     r.writeImages = !noImages;

@@ -64,7 +64,30 @@ glm::vec3 parseColor(const std::string& value, const char* option = "--fog-color
     return c;
 }
 
-/// --sky, --sun-*, --sky-intensity, --fog-*, --foam-*, --normal-tilt onto LightingDesc.
+/// --moon-*: a moonlit night (ocean::moonlit) from the daylight the other options describe.
+void applyMoon(const OceanOptions& o, ocean::LightingDesc& l) {
+    if (!o.moonElevationDeg && !o.moonAzimuthDeg && !o.moonPhaseDeg)
+        return;
+    if (!o.moonElevationDeg)
+        throw UsageError("--moon-azimuth/--moon-phase need --moon-elevation");
+    if (o.sunElevationDeg || o.sunAzimuthDeg)
+        throw UsageError(
+            "--moon-elevation cannot be combined with --sun-elevation/--sun-azimuth: on a moonlit "
+            "night the moon is the light");
+    const double el = checked(o.moonElevationDeg, "--moon-elevation", -90.0, 90.0, " degrees");
+    double az = 180.0;
+    if (o.moonAzimuthDeg) {
+        az = *o.moonAzimuthDeg;
+        if (!std::isfinite(az) || az < 0.0 || az >= 360.0)
+            throw UsageError("--moon-azimuth must be in [0, 360) degrees clockwise from north, got " +
+                             text(az));
+    }
+    const double phase =
+        o.moonPhaseDeg ? checked(o.moonPhaseDeg, "--moon-phase", 0.0, 180.0, " degrees") : 0.0;
+    l = ocean::moonlit(l, sunDirectionFromAngles(el, az), phase);
+}
+
+/// --sky, --sun-*, --sky-intensity, --fog-*, --foam-*, --normal-tilt onto LightingDesc; then --moon-*.
 void applyLighting(const OceanOptions& o, ocean::LightingDesc& l) {
     constexpr double INF = std::numeric_limits<double>::infinity();
     if (o.sunElevationDeg || o.sunAzimuthDeg) {
@@ -119,6 +142,7 @@ void applyLighting(const OceanOptions& o, ocean::LightingDesc& l) {
         l.normalTilt = checked(o.normalTilt, "--normal-tilt", 0.0, 1.0);
     if (o.subsurface)
         l.subsurface = checked(o.subsurface, "--subsurface", 0.0, 10.0);
+    applyMoon(o, l);
     try {
         ocean::validateLighting(l); // the checks above name the options; this is the library's own
     } catch (const std::invalid_argument& e) {
@@ -170,6 +194,10 @@ glm::dvec3 sunDirectionFromAngles(double elevationDeg, double azimuthDeg) {
     const double el = elevationDeg * std::numbers::pi / 180.0, az = azimuthDeg * std::numbers::pi / 180.0;
     return {std::sin(az) * std::cos(el), std::cos(az) * std::cos(el), std::sin(el)};
 }
+
+namespace {
+void addLightingOptions(CLI::App& app, OceanOptions& o);
+} // namespace
 
 void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--quality", o.quality, "quality preset: low, medium, high, reference (docs/ACCURACY.md)")
@@ -226,6 +254,13 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
                    "octaves: painted height map image for the next octave (repeat: octave 0, 1, ...); W x W, "
                    "or W x (W * frames) for an animated map")
         ->allow_extra_args(false);
+    addLightingOptions(app, o);
+}
+
+namespace {
+
+/// The lighting options of addOceanOptions (in --help after the surface's).
+void addLightingOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--sun-elevation", o.sunElevationDeg, "sun elevation above the horizon, degrees");
     app.add_option("--sun-azimuth", o.sunAzimuthDeg, "sun azimuth, degrees clockwise from north");
     app.add_option("--sky", o.sky,
@@ -248,7 +283,17 @@ void addOceanOptions(CLI::App& app, OceanOptions& o) {
     app.add_option("--normal-tilt", o.normalTilt, "tilt of the lighting normal toward the viewer, 0..1");
     app.add_option("--subsurface", o.subsurface,
                    "scale of the sunlight scattered out of thin lit crests, 0..10; 0 = off (default 1)");
+    app.add_option(
+        "--moon-elevation", o.moonElevationDeg,
+        "a moonlit night: the moon, at this elevation in degrees, lights the sea instead of the sun "
+        "(Krisciunas & Schaefer's brightness; pair with --exposure)");
+    app.add_option("--moon-azimuth", o.moonAzimuthDeg,
+                   "moon azimuth, degrees clockwise from north (default 180)");
+    app.add_option("--moon-phase", o.moonPhaseDeg,
+                   "moon phase angle, degrees: 0 full .. 180 new (default 0)");
 }
+
+} // namespace
 
 namespace {
 

@@ -59,6 +59,9 @@ struct OceanOptions {
     std::optional<double> foamHeightStart, foamHeightFull, foamJacobian, foamIntensity;
     std::optional<double> normalTilt; ///< [0, 1]
     std::optional<double> subsurface; ///< [0, 10]
+    /// A moonlit night (ocean::moonlit): the moon's elevation [-90, 90] and azimuth [0, 360) in degrees and
+    /// its phase angle [0, 180] (0 full); applied after the other lighting options (they scale daylight).
+    std::optional<double> moonElevationDeg, moonAzimuthDeg, moonPhaseDeg;
 };
 
 /// Adds --model, --grid, --grid-rings, --grid-segments, --vertex-filter, --combined, --no-cull,
@@ -70,7 +73,7 @@ struct OceanOptions {
 /// --choppiness, --fft-tile, --height-map and the lighting options --sun-elevation,
 /// --sun-azimuth, --sun-intensity, --sky-intensity, --fog-density, --fog-height-falloff, --fog-noise,
 /// --fog-color, --foam-height-start, --foam-height-full, --foam-jacobian, --foam-intensity, --normal-tilt,
-/// --subsurface to a (sub)command.
+/// --subsurface, --moon-elevation, --moon-azimuth, --moon-phase to a (sub)command.
 void addOceanOptions(CLI::App& app, OceanOptions& options);
 
 /// The OceanDesc the options describe; reads the --height-map files. Throws UsageError (Replay.h) naming

@@ -114,17 +114,20 @@ FramePlan planFrames(const ReplayOptions& o, const ReplayInput& input) {
 ocean::OceanDesc oceanWithEnvironment(const ReplayOptions& o, nlohmann::json& environmentJson) {
     ocean::OceanDesc d = o.ocean;
     environmentJson = nullptr;
-    if (!o.environment)
-        return d;
-    d.lighting.environment = loadEnvironment(*o.environment);
-    const glm::dvec3 sun = ocean::environmentBrightestDirection(*d.lighting.environment);
-    if (sun.z > 0.0) // a sun below the horizon would leave the sea unlit: keep the default then
-        d.lighting.sunDirection = sun;
-    environmentJson = {
-        {"file", o.environment->string()},
-        {"width", d.lighting.environment->width},
-        {"height", d.lighting.environment->height},
-        {"sun_direction", {d.lighting.sunDirection.x, d.lighting.sunDirection.y, d.lighting.sunDirection.z}}};
+    if (o.environment) {
+        d.lighting.environment = loadEnvironment(*o.environment);
+        const glm::dvec3 sun = ocean::environmentBrightestDirection(*d.lighting.environment);
+        if (sun.z > 0.0) // a sun below the horizon would leave the sea unlit: keep the default then
+            d.lighting.sunDirection = sun;
+        environmentJson = {
+            {"file", o.environment->string()},
+            {"width", d.lighting.environment->width},
+            {"height", d.lighting.environment->height},
+            {"sun_direction",
+             {d.lighting.sunDirection.x, d.lighting.sunDirection.y, d.lighting.sunDirection.z}}};
+    }
+    if (o.exposureEv != 0.0) // pre-exposure: the frame (and the EXR) holds radiance x 2^EV
+        d.lighting = ocean::exposed(d.lighting, o.exposureEv);
     return d;
 }
 
@@ -741,6 +744,7 @@ nlohmann::json ReplayRun::summary(double totalSeconds) const {
                  {"view", colour.selectedView()},
                  {"extra_views", o.extraViews}};
     s["environment"] = environmentJson;
+    s["exposure_ev"] = o.exposureEv; // the EXR holds radiance x 2^exposure_ev
     s["size"] = {input.views.front().width, input.views.front().height};
     s["fps"] = o.fps;
     s["speed"] = o.speed;

@@ -163,6 +163,32 @@ struct LightingDesc {
 /// Throws std::invalid_argument naming the first bad field ("OceanDesc.lighting.fogDensity must be ...").
 void validateLighting(const LightingDesc& lighting);
 
+/// The Sun's illuminance outside the atmosphere, lux: the luminous solar constant (Darula, Kittler & Gueymard
+/// 2005, "Reference luminous solar constant and solar luminance for illuminance calculations", Solar Energy
+/// 79: 133.8 klx). LightingDesc::sunIntensity is this light's scale; the Moon's is a fraction of it.
+inline constexpr double SUN_ILLUMINANCE_LUX = 133800.0;
+/// The Moon's illuminance outside the atmosphere at phase angle `phaseDeg` (0 = full, 180 = new), lux:
+/// Krisciunas & Schaefer 1991, "A model of the brightness of moonlight" (PASP 103): the Moon's apparent
+/// magnitude m = -12.73 + 0.026 |a| + 4e-9 a^4 (a in degrees; Allen's law, the opposition surge included) and
+/// I = 10^(-0.4 (m + 16.57)) foot-candles (10.764 lx each). Full: 0.313 lx, 2.3e-6 of the Sun's.
+/// Throws std::invalid_argument outside [0, 180].
+double moonIlluminanceLux(double phaseDeg);
+/// A moonlit night: the Moon, not the Sun (below the horizon), is the light. The Moon is a sunlit grey disc
+/// of nearly the Sun's apparent size (0.52 degrees against 0.53), so it is the Sun's light in its direction
+/// scaled by moonIlluminanceLux(phaseDeg) / SUN_ILLUMINANCE_LUX: its glitter (the same Cox & Munk lobe), its
+/// disc, its reddening through the air and the physical sky it lights (the same scattering, as dim), the
+/// gradient sky scaled alike. Starlight and airglow (~1/10 of a full Moon's sky) are not modelled.
+/// `moonDirection` toward the Moon, world ENU. Throws std::invalid_argument for a zero or non-finite
+/// direction or a phase outside [0, 180].
+LightingDesc moonlit(LightingDesc lighting, const glm::dvec3& moonDirection, double phaseDeg);
+/// Pre-exposure (Lagarde & de Rousiers 2014, "Moving Frostbite to Physically Based Rendering", sec. 5.1):
+/// every light scaled by 2^ev -- the sun (and the physical sky, which follows it), the gradient sky, an
+/// environment map (copied with its intensity scaled), a fixed fog colour -- so the frame holds radiance x
+/// 2^ev. A moonlit sea (~2e-6 of daylight) would otherwise lie in half float's subnormals (below 6.1e-5),
+/// whose coarse steps band the sky once a view transform brightens it. The host scales its own lights
+/// (spots, objects) alike. Throws std::invalid_argument for a non-finite ev or |ev| > 40.
+LightingDesc exposed(LightingDesc lighting, double ev);
+
 /// A spot light over the sea (a lighthouse, a ship's searchlight, a deck light), supplied by the host per
 /// frame (OceanScene::spots). It lights the sea's glitter (the sun's Cox & Munk lobe with the spot as its
 /// source), the water body and the foam. As in the Intel projected-grid ocean's lighthouse ("Light
