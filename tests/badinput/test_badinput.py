@@ -159,6 +159,15 @@ def make_cases(inputs, demo):
         ("--moon-elevation with --sun-elevation", [demo], QUICK + ["--moon-elevation", "20", "--sun-elevation", "-10"],
          {}, 2, ["--moon-elevation cannot be combined with --sun-elevation/--sun-azimuth"], []),
         ("--exposure 50", [demo], QUICK + ["--exposure", "50"], {}, 2, ["--exposure", "50"], []),
+        # --light: the spec and the key named.
+        ("--light on no ship", [demo], QUICK + ["--light", "spot:tanker"], {}, 2,
+         ["--light 'spot:tanker': no ship 'tanker' in the flight (ships: coaster, frigate)"], []),
+        ("--light bad key", [demo], QUICK + ["--light", "spot:coaster,beam=3"], {}, 2,
+         ["--light 'spot:coaster,beam=3': unknown key 'beam'"], []),
+        ("--light bad angle", [demo], QUICK + ["--light", "spot:coaster,angle=120"], {}, 2,
+         ["--light 'spot:coaster,angle=120': angle must be a number in [0.1, 90], got '120'"], []),
+        ("--light fixed without y", [demo], QUICK + ["--light", "spot:fixed,x=3"], {}, 2,
+         ["a fixed light needs x= and y="], []),
         # Painted height maps: the message names the file; nothing is written.
         ("--height-map missing file", [demo], QUICK + ["--height-map", missing_map], {}, 1,
          [missing_map, "cannot open image"], []),

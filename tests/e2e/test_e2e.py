@@ -14,7 +14,8 @@ Cases (chosen with --case, one ctest test each):
                --height-map PNGs (a still map and a 4-frame strip): each changes the EXR pixels, and the same
                maps render the same pixels twice.
   night        a moonlit night: the day frame x the Moon/Sun ratio, --exposure's 2^EV, the Moon's glitter path,
-               not black through both OCIO views once exposed.
+               not black through both OCIO views once exposed; a ship's searchlight and a fixed one in fog
+               (--light): counted, no pass added, only light added, their beams seen.
   effects      the demo's 3.0 s explosion and two ships: per-frame counters in summary.json show the effect
                kinds active and drawn; with --no-events every effect counter is 0 and the frame costs exactly
                the plain ocean's passes, draws and uploads.
@@ -681,9 +682,9 @@ def case_night(c, exe, source_dir, tmp):
     flight = os.path.join(source_dir, "tools", "data", "demo_flight.csv")
     args = ["--start", "0", "--end", "0", "--size", "160x90", "--view", DEFAULT_VIEW, "--view", UNTONEMAPPED_VIEW]
 
-    def run(name, extra):
+    def run(name, extra, base=args):
         out = os.path.join(tmp, name)
-        proc = run_replay(exe, [flight, "--out", out, *args, *extra])
+        proc = run_replay(exe, [flight, "--out", out, *base, *extra])
         c.require(proc.returncode == 0, f"{name}: exits 0", proc.stderr.strip()[-2000:])
         summary = load_summary(c, out)
         frames = summary.get("frames", [])
@@ -719,6 +720,22 @@ def case_night(c, exe, source_dir, tmp):
         unexposed = png_mean(out_n0, name)
         c.check(exposed > 15.0 and unexposed < 2.0,
                 f"{view}: the exposed night is not black (mean code {exposed:.1f}), unexposed it is ({unexposed:.2f})")
+    # Searchlights in fog (--light): one on the demo's coaster (ahead, 1.2 km), one fixed; at t = 10 s.
+    fog = ["--fog-density", "6e-4", "--exposure", "17"]
+    at10 = ["--start", "10", "--end", "10", "--size", "160x90"]
+    lamps = ["--light", "spot:coaster,height=15,azimuth=-60,elevation=-6,angle=5,intensity=2000",
+             "--light", "spot:fixed,x=2000,y=-400,height=30,azimuth=20,elevation=4,angle=4,intensity=5000"]
+    out_dark, _, f_dark = run("fog", moon + fog, at10)
+    out_lit, _, f_lit = run("searchlights", moon + fog + lamps, at10)
+    c.check(f_lit["counters"].get("spots") == 2 and f_dark["counters"].get("spots") == 0,
+            "summary.json counts the two lights (none without --light)", str(f_lit["counters"].get("spots")))
+    c.check(f_lit["counters"]["passes"] == f_dark["counters"]["passes"], "the lights add no pass")
+    dark_px, lit_px = exr_pixels(out_dark, f_dark["exr"]), exr_pixels(out_lit, f_lit["exr"])
+    gained = [lum(b) - lum(a) for a, b in zip(dark_px, lit_px)]
+    c.check(all(math.isfinite(v) for p in lit_px for v in p), "the lit frame is finite")
+    c.check(min(gained) > -1e-3 * max(gained) and sum(1 for g in gained if g > 0.05) > 200,
+            "the lights only add light, and their beams show (> 200 pixels gain 0.05)",
+            f"min {min(gained):.3g}, max {max(gained):.3g}, {sum(1 for g in gained if g > 0.05)} pixels")
 
 
 CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options": case_ocean_options,

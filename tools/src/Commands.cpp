@@ -121,6 +121,12 @@ void ReplayCommand::add(CLI::App& parent) {
                     "exposure, stops: every light x 2^EV, so the frame and the EXR hold radiance x 2^EV "
                     "(default 0; a moonlit night wants ~17)")
         ->check(CLI::Range(-40.0, 40.0));
+    app->add_option("--light", replay.lights,
+                    "spot light spot:SHIP[,key=value...] on a recorded ship (its id in --list-objects) or "
+                    "spot:fixed,x=M,y=M[,...]; keys height, azimuth (from the heading), elevation, angle, "
+                    "intensity, range, color=R:G:B (docs/ARCHITECTURE.md, Spot lights); repeat for several")
+        ->expected(1)
+        ->take_all();
     addOutputOptions();
     addOceanOptions(*app, ocean);
 }

@@ -7,6 +7,7 @@
 #include "ImageInputs.h"
 #include "OutputTransaction.h"
 #include "ReplayInput.h"
+#include "ReplayLights.h"
 #include "VideoWriter.h"
 #include "WorkerQueue.h"
 #include "engine/AtomicFile.h"
@@ -269,6 +270,8 @@ nlohmann::json countersJson(const ocean::OceanStats& st, const ocean::EffectCoun
             {"explosions_dropped", fx.droppedExplosions},
             {"wakes_dropped", fx.droppedWakes},
             {"events_rejected", fx.rejected},
+            {"spots", st.spots},
+            {"spots_dropped", st.spotsDropped},
             {"objects_drawn", objectsDrawn},
             {"tonemap_passes", tonemapPasses}};
 }
@@ -308,6 +311,7 @@ private:
     nlohmann::json passJson(const ViewTimes& times);
     void progress(long long k, double t, Clock::time_point now) const;
     void floatShips(double t, AliveObjects& alive);
+    void placeLights(double t);
     AliveObjects advance(double t);
     std::string frameBase(size_t vi, long long k) const;
     bool keepFrame(long long k);
@@ -345,7 +349,9 @@ private:
     std::vector<nlohmann::json> viewFrames;
     std::vector<float> scene, display;
     std::vector<double> frameWallMs;
-    ocean::SeaQuery sea; // the recorded ships' hull points (floatShips)
+    const std::vector<ReplayLight> lights;  // --light
+    std::vector<ecs::Entity> lightEntities; // their SpotLight components at the frame's time (placeLights)
+    ocean::SeaQuery sea;                    // the recorded ships' hull points (floatShips)
     std::vector<glm::dvec2> hullPoints;
     std::vector<double> hullHeights;
     double firstFrameSeconds = 0.0;
@@ -386,7 +392,8 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
       oceanEntity(addOcean(registry, oceanDesc)), targets(makeTargets(input.views)), tonemapper(colour),
       extraViews(makeExtraViews(o, colour)), gpuTimer(context->info()), effects(registry, events),
       timeline(registry, events, effects), images(writeImages),
-      viewFrames(input.views.size(), nlohmann::json::array()), tty(o.progress && isatty(STDERR_FILENO)) {
+      viewFrames(input.views.size(), nlohmann::json::array()), lights(parseReplayLights(o.lights, input)),
+      tty(o.progress && isatty(STDERR_FILENO)) {
     if (const ocean::Status s = sea.init(registry.get<ocean::OceanComponent>(oceanEntity)); !s)
         throw std::runtime_error("replay: " + s.message);
     if (o.profile) { // the ocean's passes (OceanRenderer::setPassTiming) and the replay's, one clock
@@ -453,7 +460,19 @@ AliveObjects ReplayRun::advance(double t) {
         if (t >= obj.start && t <= obj.end)
             alive.push_back({obj.id, {obj.shape, obj.length, obj.track->poseAt(t)}});
     floatShips(t, alive);
+    placeLights(t);
     return alive;
+}
+
+/// --light: the spot lights at time t, as SpotLight components the registry's adapter hands the renderer.
+void ReplayRun::placeLights(double t) {
+    for (const ecs::Entity e : lightEntities)
+        registry.destroy(e);
+    lightEntities.clear();
+    for (const ocean::SpotLight& s : replayLightsAt(lights, input, t, std::exp2(o.exposureEv))) {
+        lightEntities.push_back(registry.create());
+        registry.emplace<ocean::SpotLight>(lightEntities.back(), s);
+    }
 }
 
 /// "frame_00012", or "<view>_frame_00012" for a named view.
@@ -551,9 +570,11 @@ int ReplayRun::drawView(size_t vi, const ocean::OceanFrame& frame, const AliveOb
     if (passTimer)
         passTimer->beginFrame();
     const int objectsDrawn =
-        objectRenderer ? objectRenderer->draw(drawn, frame.camera, target.sceneFramebuffer().id(), view.width,
-                                              view.height, oceanDesc.lighting.sunDirection, drawEarthRadius)
-                       : 0;
+        objectRenderer
+            ? objectRenderer->draw(drawn, frame.camera, target.sceneFramebuffer().id(), view.width,
+                                   view.height, oceanDesc.lighting.sunDirection, drawEarthRadius,
+                                   oceanDesc.lighting.sunIntensity / ocean::LightingDesc{}.sunIntensity)
+            : 0;
     if (passTimer)
         passTimer->mark(PassObjects);
     tonemapper.run(target.sceneColor(), target.displayFramebuffer(), view.width, view.height);

@@ -53,6 +53,8 @@ struct ReplayOptions {
     /// --exposure EV: pre-exposure (ocean::exposed): every light scaled by 2^EV, so the frame, the EXR and
     /// the OCIO view's input hold radiance x 2^EV (summary.json exposure_ev). A moonlit night wants ~+17.
     double exposureEv = 0.0;
+    /// --light spot:SHIP|fixed,key=value...: spot lights on recorded ships or fixed (ReplayLights.h).
+    std::vector<std::string> lights;
     bool writeImages = true; ///< false: render, tonemap and read back, but write no images (benchmarks)
     /// --image-compression: zlib level of the EXR (ZIP) and PNG files, both lossless. Fast (level 1, the
     /// default) encodes a 640x360 frame in 35 instead of 80 ms for 1.11x / 1.26x the bytes: on a 2-core

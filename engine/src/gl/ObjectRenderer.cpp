@@ -133,6 +133,7 @@ void main() {
 constexpr const char* FRAG = R"(in vec3 vRel;
 uniform vec3 uSun;
 uniform vec3 uAlbedo;
+uniform float uLight; // ObjectRenderer::draw's lightScale
 layout(location = 0) out vec4 oColor;
 void main() {
     vec3 n = normalize(cross(dFdx(vRel), dFdy(vRel)));
@@ -140,7 +141,7 @@ void main() {
     // Sun (Lambert) plus a sky ambient that is brighter from above; scene-linear, same scale as the sea's sky.
     float sun = max(dot(n, uSun), 0.0) * (uSun.z > 0.0 ? 1.0 : 0.0);
     float sky = 0.35 + 0.25 * n.z;
-    oColor = vec4(uAlbedo * (2.2 * sun + sky), 1.0);
+    oColor = vec4(uAlbedo * (uLight * (2.2 * sun + sky)), 1.0);
 }
 )";
 
@@ -165,7 +166,8 @@ ObjectRenderer::ObjectRenderer() {
 }
 
 int ObjectRenderer::draw(const std::vector<DrawnObject>& objects, const CameraFrame& camera, unsigned fbo,
-                         int w, int h, const glm::dvec3& sunDirection, double earthRadius) {
+                         int w, int h, const glm::dvec3& sunDirection, double earthRadius,
+                         double lightScale) {
     if (objects.empty())
         return 0;
     StateGuard guard;
@@ -183,6 +185,7 @@ int ObjectRenderer::draw(const std::vector<DrawnObject>& objects, const CameraFr
     glUniformMatrix4fv(glGetUniformLocation(p, "uViewProj"), 1, GL_FALSE, &camera.viewProj[0][0]);
     const glm::vec3 sun = glm::normalize(glm::vec3(sunDirection));
     glUniform3f(glGetUniformLocation(p, "uSun"), sun.x, sun.y, sun.z);
+    glUniform1f(glGetUniformLocation(p, "uLight"), static_cast<float>(lightScale));
     const GLint axesLoc = glGetUniformLocation(p, "uAxes"), offLoc = glGetUniformLocation(p, "uOffset"),
                 albedoLoc = glGetUniformLocation(p, "uAlbedo");
     int drawn = 0;

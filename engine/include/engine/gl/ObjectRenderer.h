@@ -31,9 +31,11 @@ public:
     ObjectRenderer();
     /// Draws into framebuffer fbo (colour + the ocean's depth, reverse-Z) of size w x h. Positions are made
     /// camera-relative in double and dropped by the ocean's Earth-curvature term (earthRadius; 0 = flat), as
-    /// the sea is. Returns the number of objects drawn (in front of the camera).
+    /// the sea is. `lightScale` scales the light (sun and sky ambient): the scene's sun intensity over the
+    /// default one, so objects follow a dimmer sun, a moonlit night and a pre-exposure as the sea does.
+    /// Returns the number of objects drawn (in front of the camera).
     int draw(const std::vector<DrawnObject>& objects, const CameraFrame& camera, unsigned fbo, int w, int h,
-             const glm::dvec3& sunDirection, double earthRadius);
+             const glm::dvec3& sunDirection, double earthRadius, double lightScale = 1.0);
 
 private:
     struct Range {
