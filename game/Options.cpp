@@ -102,6 +102,8 @@ Options parseOptions(int argc, char** argv) {
     app.add_option("--quality", o.sea.quality, "low | medium | high | reference (default medium)");
     app.add_option("--model", o.sea.model, "octaves | gerstner | fft");
     app.add_option("--wind", o.sea.windSpeed, "sea state: wind speed U10 in m/s, 2..25 (default 12)");
+    app.add_flag("--night", o.sea.night,
+                 "a night sortie: a moonlit, hazy sea and the carrier's floodlights and searchlight");
     app.add_option("--view", o.view, "OCIO view (default: the config's)");
     app.add_option("--wipe", o.wipeView, "split screen: this second OCIO view right of the wipe line");
     app.add_option("--wipe-position", o.wipePosition, "the wipe line, fraction of the width (0..1)");

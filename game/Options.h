@@ -26,6 +26,7 @@ struct SeaSettings {
     std::string quality = "medium"; ///< low | medium | high | reference (ocean/Presets.h)
     std::string model = "octaves";  ///< octaves | gerstner | fft
     double windSpeed = 12.0;        ///< U10, m/s, [2, 25]
+    bool night = false;             ///< --night: moonlit, hazy, the carrier's lamps (game/Night.h); not live
 };
 /// ocean::SurfaceKind of a model name; UsageError listing the names.
 int parseSurfaceModelIndex(const std::string& name);

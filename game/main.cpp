@@ -28,6 +28,7 @@
 #include <engine/gl/GpuTimer.h>
 #include <engine/gl/ObjectRenderer.h>
 #include <game/Autopilot.h>
+#include <game/Night.h>
 #include <game/SessionRecorder.h>
 #include <game/World.h>
 #include <ocean/Effects.h>
@@ -69,7 +70,8 @@ constexpr double SCRIPTED_RECORD_HZ = 10.0; ///< recording rate of positions (ev
 ocean::OceanComponent buildOcean(const game::SeaSettings& s) {
     ocean::OceanDesc d = ocean::oceanPreset(ocean::parseQuality(s.quality));
     d.model = static_cast<ocean::SurfaceKind>(game::parseSurfaceModelIndex(s.model));
-    return ocean::makeOcean(ocean::applySeaState(d, {s.windSpeed, d.octaves.windDirectionDeg}));
+    d = ocean::applySeaState(d, {s.windSpeed, d.octaves.windDirectionDeg});
+    return ocean::makeOcean(s.night ? game::nightSea(d) : d);
 }
 
 /// Everything a sortie owns; rebuilt for a new sortie.
@@ -87,6 +89,7 @@ struct Sortie {
     std::optional<game::GameEvent> lastImpact;
     std::vector<game::GameEvent> splashes; ///< impacts and ditchings still drawn as a plume
     glm::dvec2 impactFrom{0.0, 1.0};       ///< horizontal direction the weapon came from (unit)
+    std::vector<ecs::Entity> lamps;        ///< --night: the carrier's SpotLight entities (placeLamps)
 
     /// `sea` is shared, not rebuilt: a new sortie on the same sea costs no surface build and no upload.
     explicit Sortie(const ocean::OceanComponent& sea) {
@@ -105,6 +108,17 @@ struct Sortie {
         });
         world->placeShips(0.0);
         history.emplace_back(0.0, world->player().pose);
+    }
+    /// --night: the carrier's lamps at the world's time, as SpotLight components the renderer's adapter
+    /// reads.
+    void placeLamps() {
+        for (const ecs::Entity e : lamps)
+            registry.destroy(e);
+        lamps.clear();
+        for (const ocean::SpotLight& s : game::carrierLights(*world, std::exp2(game::NIGHT_EXPOSURE_EV))) {
+            lamps.push_back(registry.create());
+            registry.emplace<ocean::SpotLight>(lamps.back(), s);
+        }
     }
     Pose playerAt(double t) const {
         if (t >= history.back().first)
@@ -434,6 +448,8 @@ bool Session::frame() {
     orbitAzimuth += 12.0 * realDt * scale;
     const Pose camPose = cameraPose(*sortie, gs.camera, world.time(), orbitAzimuth);
     sortie->timeline->step(world.time(), camPose.position);
+    if (gs.sea.night)
+        sortie->placeLamps();
 
     const glm::ivec2 size = opt.headless ? glm::ivec2(opt.width, opt.height) : ctx->framebufferSize();
     if (size.x <= 0 || size.y <= 0)
@@ -533,7 +549,8 @@ void Session::draw(const Pose& camPose, const glm::ivec2& size) {
     render(*renderer, sortie->registry, f);
     const ocean::OceanComponent& oc = sortie->registry.get<ocean::OceanComponent>(sortie->ocean);
     gs.objectsDrawn = objects.draw(sceneObjects(*sortie, gs.camera), f.camera, f.targetFramebuffer, size.x,
-                                   size.y, oc.desc.lighting.sunDirection, ocean::EARTH_RADIUS);
+                                   size.y, oc.desc.lighting.sunDirection, ocean::EARTH_RADIUS,
+                                   oc.desc.lighting.sunIntensity / ocean::LightingDesc{}.sunIntensity);
     // The display: the host's default framebuffer (window) or its own display target (headless).
     const gl::Framebuffer display =
         opt.headless ? gl::Framebuffer::wrap(targets->displayFramebuffer().id()) : gl::Framebuffer::wrap(0);
@@ -634,7 +651,8 @@ nlohmann::json Session::summary() const {
     j["counters"] = {{"passes", gs.stats.passes},
                      {"draws", gs.stats.draws},
                      {"explosions", gs.stats.explosions.active},
-                     {"wakes", gs.stats.wakes.active}};
+                     {"wakes", gs.stats.wakes.active},
+                     {"spots", gs.stats.spots}};
     const glm::dvec3 p = world.player().pose.position;
     j["player"] = {{"x", p.x}, {"y", p.y}, {"z", p.z}, {"on_deck", world.player().onDeck}};
     j["events"] = eventsJson(world, recorder.get());

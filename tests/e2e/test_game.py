@@ -8,6 +8,8 @@
              starts a new sortie (the recording of the first is saved), then throttle up
              on the deck (the jet rolls ahead of the carrier), C cycles the camera, T slow motion, P pause,
              Escape quits cleanly and the summary says so.
+  night      --night (headless): a moonlit, hazy sea and the carrier's four lamps: counted, dark but not black
+             against the same moment by day, the lamps' beams and lit water bright.
   bad-input  bad command-line values exit 2 naming the option; no display exits 1 with a clear message.
 Usage: test_game.py --case CASE XVFB_RUN GAME_EXE PACIFICA_EXE     (python3 standard library only)"""
 import argparse
@@ -23,7 +25,7 @@ from checks import Checks  # noqa: E402
 from pngread import luminance, read_png  # noqa: E402
 
 ap = argparse.ArgumentParser()
-ap.add_argument("--case", required=True, choices=["sortie", "keys", "bad-input"])
+ap.add_argument("--case", required=True, choices=["sortie", "keys", "night", "bad-input"])
 ap.add_argument("xvfb")
 ap.add_argument("game")
 ap.add_argument("pacifica")
@@ -219,6 +221,34 @@ exit $status
                 "Backspace started a new sortie and saved the recording of the first", str(s["messages"]))
         c.check(s["speed_over_deck_mps"] > 0.5, "the jet rolled forward over the deck (> 0.5 m/s; idle: < 0.1)",
                 str(s["speed_over_deck_mps"]))
+
+elif args.case == "night":
+    # --night: the same scripted start by day and by night, seen from the orbit camera over the carrier at 2 s.
+    shots = {}
+    for name, extra in (("day", []), ("night", ["--night"])):
+        g = game("--headless", "--autopilot", "--frames", "12", "--fps", "4", "--quality", "low", "--size",
+                 f"{W}x{H}", "--camera", "orbit", "--no-hud", "--screenshot", f"2:{name}.png", "--summary",
+                 f"{name}.json", *extra, xvfb=False)
+        c.check(g.returncode == 0, f"{name}: the scripted start runs (exit 0)", g.stderr[-800:])
+        path = os.path.join(tmp, f"{name}.json")
+        s = json.load(open(path)) if os.path.exists(path) else {}
+        c.check(s.get("gl_errors") == 0, f"{name}: no GL errors", str(s.get("gl_errors")))
+        lamps = 4 if extra else 0
+        c.check(s.get("counters", {}).get("spots") == lamps,
+                f"{name}: {lamps} of the carrier's lamps light the sea", str(s.get("counters")))
+        if os.path.exists(os.path.join(tmp, f"{name}.png")):
+            png = read_png(os.path.join(tmp, f"{name}.png"))
+            w, h, ch, rows = png
+            lum = [luminance(rows, ch, x, y) for y in range(h) for x in range(w)]
+            shots[name] = (sum(lum) / len(lum), sum(v > 0.85 for v in lum) / len(lum))
+    print(f"  mean luminance, share brighter than 0.85: {shots}")
+    if len(shots) == 2:
+        day, night = shots["day"], shots["night"]
+        c.check(0.005 < night[0] < day[0] / 3.0, "the night is dark but not black (a third of the day's mean at most)",
+                str(shots))
+        # Measured 0.14 % of the night's pixels above 0.85, none by day.
+        c.check(night[1] > 0.0007 and day[1] < night[1] / 10.0,
+                "the lamps' beams and lit water show (> 0.07 % of the pixels above 0.85, 10x the day's)", str(shots))
 
 elif args.case == "bad-input":
     for bad, needle in [(["--frames", "-3"], "--frames"), (["--quality", "ultra"], "--quality"),

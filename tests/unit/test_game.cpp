@@ -2,6 +2,7 @@
 // flying a whole sortie, determinism, and the ACMI session read back by the replay's own readers.
 #include <game/Autopilot.h>
 #include <game/FlightModel.h>
+#include <game/Night.h>
 #include <game/SessionRecorder.h>
 #include <game/World.h>
 
@@ -436,4 +437,42 @@ TEST(World, ShipsFloatOnTheSeaTheySail) {
     EXPECT_GT(*pHi - *pLo, 0.1);
     // The player sits on the carrier's heaving deck.
     EXPECT_NEAR(w.altitudeAboveWaves(), 0.0, 0.06);
+}
+
+// The night sortie's lamps ride the carrier: four, near it, scaled by the pre-exposure; the bow searchlight
+// sweeps about the heading; the night sea is moonlit, hazy and pre-exposed, and valid.
+TEST(Night, TheCarrierLampsRideItAndTheSearchlightSweeps) {
+    Scene s;
+    const World& w = *s.world;
+    const ShipState& carrier = w.ships()[0];
+    const std::vector<ocean::SpotLight> lamps = carrierLights(w, 2.0);
+    ASSERT_EQ(lamps.size(), 4u);
+    for (const ocean::SpotLight& l : lamps) {
+        EXPECT_LT(glm::length(glm::dvec2(l.position - carrier.pose.position)), 0.6 * carrier.spec.length);
+        EXPECT_GT(l.position.z, carrier.pose.position.z + 10.0);
+        EXPECT_NO_THROW(ocean::validateSpotLight(l, 0));
+    }
+    EXPECT_FLOAT_EQ(lamps[3].intensity, 2.0f * 2.0e4f) << "the searchlight, scaled by the exposure";
+    // At t = 0 the sweep is at its centre: the searchlight points along the heading, 2 degrees down.
+    const double h = carrier.pose.headingDeg * std::numbers::pi / 180.0;
+    EXPECT_NEAR(
+        glm::dot(glm::normalize(glm::dvec2(lamps[3].direction)), glm::dvec2(std::sin(h), std::cos(h))), 1.0,
+        1e-9);
+    EXPECT_NEAR(lamps[3].direction.z, -std::sin(2.0 * std::numbers::pi / 180.0), 1e-9);
+    s.fly(10.0,
+          [](const World&) { return FlightControls{}; }); // a quarter of the sweep: 30 degrees to starboard
+    const ocean::SpotLight later = carrierLights(w, 1.0)[3];
+    const double h10 = w.ships()[0].pose.headingDeg * std::numbers::pi / 180.0;
+    const double along =
+        glm::dot(glm::normalize(glm::dvec2(later.direction)), glm::dvec2(std::sin(h10), std::cos(h10)));
+    EXPECT_NEAR(along, std::cos(30.0 * std::numbers::pi / 180.0), 1e-6);
+
+    const ocean::OceanDesc night = nightSea({});
+    EXPECT_NO_THROW(ocean::validateLighting(night.lighting));
+    EXPECT_EQ(night.lighting.fogDensity, NIGHT_FOG_DENSITY);
+    EXPECT_NEAR(night.lighting.sunIntensity / ocean::LightingDesc{}.sunIntensity,
+                ocean::moonIlluminanceLux(NIGHT_MOON_PHASE_DEG) / ocean::SUN_ILLUMINANCE_LUX *
+                    std::exp2(NIGHT_EXPOSURE_EV),
+                1e-6);
+    EXPECT_GT(night.lighting.sunDirection.z, 0.4); // the Moon 25 degrees up
 }
