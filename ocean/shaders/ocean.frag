@@ -273,6 +273,7 @@ vec3 shadeSea() {
     vec3 fogged = mix(fogColor(-v), color, exp(-tau));
 #ifdef SPOT_LIGHTS
     fogged += spotScatter(-v, dist); // the beams in the fog before the sea
+    fogged = min(fogged, vec3(SPOT_RADIANCE_MAX)); // a lamp's glare stays finite in a half-float target
 #endif
     return fogged;
 }

@@ -37,7 +37,7 @@ vec3 distantSea(vec3 dir) {
 // The spots' beams in the fog along dir out to distance s (spot.glsl); none without spots.
 vec3 skyBeams(vec3 dir, float s) {
 #ifdef SPOT_LIGHTS
-    return spotScatter(dir, s);
+    return min(spotScatter(dir, s), vec3(SPOT_RADIANCE_MAX));
 #else
     return vec3(0.0);
 #endif

@@ -312,7 +312,7 @@ vec3 waterBody(vec3 v, vec3 n) {
 // which keeps the glitter finite at grazing views. The mean radiance of a glitter pattern against this very
 // formula is test_look_gl's SunGlitterFollowsCoxAndMunk.
 uniform bool uGlitterBlinnPhong; // LightingDesc::Glitter::BlinnPhong: the lobe the glitter replaced (a knob)
-// For light arriving from unit direction l (the sun: sunSpecular; a spot light: ocean.frag) with irradiance
+// For light arriving from unit direction l (the sun: sunSpecular; a spot light: spot.glsl) with irradiance
 // sunLight.
 vec3 lightSpecular(vec3 n, vec3 v, vec3 l, float m2, vec3 sunLight) {
     vec3 h = normalize(l + v);

@@ -11,6 +11,9 @@ uniform vec4 uSpotLight[MAX_SPOT_LIGHTS];    // (colour x intensity, range in me
 uniform vec2 uDaylightSun;
 uniform int uSpotScatterSamples; // LightingDesc::spotScatterSamples: quadrature points per beam, 0 = no beams
 uniform float uSpotFogPhaseG;    // SPOT_FOG_PHASE_G: the fog's Henyey-Greenstein asymmetry
+// The largest radiance a frame lit by lamps keeps: half float's largest finite value. A pre-exposed lamp's
+// glitter or glare near it can exceed it, and an RGBA16F target would hold Inf (NaN after a view transform).
+const float SPOT_RADIANCE_MAX = 65504.0;
 
 // spotFalloff and spotIrradiance in Lighting.h, expression for expression: the seed's saturate(|theta_f /
 // theta| - 1), finite on the axis. l: the unit direction from p toward the spot.
@@ -20,7 +23,8 @@ float spotFalloff(float theta, float frustum) {
 // Karis' range window (1 - (d / range)^4)^2.
 float spotWindow(float d, float range) {
     float q = d / range, q2 = q * q;
-    return (1.0 - q2 * q2) * (1.0 - q2 * q2);
+    float w = max(1.0 - q2 * q2, 0.0);
+    return w * w;
 }
 vec3 spotIrradiance(int i, vec3 p, out vec3 l) {
     vec3 toPoint = p - uSpotPosition[i];

@@ -368,6 +368,13 @@ LightingDesc moonlit(LightingDesc l, const glm::dvec3& moonDirection, double pha
     l.sunIntensity = static_cast<float>(l.sunIntensity * scale);
     if (l.sky == LightingDesc::Sky::Gradient) // the physical sky already follows sunIntensity
         l.skyIntensity = static_cast<float>(l.skyIntensity * scale);
+    if (l.environment) { // a photographed sky, dimmed as the Moon lights it (its own sun becomes the Moon)
+        auto map = std::make_shared<EnvironmentMap>(*l.environment);
+        map->intensity = static_cast<float>(map->intensity * scale);
+        l.environment = std::move(map);
+    }
+    if (l.fogColor)
+        *l.fogColor *= static_cast<float>(scale);
     return l;
 }
 
@@ -488,9 +495,8 @@ glm::dvec3 spotInScatter(const SpotLight& spot, const LightingDesc& l, const glm
         const double z = eye.z + t * dir.z;
         const double sigma = h > 0.0 ? l.fogDensity * std::exp(-z / h) : l.fogDensity;
         const double tau = fogOpticalDepth(eye.z, z, t, l) + fogOpticalDepth(spot.position.z, z, d, l);
-        const double q = d / spot.range, q2 = q * q;
-        sum += sigma * phase * spotFalloff(theta, frustum) * (1.0 - q2 * q2) * (1.0 - q2 * q2) *
-               std::exp(-tau) * jacobian;
+        const double q = d / spot.range, q2 = q * q, window = std::max(1.0 - q2 * q2, 0.0);
+        sum += sigma * phase * spotFalloff(theta, frustum) * window * window * std::exp(-tau) * jacobian;
     }
     return glm::dvec3(spot.color) *
            (SUN_DIFFUSE_SCALE * static_cast<double>(spot.intensity) * sum * (a1 - a0) / samples);

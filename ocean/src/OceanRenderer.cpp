@@ -94,7 +94,7 @@ void validateScene(const OceanScene& scene, const OceanFrame& frame) {
     }
 }
 
-/// The spot lights' uniforms (ocean.frag SPOT_LIGHTS) for a program lighting the sea: positions relative to
+/// The spot lights' uniforms (spot.glsl, SPOT_LIGHTS) for a program lighting the sea: positions relative to
 /// the camera (in double, then float), unit axes, half-angles, colour times intensity, ranges; the daylight
 /// the water body is relative to; the beams' quadrature and phase.
 void setSpotUniforms(GLuint prog, std::span<const SpotLight> spots, const OceanFrame& frame,

@@ -168,6 +168,11 @@ def make_cases(inputs, demo):
          ["--light 'spot:coaster,angle=120': angle must be a number in [0.1, 90], got '120'"], []),
         ("--light fixed without y", [demo], QUICK + ["--light", "spot:fixed,x=3"], {}, 2,
          ["a fixed light needs x= and y="], []),
+        ("--light under the sea", [demo], QUICK + ["--light", "spot:coaster,height=-5"], {}, 2,
+         ["height must be a number in [0, 10000], got '-5'"], []),
+        ("--light too bright once exposed", [demo],
+         QUICK + ["--light", "spot:coaster,intensity=1e9", "--exposure", "17"], {}, 2,
+         ["color x intensity x 2^exposure", "exceeds the spot lights' bound"], []),
         # Painted height maps: the message names the file; nothing is written.
         ("--height-map missing file", [demo], QUICK + ["--height-map", missing_map], {}, 1,
          [missing_map, "cannot open image"], []),

@@ -733,9 +733,12 @@ def case_night(c, exe, source_dir, tmp):
     dark_px, lit_px = exr_pixels(out_dark, f_dark["exr"]), exr_pixels(out_lit, f_lit["exr"])
     gained = [lum(b) - lum(a) for a, b in zip(dark_px, lit_px)]
     c.check(all(math.isfinite(v) for p in lit_px for v in p), "the lit frame is finite")
-    c.check(min(gained) > -1e-3 * max(gained) and sum(1 for g in gained if g > 0.05) > 200,
-            "the lights only add light, and their beams show (> 200 pixels gain 0.05)",
-            f"min {min(gained):.3g}, max {max(gained):.3g}, {sum(1 for g in gained if g > 0.05)} pixels")
+    # Above the horizon (the level camera's upper 40 rows of 90) only the beams in the fog add light.
+    sky_gain = sum(1 for i, g in enumerate(gained) if i // 160 < 40 and g > 0.05)
+    c.check(min(gained) > -1e-3 * max(gained) and sky_gain > 40,
+            f"the lights only add light, and their beams show in the sky ({sky_gain} pixels above the horizon "
+            "gain 0.05, 119 measured; > 40 wanted)",
+            f"min {min(gained):.3g}, max {max(gained):.3g}, {sky_gain} pixels")
 
 
 CASES = {"replay": case_replay, "studio-ocio": case_studio_ocio, "ocean-options": case_ocean_options,

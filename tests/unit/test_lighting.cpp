@@ -699,3 +699,24 @@ TEST(Moonlight, FollowsKrisciunasAndSchaefer) {
     EXPECT_THROW(moonlit(day, glm::dvec3(0.0), 0.0), std::invalid_argument);
     EXPECT_NO_THROW(validateLighting(night));
 }
+
+// A moonlit night dims a fixed fog colour and an environment map by the same ratio as the light (the map
+// copied: the daylight one is left as it was).
+TEST(Moonlight, DimsTheFogColourAndTheEnvironmentToo) {
+    LightingDesc day;
+    day.fogColor = glm::vec3(0.5f, 0.6f, 0.7f);
+    auto map = std::make_shared<EnvironmentMap>();
+    map->intensity = 2.0f;
+    day.environment = map;
+    const double ratio = moonIlluminanceLux(30.0) / SUN_ILLUMINANCE_LUX;
+    const LightingDesc night = moonlit(day, {1.0, 0.0, 1.0}, 30.0);
+    EXPECT_NEAR(night.fogColor->g / 0.6, ratio, 1e-9);
+    EXPECT_NEAR(night.environment->intensity / 2.0, ratio, 1e-9);
+    EXPECT_EQ(map->intensity, 2.0f);
+    EXPECT_NE(night.environment.get(), map.get());
+    // Pre-exposure scales them back up.
+    const LightingDesc exposedNight = exposed(night, 10.0);
+    EXPECT_NEAR(exposedNight.fogColor->g / night.fogColor->g, 1024.0, 1e-3);
+    EXPECT_NEAR(exposedNight.environment->intensity / night.environment->intensity, 1024.0, 1e-3);
+    EXPECT_THROW(exposed(night, 41.0), std::invalid_argument);
+}

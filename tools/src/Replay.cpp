@@ -272,6 +272,7 @@ nlohmann::json countersJson(const ocean::OceanStats& st, const ocean::EffectCoun
             {"events_rejected", fx.rejected},
             {"spots", st.spots},
             {"spots_dropped", st.spotsDropped},
+            {"spots_rejected", st.spotsRejected},
             {"objects_drawn", objectsDrawn},
             {"tonemap_passes", tonemapPasses}};
 }
@@ -392,7 +393,8 @@ ReplayRun::ReplayRun(const ReplayOptions& o_, const ReplayInput& input_, const F
       oceanEntity(addOcean(registry, oceanDesc)), targets(makeTargets(input.views)), tonemapper(colour),
       extraViews(makeExtraViews(o, colour)), gpuTimer(context->info()), effects(registry, events),
       timeline(registry, events, effects), images(writeImages),
-      viewFrames(input.views.size(), nlohmann::json::array()), lights(parseReplayLights(o.lights, input)),
+      viewFrames(input.views.size(), nlohmann::json::array()),
+      lights(parseReplayLights(o.lights, input, std::exp2(o.exposureEv))),
       tty(o.progress && isatty(STDERR_FILENO)) {
     if (const ocean::Status s = sea.init(registry.get<ocean::OceanComponent>(oceanEntity)); !s)
         throw std::runtime_error("replay: " + s.message);

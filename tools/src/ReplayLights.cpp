@@ -3,6 +3,7 @@
 
 #include "Usage.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -46,7 +47,7 @@ glm::vec3 colour(const std::string& spec, const std::string& text) {
 void applyKey(ReplayLight& l, const std::string& key, const std::string& value, bool& x, bool& y) {
     const std::string& s = l.spec;
     if (key == "height")
-        l.height = number(s, key, value, -100.0, 1e4);
+        l.height = number(s, key, value, 0.0, 1e4);
     else if (key == "azimuth")
         l.azimuthDeg = number(s, key, value, -360.0, 360.0);
     else if (key == "elevation")
@@ -106,10 +107,21 @@ ReplayLight parseLight(const std::string& spec, const ReplayInput& input) {
 
 } // namespace
 
-std::vector<ReplayLight> parseReplayLights(const std::vector<std::string>& specs, const ReplayInput& input) {
+std::vector<ReplayLight> parseReplayLights(const std::vector<std::string>& specs, const ReplayInput& input,
+                                           double exposureScale) {
     std::vector<ReplayLight> lights;
-    for (const std::string& s : specs)
+    for (const std::string& s : specs) {
         lights.push_back(parseLight(s, input));
+        const ReplayLight& l = lights.back();
+        const double brightest =
+            std::max({l.color.r, l.color.g, l.color.b}) * static_cast<double>(l.intensity) * exposureScale;
+        if (!(brightest <= ocean::MAX_SPOT_INTENSITY)) {
+            std::ostringstream m;
+            m << "--light '" << s << "': color x intensity x 2^exposure = " << brightest
+              << " exceeds the spot lights' bound " << ocean::MAX_SPOT_INTENSITY;
+            throw UsageError(m.str());
+        }
+    }
     return lights;
 }
 

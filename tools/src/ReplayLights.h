@@ -5,11 +5,11 @@
 //   spot:SHIP[,height=M][,azimuth=DEG][,elevation=DEG][,angle=DEG][,intensity=I][,range=M][,color=R:G:B]
 //   spot:fixed,x=M,y=M[,...the same keys]
 //
-// SHIP is a ship's id (`--list-objects`, or a flight CSV's ship id). height: metres above the sea (default
-// 20); azimuth: degrees clockwise from the ship's heading (fixed: from north; default 0); elevation: degrees
-// above the horizontal (default -10: onto the sea); angle: the cone's half-angle (default 6); intensity,
-// range, color: ocean::SpotLight's (default 2e4, 5000 m, white). x, y: metres east and north in the replay's
-// world (summary.json's recording origin).
+// SHIP is a ship's id (`--list-objects`, or a flight CSV's ship id). height: metres above the sea, >= 0
+// (default 20); azimuth: degrees clockwise from the ship's heading (fixed: from north; default 0); elevation:
+// degrees above the horizontal (default -10: onto the sea); angle: the cone's half-angle (default 6);
+// intensity, range, color: ocean::SpotLight's (default 2e4, 5000 m, white). x, y: metres east and north in
+// the replay's world (summary.json's recording origin).
 #pragma once
 
 #include "ReplayInput.h"
@@ -32,8 +32,11 @@ struct ReplayLight {
     glm::vec3 color{1.0f};
 };
 
-/// Parses every --light spec against the run's ships. Throws UsageError naming the spec and the key.
-std::vector<ReplayLight> parseReplayLights(const std::vector<std::string>& specs, const ReplayInput& input);
+/// Parses every --light spec against the run's ships. `exposureScale` (2^EV, the replay's pre-exposure) is
+/// checked with each light's colour x intensity against ocean::MAX_SPOT_INTENSITY. Throws UsageError naming
+/// the spec and the key.
+std::vector<ReplayLight> parseReplayLights(const std::vector<std::string>& specs, const ReplayInput& input,
+                                           double exposureScale);
 
 /// The lights at time t, their intensities times `exposureScale` (2^EV: the replay's pre-exposure). A ship's
 /// light is out of the frame before its track starts and after it ends.

@@ -177,9 +177,9 @@ double moonIlluminanceLux(double phaseDeg);
 /// of nearly the Sun's apparent size (0.52 degrees against 0.53), so it is the Sun's light in its direction
 /// scaled by moonIlluminanceLux(phaseDeg) / SUN_ILLUMINANCE_LUX: its glitter (the same Cox & Munk lobe), its
 /// disc, its reddening through the air and the physical sky it lights (the same scattering, as dim), the
-/// gradient sky scaled alike. Starlight and airglow (~1/10 of a full Moon's sky) are not modelled.
-/// `moonDirection` toward the Moon, world ENU. Throws std::invalid_argument for a zero or non-finite
-/// direction or a phase outside [0, 180].
+/// gradient sky, an environment map (copied) and a fixed fog colour scaled alike. Starlight and airglow
+/// (~1/10 of a full Moon's sky) are not modelled. `moonDirection` toward the Moon, world ENU. Throws
+/// std::invalid_argument for a zero or non-finite direction or a phase outside [0, 180].
 LightingDesc moonlit(LightingDesc lighting, const glm::dvec3& moonDirection, double phaseDeg);
 /// Pre-exposure (Lagarde & de Rousiers 2014, "Moving Frostbite to Physically Based Rendering", sec. 5.1):
 /// every light scaled by 2^ev -- the sun (and the physical sky, which follows it), the gradient sky, an
@@ -221,7 +221,7 @@ void validateSpotLight(const SpotLight& spot, size_t index);
 double spotFalloff(double theta, double frustum);
 /// The irradiance the spot delivers at world point p on a surface facing it (times n.l for a surface of
 /// normal n), scene-linear: color intensity spotFalloff(theta, theta_f) window(d / range) / max(d,
-/// SPOT_MIN_DISTANCE)^2. ocean.frag's spotIrradiance is the same expression.
+/// SPOT_MIN_DISTANCE)^2. spot.glsl's spotIrradiance is the same expression.
 glm::dvec3 spotIrradiance(const SpotLight& spot, const glm::dvec3& p);
 
 /// The part [t0, t1] of the ray origin + t dir (dir unit, t in the given [t0, t1]) inside the spot's cone and
