@@ -13,7 +13,7 @@ for case in json.load(open(os.path.join(gd, "cases.json")))["cases"]:
     out = tempfile.mkdtemp()
     t = str(case["time"])
     subprocess.run([cli, "replay", os.path.join(gd, case["flight"]), "--out", out, "--start", t, "--end", t,
-                    "--size", case["size"], "--no-progress"], check=True)
+                    "--size", case["size"], "--no-progress", *case.get("args", [])], check=True)
     shutil.copy(os.path.join(out, "frame_00000.png"), os.path.join(gd, case["name"] + ".png"))
     shutil.rmtree(out)
     print("blessed", case["name"])

@@ -34,7 +34,7 @@ def main():
         out = os.path.join(work_dir, case["name"])
         t = str(case["time"])
         cmd = [cli, "replay", os.path.join(golden_dir, case["flight"]), "--out", out, "--start", t, "--end", t,
-               "--size", case["size"], "--no-progress"]
+               "--size", case["size"], "--no-progress", *case.get("args", [])]
         subprocess.run(cmd, check=True)
         new = os.path.join(out, "frame_00000.png")
         ref = os.path.join(golden_dir, case["name"] + ".png")
