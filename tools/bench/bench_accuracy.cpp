@@ -42,7 +42,6 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -532,8 +531,7 @@ std::string gpQuote(const std::string& s) {
 // re-draws the plot anywhere (the H100 machine has no gnuplot).
 void writePlotFiles(const std::string& dir, const std::vector<Result>& rs, const std::string& clock,
                     const std::string& renderer) {
-    std::ofstream dat(dir + "/accuracy.dat");
-    std::ofstream gp(dir + "/accuracy.gp");
+    std::ostringstream dat, gp; // written whole (writeFileAtomically): a killed run leaves no half a plot
     const std::map<std::string, std::string> colour = {
         {"octaves", "#1f77b4"}, {"gerstner", "#2ca02c"}, {"fft", "#d62728"}};
     std::vector<std::string> plots;
@@ -600,8 +598,8 @@ void writePlotFiles(const std::string& dir, const std::vector<Result>& rs, const
     for (size_t i = 0; i < plots.size(); ++i)
         gp << (i ? ", \\\n     " : "") << plots[i];
     gp << "\n";
-    if (!dat || !gp)
-        throw std::runtime_error("cannot write " + dir + "/accuracy.dat or accuracy.gp");
+    writeFileAtomically(dir + "/accuracy.dat", dat.str());
+    writeFileAtomically(dir + "/accuracy.gp", gp.str());
 }
 
 struct Args {

@@ -756,7 +756,7 @@ std::vector<GridRow> gridKnob(gl::GpuTimer& timer, const gl::FrameTargets& targe
 
 void writeGridReport(const std::string& outDir, const std::vector<GridRow>& rows, const gl::ContextInfo& info,
                      const gl::GpuTimer& timer, int width, int height, int frames) {
-    std::ofstream csv(std::filesystem::path(outDir) / "effects_grid.csv");
+    std::ostringstream csv, md; // written whole (writeFileAtomically), as the other reports
     csv << "kind,count,rings,segments,exponent,radius_m,amplitude_m,mesh_rms_rel,mesh_max_rel,ms_median,"
            "fx_vertices,clock,renderer\n";
     for (const GridRow& r : rows)
@@ -764,7 +764,6 @@ void writeGridReport(const std::string& outDir, const std::vector<GridRow>& rows
             << ',' << num(r.radius) << ',' << num(r.amplitude) << ',' << num(r.rmsRel) << ',' << num(r.maxRel)
             << ',' << num(r.msMedian) << ',' << r.fxVertices << ',' << csvQuote(timer.clockName()) << ','
             << csvQuote(info.renderer) << '\n';
-    std::ofstream md(std::filesystem::path(outDir) / "effects_grid.md");
     md << "# Effect grid density: error against cost\n\n- GL_RENDERER: " << info.renderer
        << "\n- clock: " << timer.clockName() << "\n- size: " << width << "x" << height << ", " << frames
        << " timed frames per setting, round robin; ms = median of render + glFinish\n"
@@ -778,6 +777,8 @@ void writeGridReport(const std::string& outDir, const std::vector<GridRow>& rows
         md << "| " << r.kind << " | " << r.count << " | " << r.rings << " x " << r.segments << ", "
            << num(r.exponent) << " | " << fixed(r.radius, 0) << " | " << num(r.rmsRel, 3) << " | "
            << num(r.maxRel, 3) << " | " << fixed(r.msMedian, 3) << " | " << r.fxVertices << " |\n";
+    writeFileAtomically(outDir + "/effects_grid.csv", csv.str());
+    writeFileAtomically(outDir + "/effects_grid.md", md.str());
 }
 
 int main(int argc, char** argv) {
